@@ -1,0 +1,50 @@
+// The plug through which joints and contacts take part in a time step.
+//
+// dem_core knows nothing of springs or contact geometry; it calls every
+// provider once per stage (one virtual call per provider per step, never per
+// spring). Contract of one step n (DESIGN.md "One time step"):
+//   accumulate_forces: poses at n, velocities at n-1/2; add forces (N) and
+//     torques about the centre of mass (N m), world frame, into
+//     bodies.force_N / bodies.torque_Nm. Must not change topology. Events
+//     found here (yield, deletion, break) are kept until finish_step.
+//   finish_step: after the bodies moved to n+1; apply deferred topology
+//     changes in ascending id and append their events to the log.
+//   report_energy: add stored elastic energy at n and cumulative dissipated
+//     energies to the ledger.
+#pragma once
+
+#include <limits>
+#include <string>
+
+#include "dem_core/body_store.h"
+#include "dem_core/energy_ledger.h"
+#include "dem_core/events.h"
+
+namespace fq {
+
+struct StepInfo {
+  std::int64_t step = 0;  // n
+  double time_s = 0.0;    // t_n (s)
+  double dt_s = 0.0;      // (s)
+};
+
+// The stiffest mode a provider knows of, for the stable-time-step estimate
+// (central difference: dt_crit = 2 / omega_max).
+struct StiffestMode {
+  double omega_radps = 0.0;  // highest angular frequency (rad/s); 0 = none
+  std::string where;         // which element, for the refusal message
+};
+
+class ForceProvider {
+ public:
+  virtual ~ForceProvider() = default;
+  virtual const char* name() const = 0;
+  // Once, before the first force evaluation, with the final body set.
+  virtual void prepare(const BodyStore& /*bodies*/) {}
+  virtual void accumulate_forces(BodyStore& bodies, const StepInfo& step) = 0;
+  virtual void finish_step(const BodyStore& /*bodies*/, const StepInfo& /*step*/, EventLog& /*events*/) {}
+  virtual void report_energy(EnergyLedger& /*ledger*/) const {}
+  virtual StiffestMode stiffest_mode(const BodyStore& /*bodies*/) const { return {}; }
+};
+
+}  // namespace fq

@@ -1,0 +1,144 @@
+// The step loop: explicit central difference (Cundall's scheme) for a set of
+// rigid boxes driven by gravity, a ground motion and force providers.
+//
+// Stages of one step n, in this order (DESIGN.md "One time step", STYLE.md 3.2):
+//   1. ExternalForces  clear F and T; add m g and the inertia force -m a_g(t_n)
+//   2. Providers       each ForceProvider adds its forces (joints, then contacts)
+//   3. Integrate       v(n+1/2) = v(n-1/2) + dt F/m,  x(n+1) = x(n) + dt v(n+1/2);
+//                      L(n+1/2) = L(n-1/2) + dt T, orientation drifted with L
+//                      fixed (rotation.h); energy bookkeeping of this step
+//   4. FinishStep      providers apply deferred topology changes, emit events
+//   5. Observe         observers that are due (history rows, frames) run
+// Starting: the first half step uses v(-1/2) = v0 - (dt/2) a(0), which makes
+// the scheme exact for constant acceleration (free fall, projectile).
+#pragma once
+
+#include <array>
+#include <atomic>
+#include <chrono>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "dem_core/body_store.h"
+#include "dem_core/bonded_pairs.h"
+#include "dem_core/energy_ledger.h"
+#include "dem_core/events.h"
+#include "dem_core/force_provider.h"
+#include "dem_core/ground_motion.h"
+
+namespace fq {
+
+struct SimulationSettings {
+  double dt_s = 1e-5;                                  // time step (s)
+  double duration_s = 1.0;                             // simulated time (s)
+  Vec3 gravity_mps2 = Vec3(0.0, 0.0, -kStandardGravity_mps2);  // (m/s^2)
+  // Stage timers run on one step in this many; summary figures are scaled
+  // up. Reading a clock every stage of every step would cost more than a
+  // small frame's whole step.
+  int profile_every_steps = 64;
+};
+
+enum class Stage : int { ExternalForces = 0, Providers, Integrate, FinishStep, Observe, Count };
+const char* stage_name(Stage s);
+
+class Simulation;
+
+// Something that looks at the state every so many steps (history writer,
+// frame writer, progress display). Called after FinishStep of step n, with
+// the ledger at step n and poses at n+1 (the time reported is t_{n+1}).
+class StepObserver {
+ public:
+  virtual ~StepObserver() = default;
+  virtual void on_start(const Simulation& /*sim*/) {}
+  virtual void on_sample(const Simulation& sim) = 0;
+  virtual void on_finish(const Simulation& /*sim*/) {}
+};
+
+enum class RunStatus { Completed, Stopped, Unstable };
+const char* run_status_name(RunStatus s);
+
+struct RunResult {
+  RunStatus status = RunStatus::Completed;
+  std::int64_t steps = 0;
+  double simulated_s = 0.0;
+  double wall_s = 0.0;
+  std::string message;  // for Unstable: where and when it started
+};
+
+struct StageProfile {
+  std::array<double, static_cast<int>(Stage::Count)> seconds{};  // estimated total per stage (s)
+  std::vector<double> provider_seconds;                           // estimated per provider (s)
+};
+
+class Simulation {
+ public:
+  Simulation(BodyStore bodies, SimulationSettings settings, GroundMotion ground_motion = {});
+
+  // Providers run in the order added (joints before contacts).
+  void add_force_provider(std::unique_ptr<ForceProvider> provider);
+  // Observer called every `every_steps` steps (and at the start and end).
+  void add_observer(StepObserver* observer, std::int64_t every_steps);
+
+  // Prepares providers, evaluates forces at t = 0 and shifts velocities back
+  // half a step. Called by run() and step() if not done yet.
+  void initialize();
+  // One step; false when the state became non-finite (the step is kept out
+  // of the ledger and an Instability event names the first bad body).
+  bool step();
+  // Runs to settings.duration_s, or until *stop_requested becomes true.
+  RunResult run(const std::atomic<bool>* stop_requested = nullptr);
+
+  const BodyStore& bodies() const { return bodies_; }
+  BodyStore& bodies() { return bodies_; }
+  const SimulationSettings& settings() const { return settings_; }
+  const GroundMotion& ground_motion() const { return ground_motion_; }
+  const EnergyLedger& ledger() const { return ledger_; }
+  const EventLog& events() const { return events_; }
+  EventLog& events() { return events_; }
+  BondedPairs& bonded_pairs() { return bonded_pairs_; }
+  const BondedPairs& bonded_pairs() const { return bonded_pairs_; }
+  const std::vector<std::unique_ptr<ForceProvider>>& providers() const { return providers_; }
+  const StageProfile& profile() const { return profile_; }
+
+  std::int64_t steps_done() const { return step_; }
+  double time_s() const { return double(step_) * settings_.dt_s; }  // t of the current poses
+  std::int64_t total_steps() const;
+  Vec3 ground_acceleration_mps2() const { return ground_acceleration_; }  // a_g at the last force evaluation
+  double wall_seconds() const;
+
+ private:
+  void compute_forces();
+  void integrate();
+  void finish_step();
+  void observe(bool force_all);
+  void observe_undue();
+  void gather_provider_energy();  // observers not due at this step (final sample)
+
+  BodyStore bodies_;
+  SimulationSettings settings_;
+  GroundMotion ground_motion_;
+  std::vector<std::unique_ptr<ForceProvider>> providers_;
+  struct ObserverSlot {
+    StepObserver* observer;
+    std::int64_t every_steps;
+  };
+  std::vector<ObserverSlot> observers_;
+  EnergyLedger ledger_;
+  EventLog events_;
+  BondedPairs bonded_pairs_;
+  StageProfile profile_;
+
+  bool initialized_ = false;
+  bool forces_current_ = false;  // forces at step_ already in the body store
+  std::int64_t step_ = 0;
+  Vec3 ground_acceleration_ = Vec3::Zero();
+  // Work through step n-1, and this step's increment (see energy_ledger.h).
+  double work_gravity_through_prev_J_ = 0.0;
+  double work_ground_through_prev_J_ = 0.0;
+  std::chrono::steady_clock::time_point wall_start_;
+  bool wall_started_ = false;
+};
+
+}  // namespace fq

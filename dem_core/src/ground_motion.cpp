@@ -1,0 +1,88 @@
+#include "dem_core/ground_motion.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace fq {
+
+double AccelerationRecord::at(double t_s) const {
+  const std::size_t n = acceleration_mps2.size();
+  if (n == 0 || !(t_s >= 0.0)) return 0.0;
+  const double x = t_s / dt_s;
+  const double k_floor = std::floor(x);
+  if (k_floor >= double(n - 1)) {
+    // Exactly on the last sample: its value; beyond it: no motion.
+    return (x <= double(n - 1) + 1e-9) ? acceleration_mps2[n - 1] : 0.0;
+  }
+  const std::size_t k = static_cast<std::size_t>(k_floor);
+  const double f = x - k_floor;
+  return (1.0 - f) * acceleration_mps2[k] + f * acceleration_mps2[k + 1];
+}
+
+double AccelerationRecord::peak_mps2(double* out_time_s) const {
+  double peak = 0.0;
+  std::size_t at_k = 0;
+  for (std::size_t k = 0; k < acceleration_mps2.size(); ++k) {
+    if (std::abs(acceleration_mps2[k]) > std::abs(peak)) {
+      peak = acceleration_mps2[k];
+      at_k = k;
+    }
+  }
+  if (out_time_s) *out_time_s = double(at_k) * dt_s;
+  return peak;
+}
+
+void GroundMotion::add_component(GroundMotionComponent c) {
+  const std::string who = c.record.source.empty() ? std::string("ground motion record") : c.record.source;
+  if (c.record.acceleration_mps2.size() < 2)
+    throw std::invalid_argument(who + ": a record needs at least 2 samples");
+  if (!(c.record.dt_s > 0.0) || !std::isfinite(c.record.dt_s))
+    throw std::invalid_argument(who + ": sampling interval DT must be a positive number of seconds");
+  if (!(c.direction.norm() > 0.0) || !c.direction.allFinite())
+    throw std::invalid_argument(who + ": direction must be a non-zero vector");
+  if (!(c.time_scale > 0.0) || !std::isfinite(c.time_scale))
+    throw std::invalid_argument(who + ": time_scale must be a positive number");
+  if (!std::isfinite(c.amplitude_scale))
+    throw std::invalid_argument(who + ": amplitude_scale must be a finite number");
+  if (!(c.window_start_s >= 0.0))
+    throw std::invalid_argument(who + ": window start must be >= 0 s");
+  if (!(c.window_length_s > 0.0))
+    throw std::invalid_argument(who + ": window length must be > 0 s");
+  c.direction.normalize();
+  components_.push_back(std::move(c));
+}
+
+Vec3 GroundMotion::acceleration(double t_s) const {
+  Vec3 a = Vec3::Zero();
+  for (const GroundMotionComponent& c : components_) {
+    const double t_window = t_s / c.time_scale;
+    if (t_window < 0.0 || t_window > c.window_length_s) continue;
+    a += (c.amplitude_scale * c.record.at(c.window_start_s + t_window)) * c.direction;
+  }
+  return a;
+}
+
+double GroundMotion::end_time_s() const {
+  double end = 0.0;
+  for (const GroundMotionComponent& c : components_) {
+    const double length = std::min(c.window_length_s, c.record.duration_s() - c.window_start_s);
+    end = std::max(end, std::max(0.0, length) * c.time_scale);
+  }
+  return end;
+}
+
+Vec3 GroundMotion::peak_abs_mps2() const {
+  Vec3 peak = Vec3::Zero();
+  for (const GroundMotionComponent& c : components_) {
+    const std::size_t n = c.record.acceleration_mps2.size();
+    for (std::size_t k = 0; k < n; ++k) {
+      const double t_rec = double(k) * c.record.dt_s;
+      if (t_rec < c.window_start_s || t_rec > c.window_start_s + c.window_length_s) continue;
+      const Vec3 a = (c.amplitude_scale * c.record.acceleration_mps2[k]) * c.direction;
+      peak = peak.cwiseMax(a.cwiseAbs());
+    }
+  }
+  return peak;
+}
+
+}  // namespace fq

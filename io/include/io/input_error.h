@@ -1,0 +1,38 @@
+// The one error type for everything a user can get wrong in an input file
+// (case file, accelerogram). It always names the file, the line (1-based, 0
+// when the problem is with the file as a whole), the field, and what was
+// expected, so a message reads like a compiler's:
+//   cases/demo.yaml:12: field 'members[3].section': expected the name of a section, got 'col10x30'
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace fq {
+
+class InputError : public std::runtime_error {
+ public:
+  InputError(std::string file, int line, std::string field, const std::string& message)
+      : std::runtime_error(format(file, line, field, message)),
+        file_(std::move(file)),
+        line_(line),
+        field_(std::move(field)) {}
+
+  const std::string& file() const { return file_; }
+  int line() const { return line_; }
+  const std::string& field() const { return field_; }
+
+ private:
+  static std::string format(const std::string& file, int line, const std::string& field, const std::string& message) {
+    std::string s = file;
+    if (line > 0) s += ":" + std::to_string(line);
+    s += ": ";
+    if (!field.empty()) s += "field '" + field + "': ";
+    return s + message;
+  }
+  std::string file_;
+  int line_;
+  std::string field_;
+};
+
+}  // namespace fq
