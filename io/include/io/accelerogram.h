@@ -1,0 +1,89 @@
+// Readers for recorded accelerograms: PEER NGA .AT2 files and plain
+// two-column "time acceleration" text. Both return an fq::AccelerationRecord
+// (dem_core/ground_motion.h): uniformly sampled, first sample at t = 0,
+// acceleration in m/s^2.
+//
+// Every malformed input throws fq::InputError naming the file, the 1-based
+// line (0 for the file as a whole), the field and what was expected. Fields:
+//   "file"          missing, unreadable or empty file (line 0)
+//   "header"        AT2 header lines 1-4 missing, wrong units, non-text bytes there
+//   "NPTS", "DT"    AT2 line 4 (and NPTS also when the value count differs)
+//   "value"         a data token that is not a finite number, non-text bytes,
+//                   wrong column count, fewer than 2 samples
+//   "time", "acceleration"  the two columns of a two-column file
+//
+// Both readers accept LF, CRLF and CR line ends, a leading UTF-8 byte-order
+// mark, Fortran E-format numbers with or without a leading digit
+// ("-.1416764E-03") and Fortran D exponents ("1.5D-03").
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include "dem_core/ground_motion.h"
+
+namespace fq {
+
+enum class RecordFormat { PeerAt2, TwoColumn };
+
+// "peer_at2" | "two_column"; false (out untouched) if unknown.
+bool parse_record_format(const std::string& name, RecordFormat& out);
+const char* record_format_name(RecordFormat f);
+
+// Units a two-column file's acceleration column is in.
+enum class AccelerationUnit { G, MetrePerSecond2, CentimetrePerSecond2 };
+
+// "g" | "m/s2" | "cm/s2"; false (out untouched) if unknown.
+bool parse_acceleration_unit(const std::string& name, AccelerationUnit& out);
+// Inverse of parse_acceleration_unit.
+const char* acceleration_unit_name(AccelerationUnit u);
+// Factor from the unit to m/s^2: g -> kStandardGravity_mps2 (9.80665, the
+// value PEER uses), cm/s2 -> 0.01.
+double acceleration_unit_to_mps2(AccelerationUnit u);
+
+// PEER NGA .AT2: 4 header lines, then NPTS values in g, any number per line
+// (PEER writes 5; the last line may be partial).
+//   line 1  database banner (not checked)
+//   line 2  event, date, station, component -> description (trimmed)
+//   line 3  "ACCELERATION TIME SERIES IN UNITS OF G"; if it names units
+//           ("UNITS OF X") they must be G, so a velocity (.VT2) or
+//           displacement (.DT2) file given by mistake is refused
+//   line 4  NPTS and DT. Spellings seen in the wild all work:
+//           "NPTS=   7500, DT=   .0200 SEC,", "NPTS =   7500 , DT =   .020 SEC ,",
+//           "NPTS=   2000  DT=   .0200 SEC" (keywords case-insensitive, spaces
+//           around '=' optional, comma between the two optional).
+// The count of values must equal NPTS exactly: a short or long file means a
+// truncated or concatenated download, which must not pass silently.
+// source = file as given; dt_s = DT; values converted with 9.80665 m/s^2 per g.
+AccelerationRecord read_peer_at2(const std::filesystem::path& file);
+
+// Plain text, one "time acceleration" pair per line, separated by whitespace
+// or one comma; blank lines and lines starting with '#' are skipped. Time in
+// s, strictly increasing; acceleration in `unit`.
+//
+// Sampling. If every interval is within a relative 1e-6 of the first one the
+// record is uniform and dt_s is the mean interval (t_last - t_first)/(n - 1),
+// which averages out the rounding of printed times; the values are taken as
+// they are. Otherwise the record is resampled by linear interpolation onto a
+// uniform grid with the smallest interval found, h_min, at t = k h_min for
+// k = 0 .. floor((t_last - t_first) / h_min): the smallest interval keeps the
+// finest time resolution the file has (no peak between two close samples is
+// averaged away), linear interpolation is what AccelerationRecord::at()
+// assumes between samples anyway, and a tail shorter than h_min after the last
+// grid point is dropped rather than extrapolated. A file whose smallest
+// interval is more than 100 times finer than its mean interval is refused
+// (field "time", at the line of that interval): real irregular sampling does
+// not span such a range, a mistyped time does, and resampling it would blow
+// the record up a hundredfold or more.
+//
+// The first time need not be 0: the record is shifted so its first sample is
+// at t = 0, and the shift is stated in `description`. description = the text
+// of the first '#' comment line (if any) followed by notes on the unit, the
+// shift and any resampling.
+AccelerationRecord read_two_column(const std::filesystem::path& file, AccelerationUnit unit);
+
+// Dispatch on `format`; two_column_unit is used only for TwoColumn.
+AccelerationRecord read_accelerogram(const std::filesystem::path& file, RecordFormat format,
+                                     AccelerationUnit two_column_unit = AccelerationUnit::MetrePerSecond2);
+
+}  // namespace fq
