@@ -1,0 +1,211 @@
+// framequake command line.
+//
+//   framequake run CASE [--out DIR] [--quiet] [--force] [--threads N]
+//   framequake info CASE
+//   framequake --help | --version
+//
+// Exit codes: 0 run completed; 1 the run became unstable (output kept up to
+// the last good frame); 2 bad input or usage (nothing written); 3 output
+// could not be written; 130 interrupted (SIGINT; final frame and summary
+// written).
+#include <unistd.h>
+
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <cstring>
+#include <exception>
+#include <filesystem>
+#include <iostream>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "fq_config.h"
+#include "io/case_file.h"
+#include "io/case_runner.h"
+#include "io/input_error.h"
+#include "progress_display.h"
+
+#if defined(_OPENMP)
+#include <omp.h>
+#endif
+
+namespace {
+
+constexpr int kExitOk = 0;
+constexpr int kExitUnstable = 1;
+constexpr int kExitBadInput = 2;
+constexpr int kExitOutputFailed = 3;
+constexpr int kExitInterrupted = 130;
+
+std::atomic<bool> g_stop_requested{false};
+
+extern "C" void on_sigint(int) { g_stop_requested.store(true); }
+
+const char* kMainHelp =
+    "framequake - discrete-element simulation of wooden frames in earthquakes\n"
+    "\n"
+    "Usage:\n"
+    "  framequake run CASE [options]   run a case file, write VTK frames, history and summary\n"
+    "  framequake info CASE            describe a case: bodies, total mass, time step, output plan\n"
+    "  framequake --help               this text;  framequake COMMAND --help for a command\n"
+    "  framequake --version            print the version\n"
+    "\n"
+    "Case files are YAML; cases/README.md documents every key and its unit.\n";
+
+const char* kRunHelp =
+    "Usage: framequake run CASE [options]\n"
+    "\n"
+    "Runs the case and writes into the output folder:\n"
+    "  case.pvd, frames/frame_NNNNNN.vtu   time series for ParaView\n"
+    "  history.csv                         time histories (units in headers)\n"
+    "  events.csv                          yields, deletions, breaks\n"
+    "  summary.json                        status, energy balance, timing\n"
+    "\n"
+    "Options:\n"
+    "  --out DIR      output folder (default: output.folder of the case, else out/<case name>)\n"
+    "  --quiet        no progress display\n"
+    "  --force        run even if dt_s exceeds the estimated stable time step\n"
+    "  --threads N    OpenMP threads (default: OMP_NUM_THREADS or all cores)\n"
+    "  --help         this text\n"
+    "\n"
+    "Exit codes: 0 completed, 1 unstable, 2 bad input, 3 output failed, 130 interrupted.\n";
+
+const char* kInfoHelp =
+    "Usage: framequake info CASE\n"
+    "\n"
+    "Loads and checks the case without running it, and prints the bodies, total\n"
+    "mass, time step and its stable limit, duration, ground motion and output plan.\n";
+
+struct RunArgs {
+  std::string case_file;
+  std::optional<std::filesystem::path> out;
+  bool quiet = false;
+  bool force = false;
+  int threads = 0;
+};
+
+[[noreturn]] void usage_error(const std::string& message, const char* help) {
+  std::cerr << "framequake: " << message << "\n\n" << help;
+  std::exit(kExitBadInput);
+}
+
+RunArgs parse_run_args(int argc, char** argv, int first, const char* help, bool run_options) {
+  RunArgs a;
+  for (int i = first; i < argc; ++i) {
+    const std::string arg = argv[i];
+    auto need_value = [&](const char* name) -> std::string {
+      if (i + 1 >= argc) usage_error(std::string(name) + " needs a value", help);
+      return argv[++i];
+    };
+    if (arg == "--help" || arg == "-h") {
+      std::cout << help;
+      std::exit(kExitOk);
+    } else if (run_options && arg == "--out") {
+      a.out = need_value("--out");
+    } else if (run_options && arg == "--quiet") {
+      a.quiet = true;
+    } else if (run_options && arg == "--force") {
+      a.force = true;
+    } else if (run_options && arg == "--threads") {
+      const std::string v = need_value("--threads");
+      char* end = nullptr;
+      const long n = std::strtol(v.c_str(), &end, 10);
+      if (end == v.c_str() || *end != '\0' || n < 1 || n > 1024)
+        usage_error("--threads expects a whole number from 1 to 1024, got '" + v + "'", help);
+      a.threads = int(n);
+    } else if (!arg.empty() && arg[0] == '-') {
+      usage_error("unknown option '" + arg + "'", help);
+    } else if (a.case_file.empty()) {
+      a.case_file = arg;
+    } else {
+      usage_error("unexpected argument '" + arg + "' (one case file per run)", help);
+    }
+  }
+  if (a.case_file.empty()) usage_error("missing CASE (a YAML case file)", help);
+  return a;
+}
+
+int command_run(int argc, char** argv) {
+  const RunArgs args = parse_run_args(argc, argv, 2, kRunHelp, true);
+#if defined(_OPENMP)
+  if (args.threads > 0) omp_set_num_threads(args.threads);
+#endif
+  fq::CaseDef def;
+  try {
+    def = fq::load_case_file(args.case_file);
+  } catch (const fq::InputError& e) {
+    std::cerr << "framequake: error: " << e.what() << "\n";
+    return kExitBadInput;
+  }
+
+  std::signal(SIGINT, on_sigint);
+  fq::CaseRunOptions options;
+  options.output_folder = args.out;
+  options.allow_unstable_time_step = args.force;
+  options.stop_requested = &g_stop_requested;
+  std::optional<fq::ProgressDisplay> progress;
+  if (!args.quiet && isatty(fileno(stderr))) {
+    progress.emplace(def.name, stderr);
+    options.progress = &*progress;
+  }
+  fq::CaseRunReport report;
+  try {
+    report = fq::run_case(def, options);
+  } catch (const fq::InputError& e) {
+    std::cerr << "framequake: error: " << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const fq::OutputError& e) {
+    std::cerr << "framequake: error: " << e.what() << "\n";
+    return kExitOutputFailed;
+  }
+  const fq::RunResult& r = report.result;
+  std::cout << "framequake: " << def.name << ": " << fq::run_status_name(r.status) << " after " << r.steps
+            << " steps, t = " << r.simulated_s << " s, wall " << r.wall_s << " s\n"
+            << "framequake: output in " << report.output_folder.string() << " (open case.pvd in ParaView)\n";
+  switch (r.status) {
+    case fq::RunStatus::Completed: return kExitOk;
+    case fq::RunStatus::Stopped: return kExitInterrupted;
+    case fq::RunStatus::Unstable:
+      std::cerr << "framequake: error: the run became unstable: " << r.message << "\n";
+      return kExitUnstable;
+  }
+  return kExitOk;
+}
+
+int command_info(int argc, char** argv) {
+  const RunArgs args = parse_run_args(argc, argv, 2, kInfoHelp, false);
+  try {
+    const fq::CaseDef def = fq::load_case_file(args.case_file);
+    fq::describe_case(def, std::cout);
+  } catch (const fq::InputError& e) {
+    std::cerr << "framequake: error: " << e.what() << "\n";
+    return kExitBadInput;
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) usage_error("missing command", kMainHelp);
+  const std::string command = argv[1];
+  try {
+    if (command == "--help" || command == "-h" || command == "help") {
+      std::cout << kMainHelp;
+      return kExitOk;
+    }
+    if (command == "--version") {
+      std::cout << "framequake " << FQ_VERSION_STRING << "\n";
+      return kExitOk;
+    }
+    if (command == "run") return command_run(argc, argv);
+    if (command == "info") return command_info(argc, argv);
+  } catch (const std::exception& e) {
+    // Anything not foreseen above still ends in a message and a non-zero code.
+    std::cerr << "framequake: internal error: " << e.what() << "\n";
+    return 4;
+  }
+  usage_error("unknown command '" + command + "'", kMainHelp);
+}
