@@ -72,14 +72,15 @@ double GroundMotion::end_time_s() const {
 }
 
 Vec3 GroundMotion::peak_abs_mps2() const {
+  // Components may share a world axis (oblique directions), so the peak is
+  // that of the summed a_g(t), evaluated at every component's sample times.
   Vec3 peak = Vec3::Zero();
   for (const GroundMotionComponent& c : components_) {
     const std::size_t n = c.record.acceleration_mps2.size();
     for (std::size_t k = 0; k < n; ++k) {
       const double t_rec = double(k) * c.record.dt_s;
       if (t_rec < c.window_start_s || t_rec > c.window_start_s + c.window_length_s) continue;
-      const Vec3 a = (c.amplitude_scale * c.record.acceleration_mps2[k]) * c.direction;
-      peak = peak.cwiseMax(a.cwiseAbs());
+      peak = peak.cwiseMax(acceleration((t_rec - c.window_start_s) * c.time_scale).cwiseAbs());
     }
   }
   return peak;

@@ -122,23 +122,32 @@ void Simulation::initialize() {
   for (auto& p : providers_) p->prepare(bodies_);
   compute_forces();
 
-  // Ledger at t = 0 with the exact initial velocities.
+  // Ledger at t = 0, with the same definitions as at every later step
+  // (energy_ledger.h): translational kinetic energy (KE(-1/2) + KE(+1/2)) / 2.
   ledger_ = EnergyLedger{};
   const std::size_t n = bodies_.size();
   const double half_dt = 0.5 * settings_.dt_s;
   double kinetic = 0.0, rotational = 0.0;
+  Vec3 momentum = Vec3::Zero();  // sum m v0 (kg m/s)
   for (std::size_t i = 0; i < n; ++i) {
     if (bodies_.is_fixed[i]) continue;
-    kinetic += 0.5 * bodies_.mass_kg[i] * bodies_.velocity_mps[i].squaredNorm();
+    const Vec3 half_kick = (half_dt * bodies_.inverse_mass_per_kg[i]) * bodies_.force_N[i];
+    const Vec3 v0 = bodies_.velocity_mps[i];
+    kinetic += 0.25 * bodies_.mass_kg[i] * ((v0 - half_kick).squaredNorm() + (v0 + half_kick).squaredNorm());
+    momentum += bodies_.mass_kg[i] * v0;
     rotational += 0.5 * bodies_.angular_momentum_Nms[i].dot(bodies_.angular_velocity_radps[i]);
     // Shift back half a step: v(-1/2) = v0 - (dt/2) F0/m, L(-1/2) = L0 - (dt/2) T0.
-    bodies_.velocity_mps[i] -= (half_dt * bodies_.inverse_mass_per_kg[i]) * bodies_.force_N[i];
+    bodies_.velocity_mps[i] = v0 - half_kick;
     bodies_.angular_momentum_Nms[i] -= half_dt * bodies_.torque_Nm[i];
     bodies_.angular_velocity_radps[i] =
         bodies_.angular_velocity_from_momentum(BodyId(i), bodies_.rotation[i], bodies_.angular_momentum_Nms[i]);
   }
   ledger_.kinetic_J = kinetic + rotational;
   ledger_.kinetic_rotational_J = rotational;
+  // Work is counted from t = 0: step 0 adds only its second half,
+  // dt F0 . v0 / 2, so the running sums start at minus that half.
+  work_gravity_through_prev_J_ = -half_dt * settings_.gravity_mps2.dot(momentum);
+  work_ground_through_prev_J_ = half_dt * ground_acceleration_.dot(momentum);
   for (auto& p : providers_) p->report_energy(ledger_);
   ledger_.initial_stored_J = ledger_.stored_J();
   ledger_.update_scale();
@@ -314,6 +323,8 @@ RunResult Simulation::run(const std::atomic<bool>* stop_requested) {
     for (const ObserverSlot& o : observers_) all_due = all_due && (step_ % o.every_steps) == 0;
     if (!all_due) observe_undue();
   }
+  // Provider energies are otherwise gathered only when an observer samples.
+  gather_provider_energy();
   result.steps = step_;
   result.simulated_s = time_s();
   result.wall_s = wall_seconds();

@@ -3,10 +3,12 @@
 // Bookkeeping that is exact for the leapfrog scheme: with v_n = (v_{n-1/2} +
 // v_{n+1/2}) / 2 one has, for every body, KE_{n+1/2} - KE_{n-1/2} =
 // dt F_n . v_n. The ledger therefore reports the state at integer step n with
-//   kinetic_J  = (KE_{n-1/2} + KE_{n+1/2}) / 2
-//   work terms = sum_{k<n} dt F_k . v_k + (1/2) dt F_n . v_n
-// so that, for forces the engine applies itself (gravity, ground motion),
-// kinetic energy and work agree to round-off. Springs, dashpots, plasticity
+//   kinetic_J  = (KE_{n-1/2} + KE_{n+1/2}) / 2     (also at n = 0)
+//   work terms = sum_{0<=k<n} dt (F_k . v_k + F_{k+1} . v_{k+1}) / 2
+//              = sum_{k<n} dt F_k . v_k + (1/2) dt F_n . v_n - (1/2) dt F_0 . v_0
+// (work from t = 0: only the second half of step 0 counts) so that, for
+// forces the engine applies itself (gravity, ground motion), kinetic energy
+// and work agree to round-off. Springs, dashpots, plasticity
 // and friction book their own stored and dissipated energy (computed from
 // their laws, not from the work they do); the mismatch that remains is the
 // integration error, reported as the balance error.

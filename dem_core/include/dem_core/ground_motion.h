@@ -55,8 +55,8 @@ class GroundMotion {
   Vec3 acceleration(double t_s) const;
   // Simulation time (s) at which the last component's window ends.
   double end_time_s() const;
-  // Peak magnitude of each world component over the windows (m/s^2),
-  // sampled at the records' own sample times.
+  // Peak magnitude of each world component of the summed a_g(t) over the
+  // windows (m/s^2), sampled at every record's own sample times.
   Vec3 peak_abs_mps2() const;
 
  private:
