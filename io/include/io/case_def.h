@@ -1,0 +1,190 @@
+// Definition of one framequake case: plain structs that a case file is a
+// serialisation of (STYLE.md 3.8). This header is the ONE place where the
+// defaults live; the case-file reader (case_file.h) only fills these structs,
+// tests and programs may build them directly, and build_model (model.h) turns
+// them into bodies. cases/README.md documents the file keys that map onto
+// these fields.
+//
+// Units are SI and carried by the names. Angles are in degrees in the file
+// and in radians here.
+//
+// Source lines: every list item (material, section, node, member, block,
+// support, ground-motion component) keeps the 1-based line it starts on in
+// `line`, and CaseDef::section_line keeps the line of each top-level key, so
+// later stages (model builder, joints, the run) can point a user at the place
+// in the file. A line of 0 means "not from a file" (built in code).
+//
+// Member geometry (the convention build_model applies; cases/README.md):
+//   - body local x runs from node a to node b; the box length along local x
+//     is the node distance, and the box centre is the midpoint of the nodes;
+//   - a member that is not vertical has local z = world z made orthogonal to
+//     local x, so the section depth (along local z) of a beam is vertical and
+//     its width (along local y) horizontal;
+//   - a member within 1e-9 rad of vertical has local y = world x made
+//     orthogonal to local x (then local z = x × y: world +y for a column
+//     drawn upwards);
+//   - roll_rad then turns the section about local x (right-handed: local y
+//     towards local z).
+// Block rotation: rotation_rad = (rx, ry, rz) is applied about the WORLD x
+// axis first, then world y, then world z: R = Rz(rz) Ry(ry) Rx(rx).
+#pragma once
+
+#include <filesystem>
+#include <limits>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "dem_core/body_store.h"
+#include "dem_core/ground_motion.h"
+#include "dem_core/types.h"
+#include "io/accelerogram.h"
+#include "io/output_def.h"
+
+namespace fq {
+
+// The case-file schema version this build reads (key `framequake_case`).
+inline constexpr int kCaseSchemaVersion = 1;
+
+// Members shorter than this are refused: no wooden member is shorter than a
+// millimetre, so a micrometre is certainly two nodes typed at the same place
+// (and a zero-length box has no orientation and a degenerate inertia).
+inline constexpr double kMinMemberLength_m = 1e-6;
+
+struct TimeDef {
+  // Required in a file. 1e-5 s is the step of seed 001 for its scaled frames.
+  double dt_s = 1e-5;
+  // Simulated time (s). Unset: the end of the ground-motion window in
+  // simulation time (GroundMotion::end_time_s); required when there is no
+  // ground motion.
+  std::optional<double> duration_s;
+  Vec3 gravity_mps2 = Vec3(0.0, 0.0, -kStandardGravity_mps2);  // (m/s^2), world frame
+};
+
+struct MaterialDef {
+  std::string name;
+  double density_kg_per_m3 = 0.0;  // required, > 0 (0 = unset, refused)
+  int line = 0;
+};
+
+// Rectangular cross-section of a member.
+struct SectionDef {
+  std::string name;
+  double width_m = 0.0;  // required, > 0; edge along member local y
+  double depth_m = 0.0;  // required, > 0; edge along member local z
+  int line = 0;
+};
+
+struct NodeDef {
+  std::string id;
+  Vec3 xyz_m = Vec3::Zero();  // required; world frame (m)
+  int line = 0;
+};
+
+// A box between two nodes (geometry convention in the header comment).
+struct MemberDef {
+  std::string id;                       // required; unique among members and blocks
+  MemberKind kind = MemberKind::Other;  // required in a file: column | beam | brace | other
+  std::string node_a;                   // required; local x runs from node_a ...
+  std::string node_b;                   // ... to node_b
+  std::string section;                  // required; name of a SectionDef
+  std::string material;                 // required; name of a MaterialDef
+  double roll_rad = 0.0;                // section roll about local x (rad); file: roll_deg
+  int line = 0;
+};
+
+// A free box not tied to nodes (verification scenes, debris).
+struct BlockDef {
+  std::string id;                              // required; unique among members and blocks
+  MemberKind kind = MemberKind::Block;         // any kind except ground
+  Vec3 size_m = Vec3::Zero();                  // required, each > 0; edges along body x, y, z (m)
+  Vec3 center_m = Vec3::Zero();                // required; world frame (m)
+  Vec3 rotation_rad = Vec3::Zero();            // about world x, then y, then z (rad); file: rotation_deg
+  std::string material;                        // required; name of a MaterialDef
+  bool fixed = false;                          // a fixed block never moves
+  Vec3 velocity_mps = Vec3::Zero();            // initial, world frame (m/s)
+  Vec3 angular_velocity_radps = Vec3::Zero();  // initial, world frame (rad/s)
+  int line = 0;
+};
+
+// A node tied to the ground body.
+struct SupportDef {
+  std::string node;  // required; id of a NodeDef that is an end of some member
+  int line = 0;
+};
+
+struct GroundDef {
+  double level_m = 0.0;  // height (z) of the ground surface (m)
+};
+
+struct GroundMotionComponentDef {
+  std::filesystem::path file;           // as written in the case file
+  std::filesystem::path resolved_file;  // relative paths resolved against the case file's folder
+  RecordFormat format = RecordFormat::PeerAt2;
+  AccelerationUnit unit = AccelerationUnit::MetrePerSecond2;  // two_column only
+  Vec3 direction = Vec3::UnitX();                             // unit vector, world frame (file: axis)
+  double amplitude_scale = 1.0;                               // (-)
+  AccelerationRecord record;                                  // loaded by load_case_file
+  int line = 0;
+};
+
+struct GroundMotionDef {
+  double time_scale = 1.0;      // simulation s per record s, > 0 (similitude of a scaled model)
+  double window_start_s = 0.0;  // record time at simulation t = 0 (record s), >= 0
+  // Record seconds used, > 0; infinity = to the end of the record.
+  double window_length_s = std::numeric_limits<double>::infinity();
+  std::vector<GroundMotionComponentDef> components;  // non-empty
+};
+
+struct CaseDef {
+  std::filesystem::path source_file;  // case file as given; empty when built in code
+  int schema_version = kCaseSchemaVersion;
+  std::string name;  // default: the case file's stem
+  std::string description;
+  TimeDef time;
+  std::vector<MaterialDef> materials;
+  std::vector<SectionDef> sections;
+  std::vector<NodeDef> nodes;
+  std::vector<MemberDef> members;
+  std::vector<BlockDef> blocks;
+  std::vector<SupportDef> supports;
+  std::optional<GroundDef> ground;               // unset: no `ground` section
+  std::optional<GroundMotionDef> ground_motion;  // unset: no shaking
+  // folder default: out/<name>, relative to the working directory (filled by
+  // load_case_file; build_model fills it when left empty).
+  OutputDef output;
+  std::map<std::string, int> section_line;  // top-level key -> 1-based line
+
+  // Index of the item with that name/id, or -1.
+  int material_index(std::string_view material_name) const;
+  int section_index(std::string_view section_name) const;
+  int node_index(std::string_view id) const;
+};
+
+namespace case_def_detail {
+template <class T>
+int find_by_key(const std::vector<T>& items, std::string T::*key, std::string_view value) {
+  for (std::size_t i = 0; i < items.size(); ++i)
+    if (items[i].*key == value) return static_cast<int>(i);
+  return -1;
+}
+}  // namespace case_def_detail
+
+inline int CaseDef::material_index(std::string_view material_name) const {
+  return case_def_detail::find_by_key(materials, &MaterialDef::name, material_name);
+}
+inline int CaseDef::section_index(std::string_view section_name) const {
+  return case_def_detail::find_by_key(sections, &SectionDef::name, section_name);
+}
+inline int CaseDef::node_index(std::string_view id) const {
+  return case_def_detail::find_by_key(nodes, &NodeDef::id, id);
+}
+
+// Default output folder of a case named `case_name`: out/<case_name>.
+inline std::filesystem::path default_output_folder(const std::string& case_name) {
+  return std::filesystem::path("out") / case_name;
+}
+
+}  // namespace fq

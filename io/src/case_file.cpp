@@ -1,0 +1,704 @@
+#include "io/case_file.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "io/input_error.h"
+
+// How the reader is organised. A case file is a mapping of top-level sections;
+// each has an entry in kSections (key, required or not, parser function).
+// Sections are parsed in the table's order, not the file's, so a section may
+// refer to names defined by a section written later in the file. Inside a
+// section, every mapping first goes through expect_keys (unknown or repeated
+// keys are refused, naming the keys allowed there), then each field is read
+// with an accessor that knows the field's full path and line: require/get
+// find a key, and to_number, to_positive, to_name, to_vec3, ... convert its
+// value or throw. Adding a section later (joint_types, joints, contact) means
+// writing one parse function and adding one row to kSections.
+
+namespace fq {
+namespace {
+
+constexpr double kRadPerDeg = std::numbers::pi / 180.0;
+
+// Compact decimal form for messages ("200", "0.02", "149.98"), 12 digits.
+std::string fmt(double x) {
+  std::ostringstream os;
+  os.precision(12);
+  os << x;
+  return os.str();
+}
+
+std::string join(const std::string& path, std::string_view key) {
+  return path.empty() ? std::string(key) : path + "." + std::string(key);
+}
+std::string index_path(const std::string& path, std::size_t i) { return path + "[" + std::to_string(i) + "]"; }
+
+// Short description of what a YAML node holds, for "got ..." in messages.
+std::string describe(const YAML::Node& n) {
+  switch (n.Type()) {
+    case YAML::NodeType::Null:
+    case YAML::NodeType::Undefined:
+      return "nothing";
+    case YAML::NodeType::Scalar:
+      return (n.Tag() == "!" ? "the quoted text \"" : "'") + n.Scalar() + (n.Tag() == "!" ? "\"" : "'");
+    case YAML::NodeType::Sequence:
+      return "a list";
+    case YAML::NodeType::Map:
+      return "a mapping";
+  }
+  return "something else";
+}
+
+std::string join_names(const std::vector<std::string_view>& names) {
+  std::string s;
+  for (std::size_t i = 0; i < names.size(); ++i) s += (i ? ", " : "") + std::string(names[i]);
+  return s;
+}
+
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diag = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0u : 1u)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+// A key found in a mapping: its value, the line to report and the field path.
+struct Field {
+  YAML::Node value;
+  int line = 0;
+  std::string path;
+};
+
+using Keys = std::vector<std::string_view>;
+
+class Reader {
+ public:
+  explicit Reader(std::string file) : file_(std::move(file)) {}
+  const std::string& file() const { return file_; }
+
+  static int line_of(const YAML::Node& n) { return n.Mark().line >= 0 ? n.Mark().line + 1 : 0; }
+
+  [[noreturn]] void fail(int line, const std::string& path, const std::string& message) const {
+    throw InputError(file_, line, path, message);
+  }
+  [[noreturn]] void fail(const Field& f, const std::string& message) const { fail(f.line, f.path, message); }
+
+  // `node` must be a mapping (what = what it should hold, for the message).
+  void expect_map(const YAML::Node& node, int line, const std::string& path, const std::string& what) const {
+    if (!node.IsMap()) fail(line, path, "expected a mapping (" + what + "), got " + describe(node));
+  }
+
+  // Every key of mapping `node` must be in `allowed` and appear once.
+  void expect_keys(const YAML::Node& node, const Keys& allowed, const std::string& path) const {
+    std::vector<std::pair<std::string, int>> seen;
+    for (auto it = node.begin(); it != node.end(); ++it) {
+      const YAML::Node& k = it->first;
+      const int line = line_of(k);
+      if (!k.IsScalar()) fail(line, path, "expected a key name, got " + describe(k));
+      const std::string key = k.Scalar();
+      const std::string where = path.empty() ? std::string("at the top level") : "in '" + path + "'";
+      if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
+        std::string message = "unknown key '" + key + "' " + where + "; allowed keys here: " + join_names(allowed);
+        if (const auto hint = nearest(key, allowed)) message += " (did you mean '" + std::string(*hint) + "'?)";
+        fail(line, join(path, key), message);
+      }
+      for (const auto& [other, other_line] : seen)
+        if (other == key)
+          fail(line, join(path, key),
+               "key '" + key + "' appears twice " + where + " (first on line " + std::to_string(other_line) + ")");
+      seen.emplace_back(key, line);
+    }
+  }
+
+  // The key's field, or nothing when absent. A key written with no value
+  // (`key:`) counts as present with a null value and is reported on its line.
+  std::optional<Field> get(const YAML::Node& map, std::string_view key, const std::string& path) const {
+    for (auto it = map.begin(); it != map.end(); ++it) {
+      if (it->first.IsScalar() && it->first.Scalar() == key) {
+        const YAML::Node& v = it->second;
+        const int line = (v.IsNull() || line_of(v) == 0) ? line_of(it->first) : line_of(v);
+        return Field{v, line, join(path, key)};
+      }
+    }
+    return std::nullopt;
+  }
+  Field require(const YAML::Node& map, std::string_view key, const std::string& path, const std::string& what) const {
+    if (auto f = get(map, key, path)) return *f;
+    fail(line_of(map), join(path, key), "missing required key '" + std::string(key) + "' (" + what + ")");
+  }
+
+  // ---- conversions of a field's value --------------------------------------
+  double to_number(const Field& f, const std::string& what = "a number") const {
+    const YAML::Node& v = f.value;
+    if (!v.IsScalar() || v.Tag() == "!") fail(f, "expected " + what + ", got " + describe(v));
+    std::string_view s = v.Scalar();
+    if (!s.empty() && s.front() == '+') s.remove_prefix(1);
+    double x = 0.0;
+    const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), x);
+    if (ec != std::errc() || end != s.data() + s.size() || s.empty())
+      fail(f, "expected " + what + ", got " + describe(v));
+    if (!std::isfinite(x)) fail(f, "expected " + what + " (finite), got " + describe(v));
+    return x;
+  }
+  double to_positive(const Field& f) const {
+    const double x = to_number(f, "a positive number");
+    if (!(x > 0.0)) fail(f, "expected a positive number, got " + describe(f.value));
+    return x;
+  }
+  double to_non_negative(const Field& f) const {
+    const double x = to_number(f, "a number >= 0");
+    if (!(x >= 0.0)) fail(f, "expected a number >= 0, got " + describe(f.value));
+    return x;
+  }
+  int to_int(const Field& f) const {
+    const YAML::Node& v = f.value;
+    int x = 0;
+    if (v.IsScalar() && v.Tag() != "!") {
+      const std::string& s = v.Scalar();
+      const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), x);
+      if (ec == std::errc() && end == s.data() + s.size() && !s.empty()) return x;
+    }
+    fail(f, "expected a whole number, got " + describe(v));
+  }
+  bool to_bool(const Field& f) const {
+    const YAML::Node& v = f.value;
+    if (v.IsScalar() && v.Tag() != "!") {
+      const std::string& s = v.Scalar();
+      if (s == "true" || s == "True" || s == "TRUE") return true;
+      if (s == "false" || s == "False" || s == "FALSE") return false;
+    }
+    fail(f, "expected true or false, got " + describe(v));
+  }
+  std::string to_text(const Field& f) const {
+    if (!f.value.IsScalar()) fail(f, "expected text, got " + describe(f.value));
+    return f.value.Scalar();
+  }
+  // Names and ids end up in folder names, CSV cells and messages: letters,
+  // digits, '_', '-' and '.' only, so none of those can be broken by them.
+  std::string to_name(const Field& f, const std::string& what) const {
+    const YAML::Node& v = f.value;
+    if (v.IsScalar() && !v.Scalar().empty()) {
+      const std::string& s = v.Scalar();
+      const bool ok = std::all_of(s.begin(), s.end(), [](char c) {
+        return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '-' ||
+               c == '.';
+      });
+      if (ok) return s;
+    }
+    fail(f, "expected " + what + " (letters, digits, '_', '-' or '.'), got " + describe(v));
+  }
+  // A list (the key's value must be a sequence; `non_empty` refuses []).
+  YAML::Node to_list(const Field& f, const std::string& what, bool non_empty) const {
+    if (!f.value.IsSequence()) fail(f, "expected a list of " + what + ", got " + describe(f.value));
+    if (non_empty && f.value.size() == 0) fail(f, "expected a non-empty list of " + what + ", got an empty list");
+    return f.value;
+  }
+  Vec3 to_vec3(const Field& f, const std::string& what) const {
+    const YAML::Node& v = f.value;
+    if (!v.IsSequence() || v.size() != 3)
+      fail(f, "expected a list of 3 numbers (" + what + "), got " +
+                  (v.IsSequence() ? "a list of " + std::to_string(v.size()) : describe(v)));
+    Vec3 out;
+    for (std::size_t i = 0; i < 3; ++i)
+      out[static_cast<Eigen::Index>(i)] =
+          to_number(Field{v[i], line_of(v[i]) ? line_of(v[i]) : f.line, index_path(f.path, i)});
+    return out;
+  }
+  // Field of the i-th item of a list field.
+  static Field item(const Field& list, std::size_t i) {
+    const YAML::Node n = list.value[i];
+    return Field{n, line_of(n) ? line_of(n) : list.line, index_path(list.path, i)};
+  }
+
+  // ---- accessors on a mapping ------------------------------------------------
+  double required_positive(const YAML::Node& map, std::string_view key, const std::string& path,
+                           const std::string& what) const {
+    return to_positive(require(map, key, path, what));
+  }
+  double optional_positive(const YAML::Node& map, std::string_view key, const std::string& path, double dflt) const {
+    const auto f = get(map, key, path);
+    return f ? to_positive(*f) : dflt;
+  }
+  double optional_number(const YAML::Node& map, std::string_view key, const std::string& path, double dflt) const {
+    const auto f = get(map, key, path);
+    return f ? to_number(*f) : dflt;
+  }
+  double optional_non_negative(const YAML::Node& map, std::string_view key, const std::string& path,
+                               double dflt) const {
+    const auto f = get(map, key, path);
+    return f ? to_non_negative(*f) : dflt;
+  }
+  bool optional_bool(const YAML::Node& map, std::string_view key, const std::string& path, bool dflt) const {
+    const auto f = get(map, key, path);
+    return f ? to_bool(*f) : dflt;
+  }
+  Vec3 optional_vec3(const YAML::Node& map, std::string_view key, const std::string& path, const Vec3& dflt,
+                     const std::string& what) const {
+    const auto f = get(map, key, path);
+    return f ? to_vec3(*f, what) : dflt;
+  }
+  std::string required_name(const YAML::Node& map, std::string_view key, const std::string& path,
+                            const std::string& what) const {
+    return to_name(require(map, key, path, what), what);
+  }
+
+ private:
+  // An allowed key close to a mistyped one: same key plus a unit suffix
+  // ("dt" -> "dt_s") or within two edits ("densty_kg_per_m3").
+  static std::optional<std::string_view> nearest(const std::string& key, const Keys& allowed) {
+    for (std::string_view a : allowed)
+      if (a.size() > key.size() && a.substr(0, key.size()) == key && a[key.size()] == '_') return a;
+    for (std::string_view a : allowed)
+      if (edit_distance(key, a) <= 2) return a;
+    return std::nullopt;
+  }
+
+  std::string file_;
+};
+
+// Walks the items of list field `f`, checking each is a mapping with only
+// `allowed` keys; calls fn(item_node, item_path, item_line, index).
+template <class Fn>
+void for_each_item(const Reader& r, const Field& f, const std::string& what, const Keys& allowed, Fn fn) {
+  for (std::size_t i = 0; i < f.value.size(); ++i) {
+    const Field it = Reader::item(f, i);
+    r.expect_map(it.value, it.line, it.path, what);
+    r.expect_keys(it.value, allowed, it.path);
+    fn(it.value, it.path, it.line, i);
+  }
+}
+
+// ---- top-level sections -----------------------------------------------------
+
+void parse_version(const Reader& r, const Field& f, CaseDef& def) {
+  const int v = r.to_int(f);
+  if (v != kCaseSchemaVersion)
+    r.fail(f, "unknown schema version " + std::to_string(v) + "; this build of framequake reads version " +
+                  std::to_string(kCaseSchemaVersion));
+  def.schema_version = v;
+}
+
+void parse_name(const Reader& r, const Field& f, CaseDef& def) { def.name = r.to_name(f, "a case name"); }
+
+void parse_description(const Reader& r, const Field& f, CaseDef& def) { def.description = r.to_text(f); }
+
+void parse_time(const Reader& r, const Field& f, CaseDef& def) {
+  r.expect_map(f.value, f.line, f.path, "dt_s, duration_s, gravity_mps2");
+  r.expect_keys(f.value, {"dt_s", "duration_s", "gravity_mps2"}, f.path);
+  def.time.dt_s = r.required_positive(f.value, "dt_s", f.path, "the time step in s");
+  if (const auto d = r.get(f.value, "duration_s", f.path)) def.time.duration_s = r.to_positive(*d);
+  def.time.gravity_mps2 =
+      r.optional_vec3(f.value, "gravity_mps2", f.path, def.time.gravity_mps2, "gx, gy, gz in m/s^2");
+  if (def.time.duration_s && def.time.dt_s >= *def.time.duration_s) {
+    const auto d = r.get(f.value, "dt_s", f.path);
+    r.fail(*d, "the time step must be smaller than duration_s");
+  }
+}
+
+void parse_materials(const Reader& r, const Field& f, CaseDef& def) {
+  r.to_list(f, "materials", true);
+  for_each_item(r, f, "a material: name, density_kg_per_m3", {"name", "density_kg_per_m3"},
+                [&](const YAML::Node& n, const std::string& path, int line, std::size_t) {
+                  MaterialDef m;
+                  m.line = line;
+                  const Field name = r.require(n, "name", path, "the material's name");
+                  m.name = r.to_name(name, "a material name");
+                  if (const int other = def.material_index(m.name); other >= 0)
+                    r.fail(name, "material name '" + m.name + "' is already used by materials[" +
+                                     std::to_string(other) + "] (line " +
+                                     std::to_string(def.materials[std::size_t(other)].line) + ")");
+                  m.density_kg_per_m3 = r.required_positive(n, "density_kg_per_m3", path, "density in kg/m^3");
+                  def.materials.push_back(m);
+                });
+}
+
+void parse_sections(const Reader& r, const Field& f, CaseDef& def) {
+  r.to_list(f, "sections", false);
+  for_each_item(r, f, "a section: name, width_m, depth_m", {"name", "width_m", "depth_m"},
+                [&](const YAML::Node& n, const std::string& path, int line, std::size_t) {
+                  SectionDef s;
+                  s.line = line;
+                  const Field name = r.require(n, "name", path, "the section's name");
+                  s.name = r.to_name(name, "a section name");
+                  if (const int other = def.section_index(s.name); other >= 0)
+                    r.fail(name, "section name '" + s.name + "' is already used by sections[" + std::to_string(other) +
+                                     "] (line " + std::to_string(def.sections[std::size_t(other)].line) + ")");
+                  s.width_m = r.required_positive(n, "width_m", path, "edge along member local y in m");
+                  s.depth_m = r.required_positive(n, "depth_m", path, "edge along member local z in m");
+                  def.sections.push_back(s);
+                });
+}
+
+void parse_nodes(const Reader& r, const Field& f, CaseDef& def) {
+  r.to_list(f, "nodes", false);
+  for_each_item(r, f, "a node: id, xyz_m", {"id", "xyz_m"},
+                [&](const YAML::Node& n, const std::string& path, int line, std::size_t) {
+                  NodeDef nd;
+                  nd.line = line;
+                  const Field id = r.require(n, "id", path, "the node's id");
+                  nd.id = r.to_name(id, "a node id");
+                  if (const int other = def.node_index(nd.id); other >= 0)
+                    r.fail(id, "node id '" + nd.id + "' is already used by nodes[" + std::to_string(other) +
+                                   "] (line " + std::to_string(def.nodes[std::size_t(other)].line) + ")");
+                  nd.xyz_m = r.to_vec3(r.require(n, "xyz_m", path, "position x, y, z in m"), "x, y, z in m");
+                  def.nodes.push_back(nd);
+                });
+}
+
+// Members and blocks share one id space: both become bodies named by id.
+std::string body_id_owner(const CaseDef& def, const std::string& id) {
+  for (std::size_t i = 0; i < def.members.size(); ++i)
+    if (def.members[i].id == id)
+      return "members[" + std::to_string(i) + "] (line " + std::to_string(def.members[i].line) + ")";
+  for (std::size_t i = 0; i < def.blocks.size(); ++i)
+    if (def.blocks[i].id == id)
+      return "blocks[" + std::to_string(i) + "] (line " + std::to_string(def.blocks[i].line) + ")";
+  return {};
+}
+
+std::string list_of_names(const std::vector<std::string>& names) {
+  std::string s;
+  for (std::size_t i = 0; i < names.size() && i < 12; ++i) s += (i ? ", " : "") + names[i];
+  if (names.size() > 12) s += ", ...";
+  return s;
+}
+
+template <class T>
+std::string reference_message(const std::string& kind, const std::string& given, const std::vector<T>& items,
+                              std::string T::*key, const std::string& list_key) {
+  if (items.empty())
+    return "no " + kind + " named '" + given + "': the case defines none (add a '" + list_key + ":' list)";
+  std::vector<std::string> names;
+  for (const T& it : items) names.push_back(it.*key);
+  return "no " + kind + " named '" + given + "'; defined: " + list_of_names(names);
+}
+
+void parse_members(const Reader& r, const Field& f, CaseDef& def) {
+  r.to_list(f, "members", false);
+  for_each_item(
+      r, f, "a member: id, kind, nodes, section, material, roll_deg",
+      {"id", "kind", "nodes", "section", "material", "roll_deg"},
+      [&](const YAML::Node& n, const std::string& path, int line, std::size_t) {
+        MemberDef m;
+        m.line = line;
+        const Field id = r.require(n, "id", path, "the member's id");
+        m.id = r.to_name(id, "a member id");
+        if (const std::string owner = body_id_owner(def, m.id); !owner.empty())
+          r.fail(id, "id '" + m.id + "' is already used by " + owner);
+
+        const Field kind = r.require(n, "kind", path, "column, beam, brace or other");
+        const std::string kind_text = r.to_text(kind);
+        if (!parse_member_kind(kind_text, m.kind) || m.kind == MemberKind::Block || m.kind == MemberKind::Ground)
+          r.fail(kind, "expected column, beam, brace or other, got " + describe(kind.value));
+
+        const Field nodes = r.require(n, "nodes", path, "the two end nodes [a, b]");
+        if (!nodes.value.IsSequence() || nodes.value.size() != 2)
+          r.fail(nodes, "expected a list of two node ids [a, b], got " +
+                            (nodes.value.IsSequence() ? "a list of " + std::to_string(nodes.value.size())
+                                                      : describe(nodes.value)));
+        int end_index[2] = {-1, -1};
+        std::string* end_id[2] = {&m.node_a, &m.node_b};
+        for (std::size_t k = 0; k < 2; ++k) {
+          const Field e = Reader::item(nodes, k);
+          *end_id[k] = r.to_name(e, "a node id");
+          end_index[k] = def.node_index(*end_id[k]);
+          if (end_index[k] < 0) r.fail(e, reference_message("node", *end_id[k], def.nodes, &NodeDef::id, "nodes"));
+        }
+        if (m.node_a == m.node_b) r.fail(nodes, "a member needs two different nodes, got '" + m.node_a + "' twice");
+        const double length_m =
+            (def.nodes[std::size_t(end_index[1])].xyz_m - def.nodes[std::size_t(end_index[0])].xyz_m).norm();
+        if (!(length_m > kMinMemberLength_m))
+          r.fail(nodes, "nodes '" + m.node_a + "' and '" + m.node_b +
+                            "' are at the same position, so the member would have no length");
+
+        const Field section = r.require(n, "section", path, "the name of a section");
+        m.section = r.to_name(section, "a section name");
+        if (def.section_index(m.section) < 0)
+          r.fail(section, reference_message("section", m.section, def.sections, &SectionDef::name, "sections"));
+        const Field material = r.require(n, "material", path, "the name of a material");
+        m.material = r.to_name(material, "a material name");
+        if (def.material_index(m.material) < 0)
+          r.fail(material, reference_message("material", m.material, def.materials, &MaterialDef::name, "materials"));
+
+        m.roll_rad = r.optional_number(n, "roll_deg", path, 0.0) * kRadPerDeg;
+        def.members.push_back(m);
+      });
+}
+
+void parse_blocks(const Reader& r, const Field& f, CaseDef& def) {
+  r.to_list(f, "blocks", false);
+  for_each_item(
+      r, f, "a block: id, size_m, center_m, material, ...",
+      {"id", "kind", "size_m", "center_m", "rotation_deg", "material", "fixed", "velocity_mps",
+       "angular_velocity_radps"},
+      [&](const YAML::Node& n, const std::string& path, int line, std::size_t) {
+        BlockDef b;
+        b.line = line;
+        const Field id = r.require(n, "id", path, "the block's id");
+        b.id = r.to_name(id, "a block id");
+        if (const std::string owner = body_id_owner(def, b.id); !owner.empty())
+          r.fail(id, "id '" + b.id + "' is already used by " + owner);
+        if (const auto kind = r.get(n, "kind", path)) {
+          if (!parse_member_kind(r.to_text(*kind), b.kind) || b.kind == MemberKind::Ground)
+            r.fail(*kind, "expected block, column, beam, brace or other, got " + describe(kind->value));
+        }
+        const Field size = r.require(n, "size_m", path, "edge lengths along body x, y, z in m");
+        b.size_m = r.to_vec3(size, "edge lengths along body x, y, z in m");
+        for (std::size_t k = 0; k < 3; ++k)
+          if (!(b.size_m[Eigen::Index(k)] > 0.0))
+            r.fail(Reader::item(size, k), "expected a positive edge length in m, got " + describe(size.value[k]));
+        b.center_m = r.to_vec3(r.require(n, "center_m", path, "centre x, y, z in m"), "x, y, z in m");
+        b.rotation_rad =
+            r.optional_vec3(n, "rotation_deg", path, Vec3::Zero(), "angles about world x, then y, then z in degrees") *
+            kRadPerDeg;
+        const Field material = r.require(n, "material", path, "the name of a material");
+        b.material = r.to_name(material, "a material name");
+        if (def.material_index(b.material) < 0)
+          r.fail(material, reference_message("material", b.material, def.materials, &MaterialDef::name, "materials"));
+        b.fixed = r.optional_bool(n, "fixed", path, b.fixed);
+        b.velocity_mps = r.optional_vec3(n, "velocity_mps", path, b.velocity_mps, "vx, vy, vz in m/s");
+        b.angular_velocity_radps =
+            r.optional_vec3(n, "angular_velocity_radps", path, b.angular_velocity_radps, "wx, wy, wz in rad/s");
+        if (b.fixed && (b.velocity_mps.norm() > 0.0 || b.angular_velocity_radps.norm() > 0.0))
+          r.fail(*r.get(n, b.velocity_mps.norm() > 0.0 ? "velocity_mps" : "angular_velocity_radps", path),
+                 "a fixed block never moves, so it cannot have an initial velocity");
+        def.blocks.push_back(b);
+      });
+}
+
+void parse_supports(const Reader& r, const Field& f, CaseDef& def) {
+  r.to_list(f, "supports", false);
+  for_each_item(
+      r, f, "a support: node", {"node"}, [&](const YAML::Node& n, const std::string& path, int line, std::size_t) {
+        SupportDef s;
+        s.line = line;
+        const Field node = r.require(n, "node", path, "the id of the supported node");
+        s.node = r.to_name(node, "a node id");
+        if (def.node_index(s.node) < 0)
+          r.fail(node, reference_message("node", s.node, def.nodes, &NodeDef::id, "nodes"));
+        for (std::size_t i = 0; i < def.supports.size(); ++i)
+          if (def.supports[i].node == s.node)
+            r.fail(node, "node '" + s.node + "' is already supported by supports[" + std::to_string(i) + "] (line " +
+                             std::to_string(def.supports[i].line) + ")");
+        const bool is_member_end = std::any_of(def.members.begin(), def.members.end(), [&](const MemberDef& m) {
+          return m.node_a == s.node || m.node_b == s.node;
+        });
+        if (!is_member_end)
+          r.fail(node, "node '" + s.node + "' is not an end of any member, so a support there would hold nothing");
+        def.supports.push_back(s);
+      });
+}
+
+void parse_ground(const Reader& r, const Field& f, CaseDef& def) {
+  r.expect_map(f.value, f.line, f.path, "level_m");
+  r.expect_keys(f.value, {"level_m"}, f.path);
+  GroundDef g;
+  g.level_m = r.optional_number(f.value, "level_m", f.path, g.level_m);
+  def.ground = g;
+}
+
+// Direction of a component: a signed axis name or a non-zero 3-vector.
+Vec3 parse_axis(const Reader& r, const Field& f) {
+  if (f.value.IsScalar()) {
+    static const struct {
+      const char* name;
+      Vec3 direction;
+    } axes[] = {{"x", Vec3::UnitX()}, {"+x", Vec3::UnitX()}, {"-x", -Vec3::UnitX()},
+                {"y", Vec3::UnitY()}, {"+y", Vec3::UnitY()}, {"-y", -Vec3::UnitY()},
+                {"z", Vec3::UnitZ()}, {"+z", Vec3::UnitZ()}, {"-z", -Vec3::UnitZ()}};
+    for (const auto& a : axes)
+      if (f.value.Scalar() == a.name) return a.direction;
+    r.fail(f, "expected x, y, z, -x, -y, -z or a direction [dx, dy, dz], got " + describe(f.value));
+  }
+  if (!f.value.IsSequence())
+    r.fail(f, "expected x, y, z, -x, -y, -z or a direction [dx, dy, dz], got " + describe(f.value));
+  const Vec3 d = r.to_vec3(f, "a direction dx, dy, dz");
+  if (!(d.norm() > 0.0)) r.fail(f, "expected a non-zero direction vector");
+  return d.normalized();
+}
+
+void parse_ground_motion(const Reader& r, const Field& f, CaseDef& def) {
+  const std::string& p = f.path;
+  r.expect_map(f.value, f.line, p, "time_scale, window_start_s, window_length_s, components");
+  r.expect_keys(f.value, {"time_scale", "window_start_s", "window_length_s", "components"}, p);
+  GroundMotionDef gm;
+  gm.time_scale = r.optional_positive(f.value, "time_scale", p, gm.time_scale);
+  const auto start_field = r.get(f.value, "window_start_s", p);
+  gm.window_start_s = start_field ? r.to_non_negative(*start_field) : gm.window_start_s;
+  const auto length_field = r.get(f.value, "window_length_s", p);
+  gm.window_length_s = length_field ? r.to_positive(*length_field) : gm.window_length_s;
+
+  const Field comps = r.require(f.value, "components", p, "a list of records with file, format, axis");
+  r.to_list(comps, "ground-motion components", true);
+  const std::filesystem::path case_folder = def.source_file.parent_path();
+  for_each_item(
+      r, comps, "a component: file, format, axis, unit, amplitude_scale",
+      {"file", "format", "unit", "axis", "amplitude_scale"},
+      [&](const YAML::Node& n, const std::string& path, int line, std::size_t) {
+        GroundMotionComponentDef c;
+        c.line = line;
+        const Field file = r.require(n, "file", path, "path of the record, relative to the case file's folder");
+        c.file = r.to_text(file);
+        if (c.file.empty()) r.fail(file, "expected a file path, got an empty text");
+        c.resolved_file = (c.file.is_absolute() ? c.file : case_folder / c.file).lexically_normal();
+        std::error_code ec;
+        if (!std::filesystem::is_regular_file(c.resolved_file, ec))
+          r.fail(file, "record file not found: " + c.resolved_file.string());
+
+        const Field format = r.require(n, "format", path, "peer_at2 or two_column");
+        if (!parse_record_format(r.to_text(format), c.format))
+          r.fail(format, "expected peer_at2 or two_column, got " + describe(format.value));
+        if (const auto unit = r.get(n, "unit", path)) {
+          if (c.format != RecordFormat::TwoColumn)
+            r.fail(*unit, "'unit' applies to two_column records only (a PEER .AT2 file is in g by definition)");
+          if (!parse_acceleration_unit(r.to_text(*unit), c.unit))
+            r.fail(*unit, "expected g, m/s2 or cm/s2, got " + describe(unit->value));
+        }
+        c.direction = parse_axis(r, r.require(n, "axis", path, "x, y, z, -x, -y, -z or [dx, dy, dz]"));
+        c.amplitude_scale = r.optional_positive(n, "amplitude_scale", path, c.amplitude_scale);
+
+        // Read now: a bad record fails with its own file, line and field.
+        c.record = read_accelerogram(c.resolved_file, c.format, c.unit);
+        const double record_end_s = c.record.duration_s();
+        if (gm.window_start_s >= record_end_s)
+          r.fail(start_field ? *start_field : file, "the window starts at " + fmt(gm.window_start_s) +
+                                                        " s, at or beyond the end of record " +
+                                                        c.resolved_file.string() + " (" + fmt(record_end_s) + " s)");
+        // Half a sample of slack: a window written as N*DT must not be
+        // refused over the rounding of DT.
+        if (length_field && gm.window_start_s + gm.window_length_s > record_end_s + 0.5 * c.record.dt_s)
+          r.fail(*length_field, "the window (" + fmt(gm.window_start_s) + " s + " + fmt(gm.window_length_s) +
+                                    " s) runs past the end of record " + c.resolved_file.string() + " (" +
+                                    fmt(record_end_s) + " s); leave window_length_s out to use the record to its end");
+        gm.components.push_back(std::move(c));
+      });
+  def.ground_motion = std::move(gm);
+}
+
+void parse_output(const Reader& r, const Field& f, CaseDef& def) {
+  r.expect_map(f.value, f.line, f.path, "folder, frame_interval_s, history_interval_s, vtk_binary");
+  r.expect_keys(f.value, {"folder", "frame_interval_s", "history_interval_s", "vtk_binary"}, f.path);
+  if (const auto folder = r.get(f.value, "folder", f.path)) {
+    def.output.folder = r.to_text(*folder);
+    if (def.output.folder.empty()) r.fail(*folder, "expected a folder path, got an empty text");
+  }
+  def.output.frame_interval_s = r.optional_positive(f.value, "frame_interval_s", f.path, def.output.frame_interval_s);
+  def.output.history_interval_s =
+      r.optional_positive(f.value, "history_interval_s", f.path, def.output.history_interval_s);
+  def.output.vtk_binary = r.optional_bool(f.value, "vtk_binary", f.path, def.output.vtk_binary);
+}
+
+struct SectionEntry {
+  std::string_view key;
+  bool required;
+  const char* what;  // for "missing required key" messages
+  void (*parse)(const Reader&, const Field&, CaseDef&);
+};
+
+// Parse order = table order (definitions before the sections that refer to
+// them). To add a section: write its parse function and add a row.
+const SectionEntry kSections[] = {
+    {"framequake_case", true, "the schema version, 1", parse_version},
+    {"name", false, "", parse_name},
+    {"description", false, "", parse_description},
+    {"time", true, "a mapping with dt_s and duration_s", parse_time},
+    {"materials", true, "a list of materials with name and density_kg_per_m3", parse_materials},
+    {"sections", false, "", parse_sections},
+    {"nodes", false, "", parse_nodes},
+    {"members", false, "", parse_members},
+    {"blocks", false, "", parse_blocks},
+    {"supports", false, "", parse_supports},
+    {"ground", false, "", parse_ground},
+    {"ground_motion", false, "", parse_ground_motion},
+    {"output", false, "", parse_output},
+};
+
+CaseDef parse_root(const Reader& r, const YAML::Node& root, const std::filesystem::path& file) {
+  Keys keys;
+  for (const SectionEntry& s : kSections) keys.push_back(s.key);
+  r.expect_map(root, Reader::line_of(root) ? Reader::line_of(root) : 1, "",
+               "case keys such as framequake_case, time, materials");
+  // The version comes first: keys of a newer schema would otherwise be
+  // reported as unknown instead of the version being named as the problem.
+  if (const auto v = r.get(root, "framequake_case", "")) {
+    CaseDef scratch;
+    parse_version(r, *v, scratch);
+  }
+  r.expect_keys(root, keys, "");
+
+  CaseDef def;
+  def.source_file = file;
+  for (auto it = root.begin(); it != root.end(); ++it)
+    def.section_line[it->first.Scalar()] = Reader::line_of(it->first);
+  for (const SectionEntry& s : kSections) {
+    if (const auto f = r.get(root, s.key, ""))
+      s.parse(r, *f, def);
+    else if (s.required)
+      r.fail(Reader::line_of(root), std::string(s.key),
+             "missing required key '" + std::string(s.key) + "' (" + s.what + ")");
+  }
+
+  // Checks across sections.
+  if (def.name.empty()) def.name = file.stem().string();
+  if (def.output.folder.empty()) def.output.folder = default_output_folder(def.name);
+  if (def.members.empty() && def.blocks.empty())
+    r.fail(Reader::line_of(root), "", "the case has no bodies: expected at least one member or block");
+  if (!def.time.duration_s && !def.ground_motion)
+    r.fail(def.section_line.at("time"), "time.duration_s",
+           "missing required key 'duration_s' (required when there is no ground_motion section)");
+  return def;
+}
+
+}  // namespace
+
+CaseDef load_case_file(const std::filesystem::path& file) {
+  const std::string name = file.string();
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec)) throw InputError(name, 0, "", "case file not found");
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw InputError(name, 0, "", "cannot open the case file for reading");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+
+  const Reader r(name);
+  std::vector<YAML::Node> docs;
+  try {
+    docs = YAML::LoadAll(buffer.str());
+  } catch (const YAML::Exception& e) {
+    throw InputError(name, e.mark.line >= 0 ? e.mark.line + 1 : 0, "", "YAML syntax error: " + e.msg);
+  }
+  if (docs.empty() || (docs.size() == 1 && docs[0].IsNull()))
+    throw InputError(name, 0, "", "the file is empty; expected a mapping starting with 'framequake_case: 1'");
+  if (docs.size() > 1)
+    throw InputError(
+        name, Reader::line_of(docs[1]), "",
+        "expected one YAML document, found " + std::to_string(docs.size()) + " (remove the '---' separators)");
+  try {
+    return parse_root(r, docs[0], file);
+  } catch (const YAML::Exception& e) {
+    // Not expected (types are checked before every access); kept so that a
+    // yaml-cpp surprise still names the file and line.
+    throw InputError(name, e.mark.line >= 0 ? e.mark.line + 1 : 0, "", "YAML error: " + e.msg);
+  }
+}
+
+}  // namespace fq

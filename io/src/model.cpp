@@ -1,0 +1,266 @@
+#include "io/model.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include "io/input_error.h"
+
+namespace fq {
+
+namespace {
+
+// A member counts as vertical when its axis is within this angle of world z
+// (case_def.h); below it, "world z made orthogonal to local x" has no
+// reliable direction.
+constexpr double kVerticalTolerance_rad = 1e-9;
+
+// The ground body's thickness. It only needs to be a valid box whose top face
+// is the ground surface; 20 mm is thicker than any expected contact overlap,
+// so nothing can pass through it within one contact.
+constexpr double kGroundThickness_m = 0.020;
+
+// A block may touch the ground surface exactly; the corner heights computed
+// from a centre and a rotated half size carry round-off of ~1e-16 relative,
+// so 1 nm of tolerance absorbs it while any real mistake (millimetres) is
+// still caught.
+constexpr double kGroundTolerance_m = 1e-9;
+
+// The fixed ground body is dense soil; its mass is never used (fixed bodies
+// have zero inverse mass) but add_box needs a positive density.
+constexpr double kGroundDensity_kg_per_m3 = 2000.0;
+
+[[noreturn]] void throw_input_error(const std::string& file, int line, const std::string& field,
+                                    const std::string& message) {
+  throw InputError(file, line, field, message);
+}
+
+std::string fmt(double x) {
+  std::ostringstream os;
+  os.precision(12);
+  os << x;
+  return os.str();
+}
+
+std::string item_path(const char* list, std::size_t i) { return std::string(list) + "[" + std::to_string(i) + "]"; }
+
+// Corners of a box (world frame) for bounding boxes.
+void extend_bounds(const Vec3& centre_m, const Quat& q, const Vec3& size_m, Vec3& lo, Vec3& hi) {
+  const Mat3 r = q.toRotationMatrix();
+  for (int k = 0; k < 8; ++k) {
+    const Vec3 s((k & 1) ? 0.5 : -0.5, (k & 2) ? 0.5 : -0.5, (k & 4) ? 0.5 : -0.5);
+    const Vec3 c = centre_m + r * s.cwiseProduct(size_m);
+    lo = lo.cwiseMin(c);
+    hi = hi.cwiseMax(c);
+  }
+}
+
+}  // namespace
+
+Quat member_orientation(const Vec3& a_m, const Vec3& b_m, double roll_rad) {
+  const Vec3 ex = (b_m - a_m).normalized();
+  Vec3 ey;
+  Vec3 ez;
+  // |ex x z| = sin(angle to the vertical): the horizontal part of ex.
+  if (std::hypot(ex.x(), ex.y()) > std::sin(kVerticalTolerance_rad)) {
+    ez = (Vec3::UnitZ() - ex.z() * ex).normalized();
+    ey = ez.cross(ex);
+  } else {
+    ey = (Vec3::UnitX() - ex.x() * ex).normalized();
+    ez = ex.cross(ey);
+  }
+  // Roll the section about local x (right-handed, y towards z).
+  const double c = std::cos(roll_rad);
+  const double s = std::sin(roll_rad);
+  const Vec3 ey_rolled = c * ey + s * ez;
+  const Vec3 ez_rolled = -s * ey + c * ez;
+  Mat3 r;
+  r.col(0) = ex;
+  r.col(1) = ey_rolled;
+  r.col(2) = ez_rolled;
+  return Quat(r).normalized();
+}
+
+Quat block_orientation(const Vec3& rotation_rad) {
+  return (Eigen::AngleAxisd(rotation_rad.z(), Vec3::UnitZ()) * Eigen::AngleAxisd(rotation_rad.y(), Vec3::UnitY()) *
+          Eigen::AngleAxisd(rotation_rad.x(), Vec3::UnitX()))
+      .normalized();
+}
+
+Model build_model(const CaseDef& def_in) {
+  Model model;
+  model.def = def_in;
+  CaseDef& def = model.def;
+  const std::string file = def.source_file.string();
+  auto fail = [&file](int line, const std::string& field, const std::string& message) {
+    throw_input_error(file, line, field, message);
+  };
+
+  if (def.name.empty()) def.name = def.source_file.empty() ? std::string("case") : def.source_file.stem().string();
+  if (def.output.folder.empty()) def.output.folder = default_output_folder(def.name);
+  const int time_line = def.section_line.count("time") ? def.section_line.at("time") : 0;
+  if (!(def.time.dt_s > 0.0) || !std::isfinite(def.time.dt_s))
+    fail(time_line, "time.dt_s", "expected a positive time step in s");
+  if (def.members.empty() && def.blocks.empty())
+    fail(0, "", "the case has no bodies: expected at least one member or block");
+
+  auto material_density = [&](const std::string& name, int line, const std::string& path) {
+    const int i = def.material_index(name);
+    if (i < 0) fail(line, path + ".material", "no material named '" + name + "'");
+    const MaterialDef& m = def.materials[std::size_t(i)];
+    if (!(m.density_kg_per_m3 > 0.0) || !std::isfinite(m.density_kg_per_m3))
+      fail(m.line, item_path("materials", std::size_t(i)) + ".density_kg_per_m3",
+           "expected a positive density in kg/m^3");
+    return m.density_kg_per_m3;
+  };
+  auto check_unique_id = [&](const std::string& id, std::size_t upto_members, std::size_t upto_blocks, int line,
+                             const std::string& path) {
+    for (std::size_t j = 0; j < upto_members; ++j)
+      if (def.members[j].id == id)
+        fail(line, path + ".id", "id '" + id + "' is already used by " + item_path("members", j));
+    for (std::size_t j = 0; j < upto_blocks; ++j)
+      if (def.blocks[j].id == id)
+        fail(line, path + ".id", "id '" + id + "' is already used by " + item_path("blocks", j));
+  };
+
+  // Box definitions first, so the ground body can be sized to them.
+  std::vector<BoxBodyDef> member_boxes;
+  std::vector<BoxBodyDef> block_boxes;
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
+  Vec3 hi = -lo;
+  for (std::size_t i = 0; i < def.members.size(); ++i) {
+    const MemberDef& m = def.members[i];
+    const std::string path = item_path("members", i);
+    if (m.id.empty()) fail(m.line, path + ".id", "expected a member id");
+    check_unique_id(m.id, i, 0, m.line, path);
+    const int a = def.node_index(m.node_a);
+    const int b = def.node_index(m.node_b);
+    if (a < 0) fail(m.line, path + ".nodes[0]", "no node named '" + m.node_a + "'");
+    if (b < 0) fail(m.line, path + ".nodes[1]", "no node named '" + m.node_b + "'");
+    const Vec3 pa = def.nodes[std::size_t(a)].xyz_m;
+    const Vec3 pb = def.nodes[std::size_t(b)].xyz_m;
+    const double length_m = (pb - pa).norm();
+    if (!(length_m > kMinMemberLength_m))
+      fail(m.line, path + ".nodes",
+           "nodes '" + m.node_a + "' and '" + m.node_b +
+               "' are at the same position, so the member would have no length");
+    const int s = def.section_index(m.section);
+    if (s < 0) fail(m.line, path + ".section", "no section named '" + m.section + "'");
+    const SectionDef& sec = def.sections[std::size_t(s)];
+    if (!(sec.width_m > 0.0) || !(sec.depth_m > 0.0) || !std::isfinite(sec.width_m) || !std::isfinite(sec.depth_m))
+      fail(sec.line, item_path("sections", std::size_t(s)), "expected a positive width_m and depth_m");
+    if (m.kind == MemberKind::Ground) fail(m.line, path + ".kind", "a member cannot be of kind ground");
+
+    BoxBodyDef box;
+    box.name = m.id;
+    box.kind = m.kind;
+    box.size_m = Vec3(length_m, sec.width_m, sec.depth_m);
+    box.density_kg_per_m3 = material_density(m.material, m.line, path);
+    box.position_m = 0.5 * (pa + pb);
+    box.orientation = member_orientation(pa, pb, m.roll_rad);
+    extend_bounds(box.position_m, box.orientation, box.size_m, lo, hi);
+    member_boxes.push_back(box);
+  }
+  for (std::size_t i = 0; i < def.blocks.size(); ++i) {
+    const BlockDef& bl = def.blocks[i];
+    const std::string path = item_path("blocks", i);
+    if (bl.id.empty()) fail(bl.line, path + ".id", "expected a block id");
+    check_unique_id(bl.id, def.members.size(), i, bl.line, path);
+    if (!(bl.size_m.minCoeff() > 0.0) || !bl.size_m.allFinite())
+      fail(bl.line, path + ".size_m", "expected three positive edge lengths in m");
+    if (bl.kind == MemberKind::Ground) fail(bl.line, path + ".kind", "a block cannot be of kind ground");
+    BoxBodyDef box;
+    box.name = bl.id;
+    box.kind = bl.kind;
+    box.size_m = bl.size_m;
+    box.density_kg_per_m3 = material_density(bl.material, bl.line, path);
+    box.position_m = bl.center_m;
+    box.orientation = block_orientation(bl.rotation_rad);
+    box.velocity_mps = bl.velocity_mps;
+    box.angular_velocity_radps = bl.angular_velocity_radps;
+    box.fixed = bl.fixed;
+    extend_bounds(box.position_m, box.orientation, box.size_m, lo, hi);
+    block_boxes.push_back(box);
+  }
+  for (std::size_t i = 0; i < def.supports.size(); ++i) {
+    const SupportDef& s = def.supports[i];
+    if (def.node_index(s.node) < 0) fail(s.line, item_path("supports", i) + ".node", "no node named '" + s.node + "'");
+  }
+
+  // Ground body. Its top face is the ground surface. In plan it covers the
+  // structure's footprint twice over (edge = 2 x footprint edge, centred on
+  // it) and at least the footprint plus the structure's height on every
+  // side: a member toppling about its base lands up to its height away.
+  if (def.ground || !def.supports.empty()) {
+    const double level_m = def.ground ? def.ground->level_m : 0.0;
+    for (std::size_t i = 0; i < def.blocks.size(); ++i) {
+      Vec3 blo = Vec3::Constant(std::numeric_limits<double>::infinity());
+      Vec3 bhi = -blo;
+      extend_bounds(block_boxes[i].position_m, block_boxes[i].orientation, block_boxes[i].size_m, blo, bhi);
+      if (blo.z() < level_m - kGroundTolerance_m)
+        fail(def.blocks[i].line, item_path("blocks", i) + ".center_m",
+             "the block reaches " + fmt(level_m - blo.z()) + " m below the ground surface (z = " + fmt(level_m) +
+                 " m); raise it or lower ground.level_m");
+    }
+    const Vec3 extent = (hi - lo).cwiseMax(Vec3::Zero());
+    const double height_m = std::max(0.0, hi.z() - level_m);
+    BoxBodyDef g;
+    g.name = "ground";
+    g.kind = MemberKind::Ground;
+    g.size_m = Vec3(std::max(2.0 * extent.x(), extent.x() + 2.0 * height_m),
+                    std::max(2.0 * extent.y(), extent.y() + 2.0 * height_m), kGroundThickness_m);
+    g.density_kg_per_m3 = kGroundDensity_kg_per_m3;
+    g.position_m = Vec3(0.5 * (lo.x() + hi.x()), 0.5 * (lo.y() + hi.y()), level_m - 0.5 * kGroundThickness_m);
+    g.fixed = true;
+    model.ground_body = model.bodies.add_box(g);
+  }
+
+  try {
+    for (std::size_t i = 0; i < member_boxes.size(); ++i)
+      model.member_body.push_back(model.bodies.add_box(member_boxes[i]));
+    for (std::size_t i = 0; i < block_boxes.size(); ++i)
+      model.block_body.push_back(model.bodies.add_box(block_boxes[i]));
+  } catch (const std::invalid_argument& e) {
+    // Every size and density was checked above; kept so a surprise still
+    // names the file.
+    fail(0, "", e.what());
+  }
+
+  // Ground motion.
+  if (def.ground_motion) {
+    const GroundMotionDef& gm = *def.ground_motion;
+    for (std::size_t i = 0; i < gm.components.size(); ++i) {
+      const GroundMotionComponentDef& c = gm.components[i];
+      GroundMotionComponent comp;
+      comp.record = c.record;
+      comp.direction = c.direction;
+      comp.amplitude_scale = c.amplitude_scale;
+      comp.time_scale = gm.time_scale;
+      comp.window_start_s = gm.window_start_s;
+      comp.window_length_s = gm.window_length_s;
+      try {
+        model.ground_motion.add_component(std::move(comp));
+      } catch (const std::invalid_argument& e) {
+        fail(c.line, "ground_motion.components[" + std::to_string(i) + "]", e.what());
+      }
+    }
+  }
+
+  model.settings.dt_s = def.time.dt_s;
+  model.settings.gravity_mps2 = def.time.gravity_mps2;
+  if (def.time.duration_s) {
+    model.settings.duration_s = *def.time.duration_s;
+  } else if (!model.ground_motion.empty()) {
+    model.settings.duration_s = model.ground_motion.end_time_s();
+  } else {
+    fail(time_line, "time.duration_s", "missing duration_s (required when there is no ground motion)");
+  }
+  if (!(model.settings.duration_s > 0.0) || !std::isfinite(model.settings.duration_s))
+    fail(time_line, "time.duration_s", "expected a positive duration in s");
+  return model;
+}
+
+}  // namespace fq
