@@ -1,0 +1,80 @@
+// Everything a run writes to its output folder (DESIGN.md "Output a user can open"):
+//
+//   OUT/case.pvd            ParaView collection: one DataSet per frame, timestep = physical time (s)
+//   OUT/frames/frame_NNNNNN.vtu   one grid per frame (vtk_frame_writer.h)
+//   OUT/history.csv         one row per history sample (history_writer.h)
+//   OUT/events.csv          one row per fq::Event
+//   OUT/summary.json        written by finish(): status, steps, timing, energy ledger, event counts
+//
+// Crash safety: frames, case.pvd and summary.json are written under a
+// temporary name and renamed, so each exists only when complete, and case.pvd
+// is rewritten after each frame to list only frames already on disk (an
+// empty, valid case.pvd is written by the constructor). history.csv and
+// events.csv are flushed at every frame, so a crash loses at most one frame
+// interval of rows.
+//
+// Extension hooks for later issues (register before attach()):
+//   add_cell_block("springs", fn)      more cells in every frame (VtkCellBlock)
+//   add_history_column("drift_storey1_x_m", fn)   more history.csv columns
+//   add_summary_field("peak_drift", json)         more summary.json fields (any time before finish())
+//
+// Lifetime: attach() registers observers owned by this object with the
+// simulation; it must outlive the simulation's run() (moving the RunOutput is
+// safe: the observers sit behind a stable pointer).
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "dem_core/simulation.h"
+#include "io/history_writer.h"
+#include "io/output_def.h"
+#include "io/vtk_frame_writer.h"
+
+namespace fq {
+
+class RunOutput {
+ public:
+  // Prepares `def.folder` (creates it and frames/). If the folder exists and
+  // holds a previous framequake run (it has case.pvd or summary.json), that
+  // run's output files are removed (case.pvd, summary.json, history.csv,
+  // events.csv, frames/frame_*.vtu and temporaries; nothing else). If it
+  // exists and holds anything else, throws std::runtime_error naming the
+  // folder and leaves it untouched. Throws std::invalid_argument on a
+  // non-positive interval or an empty folder path.
+  RunOutput(const OutputDef& def, std::string case_name);
+  ~RunOutput();
+  RunOutput(RunOutput&&) noexcept;
+  RunOutput& operator=(RunOutput&&) noexcept;
+
+  // Registers observers on the simulation: history rows every
+  // max(1, round(history_interval_s / dt)) steps, frames every
+  // max(1, round(frame_interval_s / dt)) steps, both at the start and at the
+  // last state of the run. Opens history.csv and events.csv. Call once.
+  void attach(Simulation& sim);
+
+  void add_cell_block(std::string name, VtkCellBlock block);
+  void add_history_column(std::string header, HistoryColumn value);
+  // Extra summary field; `json_value` is an already formatted JSON value
+  // (checked). Keys must not repeat built-in ones; a repeated extra key
+  // replaces the earlier value.
+  void add_summary_field(std::string key, std::string json_value);
+
+  // Writes the events not yet written, closes history.csv and events.csv and
+  // writes summary.json. Call once after run(), also after an unstable or
+  // stopped run (the frames and rows up to the last good state are kept).
+  void finish(const Simulation& sim, const RunResult& result);
+
+  const std::filesystem::path& folder() const;
+  std::int64_t frame_every_steps() const;    // 0 before attach()
+  std::int64_t history_every_steps() const;  // 0 before attach()
+  std::size_t frames_written() const;
+  std::int64_t history_rows() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace fq

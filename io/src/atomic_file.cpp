@@ -1,0 +1,33 @@
+#include "atomic_file.h"
+
+#include <fstream>
+#include <stdexcept>
+#include <system_error>
+
+namespace fq::detail {
+
+namespace fs = std::filesystem;
+
+fs::path temporary_path_for(const fs::path& target) {
+  return target.parent_path() / ("." + target.filename().string() + ".tmp");
+}
+
+void commit_file(const fs::path& temporary, const fs::path& target) {
+  std::error_code ec;
+  fs::rename(temporary, target, ec);
+  if (ec) throw std::runtime_error("cannot rename '" + temporary.string() + "' to '" + target.string() + "': " + ec.message());
+}
+
+void write_file_atomically(const fs::path& target, std::string_view content) {
+  const fs::path tmp = temporary_path_for(target);
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) throw std::runtime_error("cannot create '" + tmp.string() + "'");
+    out.write(content.data(), static_cast<std::streamsize>(content.size()));
+    out.close();
+    if (!out) throw std::runtime_error("cannot write '" + tmp.string() + "' (disk full?)");
+  }
+  commit_file(tmp, target);
+}
+
+}  // namespace fq::detail

@@ -1,0 +1,35 @@
+// Private to io: files that a reader sees either whole or not at all.
+//
+// A file is written under a temporary name in the same folder (so the rename
+// never crosses a file system), closed, and then renamed over the target.
+// POSIX rename is atomic: a viewer, or a run that crashed a microsecond
+// later, finds the old complete file or the new complete one, never a
+// half-written one (DESIGN.md "Output a user can open").
+//
+// What this does not cover: the machine losing power. Guarding against that
+// needs an fsync before each rename, which measured 5-6 ms per call here
+// (ext4): two per frame made writing the 1 s falling-block demo's 51 frames
+// cost 0.57 s, more than four times its whole step loop. A process crash
+// (instability, exception, kill, out of memory) is the failure a simulation
+// meets; the page cache survives it, so the rename is enough.
+//
+// Temporary names start with '.' and end with ".tmp" so that file dialogs
+// hide them and a later run recognises them as its own leftovers.
+#pragma once
+
+#include <filesystem>
+#include <string_view>
+
+namespace fq::detail {
+
+// ".<name>.tmp" next to `target`.
+std::filesystem::path temporary_path_for(const std::filesystem::path& target);
+
+// Renames the complete, closed file `temporary` to `target`. Throws
+// std::runtime_error naming both files on failure.
+void commit_file(const std::filesystem::path& temporary, const std::filesystem::path& target);
+
+// Writes `content` to a temporary file and commits it to `target`.
+void write_file_atomically(const std::filesystem::path& target, std::string_view content);
+
+}  // namespace fq::detail

@@ -1,0 +1,87 @@
+#include "event_csv_writer.h"
+
+#include <stdexcept>
+
+#include "number_format.h"
+
+namespace fq::detail {
+
+namespace {
+
+// Modes are identifiers ("tension", "shear"...), but a stray comma or quote
+// must not shift the columns: quote such a field per RFC 4180.
+void append_csv_text(std::string& out, const char* text) {
+  const std::string s = text ? text : "";
+  if (s.find_first_of(",\"\r\n") == std::string::npos) {
+    out += s;
+    return;
+  }
+  out.push_back('"');
+  for (const char c : s) {
+    if (c == '"') out.push_back('"');
+    out.push_back(c);
+  }
+  out.push_back('"');
+}
+
+}  // namespace
+
+void EventCsvWriter::open(const std::filesystem::path& file) {
+  auto out = std::make_unique<std::ofstream>(file, std::ios::binary | std::ios::trunc);
+  if (!*out) throw std::runtime_error("cannot create '" + file.string() + "'");
+  *out << "time_s,step,kind,joint_id,body_a,body_b,spring_index,mode,force_N,x_m,y_m,z_m\n";
+  if (!*out) throw std::runtime_error("cannot write '" + file.string() + "'");
+  out_ = std::move(out);
+  file_ = file;
+  written_ = 0;
+  rows_ = 0;
+}
+
+void EventCsvWriter::write_new(const EventLog& log) {
+  if (!out_) return;
+  const auto& all = log.all();
+  if (all.size() < written_) written_ = 0;  // the log was cleared: what follows is new
+  for (; written_ < all.size(); ++written_) {
+    const Event& e = all[written_];
+    line_.clear();
+    append_number(line_, e.time_s);
+    line_.push_back(',');
+    append_integer(line_, e.step);
+    line_.push_back(',');
+    line_ += event_kind_name(e.kind);
+    line_.push_back(',');
+    append_integer(line_, e.joint_id);
+    line_.push_back(',');
+    append_integer(line_, e.body_a);
+    line_.push_back(',');
+    append_integer(line_, e.body_b);
+    line_.push_back(',');
+    append_integer(line_, e.spring_index);
+    line_.push_back(',');
+    append_csv_text(line_, e.mode);
+    line_.push_back(',');
+    append_number(line_, e.force_N);
+    for (int k = 0; k < 3; ++k) {
+      line_.push_back(',');
+      append_number(line_, e.position_m[k]);
+    }
+    line_.push_back('\n');
+    out_->write(line_.data(), std::streamsize(line_.size()));
+    ++rows_;
+  }
+}
+
+void EventCsvWriter::flush() {
+  if (!out_) return;
+  out_->flush();
+  if (!*out_) throw std::runtime_error("cannot write '" + file_.string() + "' (disk full?)");
+}
+
+void EventCsvWriter::close() {
+  if (!out_) return;
+  flush();
+  out_->close();
+  out_.reset();
+}
+
+}  // namespace fq::detail

@@ -1,0 +1,35 @@
+// Private to io: events.csv, one row per fq::Event (STYLE.md 3.4 "record each
+// break with who, when, where and why"):
+//   time_s,step,kind,joint_id,body_a,body_b,spring_index,mode,force_N,x_m,y_m,z_m
+// Rows are appended as the log grows (at each history sample), so the file
+// follows the run; -1 marks "not applicable" ids as in fq::Event.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <string>
+
+#include "dem_core/events.h"
+
+namespace fq::detail {
+
+class EventCsvWriter {
+ public:
+  void open(const std::filesystem::path& file);
+  // Writes the events of `log` not written yet.
+  void write_new(const EventLog& log);
+  void flush();
+  void close();
+  std::int64_t rows() const { return rows_; }
+
+ private:
+  std::unique_ptr<std::ofstream> out_;
+  std::filesystem::path file_;
+  std::size_t written_ = 0;  // entries of the log already in the file
+  std::int64_t rows_ = 0;
+  std::string line_;
+};
+
+}  // namespace fq::detail

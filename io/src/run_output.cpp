@@ -1,0 +1,317 @@
+#include "io/run_output.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+#include <system_error>
+#include <utility>
+#include <vector>
+
+#include "atomic_file.h"
+#include "event_csv_writer.h"
+#include "fq_config.h"
+#include "io/json_writer.h"
+#include "pvd_collection.h"
+
+namespace fq {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr const char* kPvdName = "case.pvd";
+constexpr const char* kSummaryName = "summary.json";
+constexpr const char* kHistoryName = "history.csv";
+constexpr const char* kEventsName = "events.csv";
+constexpr const char* kFramesDir = "frames";
+
+// Top-level keys summary.json writes itself; extra fields may not reuse them.
+constexpr const char* kBuiltinSummaryKeys[] = {
+    "program",          "program_version", "case",           "status",           "message",
+    "steps",            "dt_s",            "duration_s",     "simulated_time_s", "wall_time_s",
+    "steps_per_second", "body_count",      "energy",         "event_counts",     "stage_seconds",
+    "provider_seconds", "frames_written",  "history_rows",   "event_rows",       "output"};
+
+bool is_digits(std::string_view s) {
+  return !s.empty() && std::all_of(s.begin(), s.end(), [](char c) { return c >= '0' && c <= '9'; });
+}
+
+// frame_NNNNNN.vtu (6 or more digits) or its temporary .frame_NNNNNN.vtu.tmp.
+bool is_frame_file_name(std::string_view name) {
+  if (name.starts_with(".") && name.ends_with(".tmp")) name = name.substr(1, name.size() - 5);
+  if (!name.starts_with("frame_") || !name.ends_with(".vtu")) return false;
+  const std::string_view digits = name.substr(6, name.size() - 10);
+  return digits.size() >= 6 && is_digits(digits);
+}
+
+std::string frame_file_name(std::size_t index) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "frame_%06zu.vtu", index);
+  return buf;
+}
+
+void remove_file_if_present(const fs::path& p) {
+  std::error_code ec;
+  if (!fs::is_regular_file(fs::symlink_status(p, ec))) return;
+  if (!fs::remove(p, ec) && ec)
+    throw std::runtime_error("cannot remove old output file '" + p.string() + "': " + ec.message());
+}
+
+// See the constructor's contract in run_output.h. Only files this class
+// writes are ever removed.
+void prepare_folder(const fs::path& folder) {
+  std::error_code ec;
+  const fs::file_status st = fs::status(folder, ec);
+  if (fs::exists(st)) {
+    if (!fs::is_directory(st))
+      throw std::runtime_error("output folder '" + folder.string() + "' exists and is not a folder");
+    // Empty, or holding only an empty frames/ (a run stopped between making
+    // the folders and writing case.pvd): nothing to protect.
+    bool empty = true;
+    for (const fs::directory_entry& e : fs::directory_iterator(folder, ec)) {
+      const bool empty_frames_dir = e.path().filename() == kFramesDir && e.is_directory() && fs::is_empty(e.path());
+      if (!empty_frames_dir) empty = false;
+    }
+    if (ec) throw std::runtime_error("cannot read output folder '" + folder.string() + "': " + ec.message());
+    if (!empty) {
+      const bool previous_run = fs::exists(folder / kPvdName) || fs::exists(folder / kSummaryName);
+      if (!previous_run)
+        throw std::runtime_error("output folder '" + folder.string() +
+                                 "' is not empty and holds no previous framequake run (no case.pvd or "
+                                 "summary.json); refusing to write into it: choose another folder or empty it");
+      for (const char* name : {kPvdName, kSummaryName, kHistoryName, kEventsName}) {
+        remove_file_if_present(folder / name);
+        remove_file_if_present(detail::temporary_path_for(folder / name));
+      }
+      const fs::path frames = folder / kFramesDir;
+      if (fs::is_directory(fs::symlink_status(frames, ec))) {
+        std::vector<fs::path> old;
+        for (const fs::directory_entry& e : fs::directory_iterator(frames))
+          if (is_frame_file_name(e.path().filename().string())) old.push_back(e.path());
+        for (const fs::path& p : old) remove_file_if_present(p);
+      }
+    }
+  }
+  fs::create_directories(folder / kFramesDir, ec);
+  if (ec || !fs::is_directory(folder / kFramesDir))
+    throw std::runtime_error("cannot create output folder '" + (folder / kFramesDir).string() + "': " + ec.message());
+}
+
+std::int64_t steps_per_interval(double interval_s, double dt_s) {
+  return std::max<std::int64_t>(1, std::llround(interval_s / dt_s));
+}
+
+}  // namespace
+
+struct RunOutput::Impl {
+  // Observers the simulation calls; they forward to Impl, whose address is
+  // stable behind RunOutput's unique_ptr.
+  struct HistoryObserver final : StepObserver {
+    explicit HistoryObserver(Impl* o) : owner(o) {}
+    void on_sample(const Simulation& sim) override { owner->sample_history(sim); }
+    Impl* owner;
+  };
+  struct FrameObserver final : StepObserver {
+    explicit FrameObserver(Impl* o) : owner(o) {}
+    void on_sample(const Simulation& sim) override { owner->write_frame(sim); }
+    Impl* owner;
+  };
+
+  Impl(const OutputDef& d, std::string name)
+      : def(d), case_name(std::move(name)), pvd(def.folder / kPvdName) {}
+
+  void sample_history(const Simulation& sim) {
+    if (sim.steps_done() == last_history_step) return;  // this state is already in the file
+    last_history_step = sim.steps_done();
+    history.write_row(sim);
+    events.write_new(sim.events());
+  }
+
+  void write_frame(const Simulation& sim) {
+    if (sim.steps_done() == last_frame_step) return;
+    last_frame_step = sim.steps_done();
+    const std::string name = frame_file_name(pvd.size());
+    frames.write(sim, def.folder / kFramesDir / name, def.vtk_binary);
+    pvd.add(sim.time_s(), std::string(kFramesDir) + "/" + name);
+    // Rows up to this frame's time are on disk as well.
+    history.flush();
+    events.write_new(sim.events());
+    events.flush();
+  }
+
+  void write_summary(const Simulation& sim, const RunResult& result) const;
+
+  OutputDef def;
+  std::string case_name;
+  VtkFrameWriter frames;
+  HistoryWriter history;
+  detail::EventCsvWriter events;
+  detail::PvdCollection pvd;
+  std::vector<std::pair<std::string, std::string>> extra_fields;
+  HistoryObserver history_observer{this};
+  FrameObserver frame_observer{this};
+  std::int64_t frame_every = 0;
+  std::int64_t history_every = 0;
+  std::int64_t last_frame_step = -1;
+  std::int64_t last_history_step = -1;
+  bool attached = false;
+  bool finished = false;
+};
+
+RunOutput::RunOutput(const OutputDef& def, std::string case_name) {
+  if (def.folder.empty()) throw std::invalid_argument("output folder path is empty");
+  if (!(def.frame_interval_s > 0.0) || !std::isfinite(def.frame_interval_s))
+    throw std::invalid_argument("frame_interval_s must be a positive number of seconds");
+  if (!(def.history_interval_s > 0.0) || !std::isfinite(def.history_interval_s))
+    throw std::invalid_argument("history_interval_s must be a positive number of seconds");
+  prepare_folder(def.folder);
+  impl_ = std::make_unique<Impl>(def, std::move(case_name));
+  // From now on the folder is recognisably a framequake run, and case.pvd
+  // is valid at every instant.
+  impl_->pvd.write();
+}
+
+RunOutput::~RunOutput() = default;
+RunOutput::RunOutput(RunOutput&&) noexcept = default;
+RunOutput& RunOutput::operator=(RunOutput&&) noexcept = default;
+
+void RunOutput::attach(Simulation& sim) {
+  Impl& o = *impl_;
+  if (o.attached) throw std::logic_error("RunOutput::attach called twice");
+  const double dt = sim.settings().dt_s;
+  o.history_every = steps_per_interval(o.def.history_interval_s, dt);
+  o.frame_every = steps_per_interval(o.def.frame_interval_s, dt);
+  o.history.open(o.def.folder / kHistoryName, sim);
+  o.events.open(o.def.folder / kEventsName);
+  // History first: at a step where both are due the row is written before
+  // the frame flushes the file.
+  sim.add_observer(&o.history_observer, o.history_every);
+  sim.add_observer(&o.frame_observer, o.frame_every);
+  o.attached = true;
+}
+
+void RunOutput::add_cell_block(std::string name, VtkCellBlock block) {
+  impl_->frames.add_cell_block(std::move(name), std::move(block));
+}
+
+void RunOutput::add_history_column(std::string header, HistoryColumn value) {
+  impl_->history.add_column(std::move(header), std::move(value));
+}
+
+void RunOutput::add_summary_field(std::string key, std::string json_value) {
+  for (const char* k : kBuiltinSummaryKeys)
+    if (key == k) throw std::invalid_argument("summary field '" + key + "' is written by RunOutput itself");
+  if (!json_is_valid(json_value))
+    throw std::invalid_argument("summary field '" + key + "': not a valid JSON value: " + json_value.substr(0, 80));
+  for (auto& [k, v] : impl_->extra_fields) {
+    if (k == key) {
+      v = std::move(json_value);
+      return;
+    }
+  }
+  impl_->extra_fields.emplace_back(std::move(key), std::move(json_value));
+}
+
+void RunOutput::finish(const Simulation& sim, const RunResult& result) {
+  Impl& o = *impl_;
+  if (o.finished) throw std::logic_error("RunOutput::finish called twice");
+  o.finished = true;
+  // An unstable run ends without a final sample: its Instability event is
+  // only in the log.
+  o.events.write_new(sim.events());
+  o.events.close();
+  o.history.close();
+  o.write_summary(sim, result);
+}
+
+void RunOutput::Impl::write_summary(const Simulation& sim, const RunResult& result) const {
+  JsonWriter w;
+  w.begin_object();
+  w.key("program").value("framequake");
+  w.key("program_version").value(FQ_VERSION_STRING);
+  w.key("case").value(case_name);
+  w.key("status").value(run_status_name(result.status));
+  w.key("message").value(result.message);
+  w.key("steps").value(result.steps);
+  w.key("dt_s").value(sim.settings().dt_s);
+  w.key("duration_s").value(sim.settings().duration_s);
+  w.key("simulated_time_s").value(result.simulated_s);
+  w.key("wall_time_s").value(result.wall_s);
+  // Non-finite (null) when the run was too short for the clock to see.
+  w.key("steps_per_second").value(result.wall_s > 0.0 ? double(result.steps) / result.wall_s : HUGE_VAL);
+  w.key("body_count").value(sim.bodies().size());
+
+  const EnergyLedger& e = sim.ledger();
+  w.key("energy").begin_object();
+  w.key("kinetic_J").value(e.kinetic_J);
+  w.key("kinetic_rotational_J").value(e.kinetic_rotational_J);
+  w.key("gravity_potential_J").value(e.gravity_potential_J);
+  w.key("elastic_J").value(e.elastic_J);
+  w.key("dissipated_viscous_J").value(e.dissipated_viscous_J);
+  w.key("dissipated_plastic_J").value(e.dissipated_plastic_J);
+  w.key("dissipated_friction_J").value(e.dissipated_friction_J);
+  w.key("work_ground_motion_J").value(e.work_ground_motion_J);
+  w.key("work_external_J").value(e.work_external_J);
+  w.key("initial_stored_J").value(e.initial_stored_J);
+  w.key("scale_J").value(e.scale_J);
+  w.key("stored_J").value(e.stored_J());
+  w.key("dissipated_J").value(e.dissipated_J());
+  w.key("input_J").value(e.input_J());
+  w.key("balance_error_J").value(e.balance_error_J());
+  w.key("balance_error_relative").value(e.balance_error_relative());
+  w.end_object();
+
+  // Every kind the engine knows, zero counts included. EventKind has a fixed
+  // uint8 underlying type, so scanning its range picks up kinds added later.
+  w.key("event_counts").begin_object();
+  for (int k = 0; k < 256; ++k) {
+    const auto kind = static_cast<EventKind>(k);
+    const std::string name = event_kind_name(kind);
+    if (name == "unknown") continue;
+    w.key(name).value(sim.events().count(kind));
+  }
+  w.end_object();
+
+  // Estimated from one step in settings.profile_every_steps (simulation.h).
+  const StageProfile& p = sim.profile();
+  w.key("stage_seconds").begin_object();
+  for (int s = 0; s < static_cast<int>(Stage::Count); ++s) w.key(stage_name(static_cast<Stage>(s))).value(p.seconds[s]);
+  w.end_object();
+  // Keyed by provider name; a repeated name gets "#2", "#3", ...
+  w.key("provider_seconds").begin_object();
+  std::vector<std::string> used;
+  for (std::size_t i = 0; i < sim.providers().size() && i < p.provider_seconds.size(); ++i) {
+    std::string name = sim.providers()[i]->name();
+    const std::string base = name;
+    for (int n = 2; std::find(used.begin(), used.end(), name) != used.end(); ++n) name = base + "#" + std::to_string(n);
+    used.push_back(name);
+    w.key(name).value(p.provider_seconds[i]);
+  }
+  w.end_object();
+
+  w.key("frames_written").value(pvd.size());
+  w.key("history_rows").value(history.rows());
+  w.key("event_rows").value(events.rows());
+  w.key("output").begin_object();
+  w.key("frame_interval_s").value(def.frame_interval_s);
+  w.key("frame_every_steps").value(frame_every);
+  w.key("history_interval_s").value(def.history_interval_s);
+  w.key("history_every_steps").value(history_every);
+  w.key("vtk_binary").value(def.vtk_binary);
+  w.end_object();
+
+  for (const auto& [key, json] : extra_fields) w.key(key).raw(json);
+  w.end_object();
+  std::string doc = w.str();
+  doc.push_back('\n');
+  detail::write_file_atomically(def.folder / kSummaryName, doc);
+}
+
+const fs::path& RunOutput::folder() const { return impl_->def.folder; }
+std::int64_t RunOutput::frame_every_steps() const { return impl_->frame_every; }
+std::int64_t RunOutput::history_every_steps() const { return impl_->history_every; }
+std::size_t RunOutput::frames_written() const { return impl_->pvd.size(); }
+std::int64_t RunOutput::history_rows() const { return impl_->history.rows(); }
+
+}  // namespace fq

