@@ -40,7 +40,7 @@ void ProgressDisplay::draw(const Simulation& sim, bool final_line) {
   const std::int64_t total = std::max<std::int64_t>(1, sim.total_steps());
   const std::int64_t done = sim.steps_done();
   const double rate = elapsed > 0 ? double(done - start_step_) / elapsed : 0.0;
-  const double left = rate > 0 ? double(total - done) / rate : NAN;
+  const double left = rate > 0 ? double(total - done) / rate : -1.0;
   std::fprintf(stream_, "\r%s  t = %.4f / %.4f s  %5.1f%%  %.3g steps/s  %s left   ", label_.c_str(), sim.time_s(),
                sim.settings().duration_s, 100.0 * double(done) / double(total), rate,
                final_line ? "0:00" : format_duration(left).c_str());

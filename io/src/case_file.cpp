@@ -1,5 +1,6 @@
 #include "io/case_file.h"
 
+#include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
@@ -111,7 +112,10 @@ class Reader {
   void expect_keys(const YAML::Node& node, const Keys& allowed, const std::string& path) const {
     std::vector<std::pair<std::string, int>> seen;
     for (auto it = node.begin(); it != node.end(); ++it) {
-      const YAML::Node& k = it->first;
+      // A copy (a cheap handle): `it->first` belongs to a temporary proxy
+      // that dies at the end of the statement, so a reference would dangle
+      // (found by fuzz_case_file under ASan, stack-use-after-scope).
+      const YAML::Node k = it->first;
       const int line = line_of(k);
       if (!k.IsScalar()) fail(line, path, "expected a key name, got " + describe(k));
       const std::string key = k.Scalar();
@@ -134,7 +138,7 @@ class Reader {
   std::optional<Field> get(const YAML::Node& map, std::string_view key, const std::string& path) const {
     for (auto it = map.begin(); it != map.end(); ++it) {
       if (it->first.IsScalar() && it->first.Scalar() == key) {
-        const YAML::Node& v = it->second;
+        const YAML::Node v = it->second;  // a copy, as in expect_keys
         const int line = (v.IsNull() || line_of(v) == 0) ? line_of(it->first) : line_of(v);
         return Field{v, line, join(path, key)};
       }
@@ -485,12 +489,240 @@ void parse_blocks(const Reader& r, const Field& f, CaseDef& def) {
       });
 }
 
+
+// ---- joint types and joints ---------------------------------------------------
+
+// One spring law with its dashpot (joints/spring_law.h). Keys depend on `law`.
+SpringDef parse_spring(const Reader& r, const Field& f, const std::string& what) {
+  r.expect_map(f.value, f.line, f.path, what + ": a mapping with law and its parameters");
+  const Field law_field = r.require(f.value, "law", f.path, "linear, trilinear or curee");
+  const std::string law = r.to_name(law_field, "a law name");
+  const Keys common = {"law", "damping_ratio", "dashpot_N_s_per_m", "reference_length_m"};
+  Keys params;
+  SpringDef def;
+  if (law == "linear") {
+    params = {"stiffness_N_per_m"};
+    def.law.kind = SpringLawKind::LinearElastic;
+  } else if (law == "trilinear") {
+    params = {"yield_strain_tension",        "yield_force_tension_N",        "ultimate_strain_tension",
+              "ultimate_force_tension_N",    "yield_strain_compression",     "yield_force_compression_N",
+              "ultimate_strain_compression", "ultimate_force_compression_N"};
+    def.law.kind = SpringLawKind::Trilinear;
+  } else if (law == "curee") {
+    params = {"K0_N_per_m", "F0_N", "F1_N", "r1", "r2", "r3", "r4", "delta_u_m", "alpha", "beta"};
+    def.law.kind = SpringLawKind::Curee;
+  } else {
+    r.fail(law_field, "expected a spring law: linear, trilinear or curee; got '" + law + "'");
+  }
+  Keys allowed = common;
+  allowed.insert(allowed.end(), params.begin(), params.end());
+  r.expect_keys(f.value, allowed, f.path);
+  auto num = [&](std::string_view key) {
+    return r.to_number(r.require(f.value, key, f.path, "a parameter of the " + law + " law"));
+  };
+  switch (def.law.kind) {
+    case SpringLawKind::LinearElastic:
+      def.law.linear.stiffness_Npm = r.required_positive(f.value, "stiffness_N_per_m", f.path, "k (N/m)");
+      break;
+    case SpringLawKind::Trilinear: {
+      TrilinearParams& t = def.law.trilinear;
+      t.yield_strain_tension = num("yield_strain_tension");
+      t.yield_force_tension_N = num("yield_force_tension_N");
+      t.ultimate_strain_tension = num("ultimate_strain_tension");
+      t.ultimate_force_tension_N = num("ultimate_force_tension_N");
+      t.yield_strain_compression = num("yield_strain_compression");
+      t.yield_force_compression_N = num("yield_force_compression_N");
+      t.ultimate_strain_compression = num("ultimate_strain_compression");
+      t.ultimate_force_compression_N = num("ultimate_force_compression_N");
+      break;
+    }
+    case SpringLawKind::Curee: {
+      CureeParams& c = def.law.curee;
+      c.K0_Npm = num("K0_N_per_m");
+      c.F0_N = num("F0_N");
+      c.F1_N = num("F1_N");
+      c.r1 = num("r1");
+      c.r2 = num("r2");
+      c.r3 = num("r3");
+      c.r4 = num("r4");
+      c.delta_u_m = num("delta_u_m");
+      c.alpha = num("alpha");
+      c.beta = num("beta");
+      break;
+    }
+    case SpringLawKind::Count: break;
+  }
+  if (def.law.kind == SpringLawKind::Trilinear)
+    def.reference_length_m =
+        r.required_positive(f.value, "reference_length_m", f.path, "length turning deformation into strain (m)");
+  else
+    def.reference_length_m = r.optional_positive(f.value, "reference_length_m", f.path, def.reference_length_m);
+  def.dashpot.damping_ratio = r.optional_non_negative(f.value, "damping_ratio", f.path, 0.0);
+  def.dashpot.coefficient_Nspm = r.optional_non_negative(f.value, "dashpot_N_s_per_m", f.path, 0.0);
+  try {
+    (void)initial_stiffness_Npm(def);
+  } catch (const std::invalid_argument& e) {
+    r.fail(f, std::string("invalid ") + law + " law parameters: " + e.what());
+  }
+  return def;
+}
+
+JointBreakDef parse_fracture(const Reader& r, const Field& f) {
+  r.expect_map(f.value, f.line, f.path, "criterion and, for strain_limit, strain_limit");
+  r.expect_keys(f.value, {"criterion", "strain_limit"}, f.path);
+  JointBreakDef b;
+  const Field c = r.require(f.value, "criterion", f.path,
+                            "all_normal_springs_deleted, any_spring_deleted, strain_limit or never");
+  const std::string name = r.to_name(c, "a fracture criterion");
+  bool found = false;
+  for (BreakCriterion k : {BreakCriterion::AllNormalSpringsDeleted, BreakCriterion::AnySpringDeleted,
+                           BreakCriterion::StrainLimit, BreakCriterion::Never})
+    if (name == break_criterion_name(k)) {
+      b.criterion = k;
+      found = true;
+    }
+  if (!found)
+    r.fail(c, "expected all_normal_springs_deleted, any_spring_deleted, strain_limit or never; got '" + name + "'");
+  if (b.criterion == BreakCriterion::StrainLimit)
+    b.strain_limit = r.required_positive(f.value, "strain_limit", f.path, "the joint strain at which it breaks (-)");
+  else if (r.get(f.value, "strain_limit", f.path))
+    r.fail(*r.get(f.value, "strain_limit", f.path), "strain_limit applies only to criterion strain_limit");
+  return b;
+}
+
+void parse_joint_types(const Reader& r, const Field& f, CaseDef& def) {
+  r.to_list(f, "joint types", false);
+  const Keys allowed = {"name",     "layout",   "corner_fraction", "normal",     "shear",           "side_m",
+                        "gap_m",    "axial",    "diagonal",        "shear_link", "fracture"};
+  for_each_item(r, f, "a joint type", allowed, [&](const YAML::Node& n, const std::string& path, int line, std::size_t) {
+    JointTypeDef t;
+    t.line = line;
+    const Field name = r.require(n, "name", path, "the joint type's name");
+    t.name = r.to_name(name, "a joint type name");
+    if (const int other = def.joint_type_index(t.name); other >= 0)
+      r.fail(name, "joint type '" + t.name + "' is already defined on line " +
+                       std::to_string(def.joint_types[std::size_t(other)].line));
+    const Field layout = r.require(n, "layout", path, "single_point, four_corner or link_system");
+    const std::string l = r.to_name(layout, "a layout name");
+    if (l == "single_point") t.layout = JointLayoutKind::SinglePoint;
+    else if (l == "four_corner") t.layout = JointLayoutKind::FourCorner;
+    else if (l == "link_system") t.layout = JointLayoutKind::LinkSystem;
+    else r.fail(layout, "expected single_point, four_corner or link_system; got '" + l + "'");
+    auto refuse = [&](std::string_view key, const char* why) {
+      if (const auto k = r.get(n, key, path)) r.fail(*k, std::string(key) + " " + why);
+    };
+    if (t.layout == JointLayoutKind::LinkSystem) {
+      refuse("normal", "belongs to point layouts (single_point, four_corner), not link_system");
+      refuse("shear", "belongs to point layouts (single_point, four_corner), not link_system");
+      refuse("corner_fraction", "belongs to four_corner");
+      t.gap_m = r.required_positive(n, "gap_m", path, "distance l between the two link planes (m)");
+      t.side_m = r.optional_positive(n, "side_m", path, 0.0);
+      t.axial = parse_spring(r, r.require(n, "axial", path, "the axial links' law"), "axial links");
+      t.diagonal = parse_spring(r, r.require(n, "diagonal", path, "the diagonal links' law"), "diagonal links");
+      if (const auto sl = r.get(n, "shear_link", path)) {
+        t.shear_link = parse_spring(r, *sl, "shear links");
+        t.with_shear_links = true;
+      }
+    } else {
+      refuse("gap_m", "belongs to link_system");
+      refuse("side_m", "belongs to link_system");
+      refuse("axial", "belongs to link_system");
+      refuse("diagonal", "belongs to link_system");
+      refuse("shear_link", "belongs to link_system");
+      if (t.layout == JointLayoutKind::SinglePoint) refuse("corner_fraction", "belongs to four_corner");
+      t.corner_fraction = r.optional_positive(n, "corner_fraction", path, 1.0);
+      t.normal = parse_spring(r, r.require(n, "normal", path, "the normal springs' law"), "normal springs");
+      if (const auto sh = r.get(n, "shear", path))
+        t.shear = parse_spring(r, *sh, "shear springs");
+      else
+        t.has_shear = false;
+    }
+    if (const auto fr = r.get(n, "fracture", path)) t.fracture = parse_fracture(r, *fr);
+    def.joint_types.push_back(t);
+  });
+}
+
+std::string joint_type_reference(const Reader& r, const Field& f, const CaseDef& def) {
+  const std::string type = r.to_name(f, "a joint type name");
+  if (def.joint_type_index(type) < 0) {
+    std::vector<std::string> names;
+    for (const JointTypeDef& t : def.joint_types) names.push_back(t.name);
+    r.fail(f, "unknown joint type '" + type + "'; defined joint types: " +
+                  (names.empty() ? std::string("none (add a joint_types section)") : list_of_names(names)));
+  }
+  return type;
+}
+
+MemberKind parse_kind_name(const Reader& r, const Field& f) {
+  MemberKind k;
+  const std::string name = r.to_name(f, "a member kind");
+  if (!parse_member_kind(name, k) || k == MemberKind::Ground)
+    r.fail(f, "expected a member kind (column, beam, brace, block, other); got '" + name + "'");
+  return k;
+}
+
+void parse_joints(const Reader& r, const Field& f, CaseDef& def) {
+  r.expect_map(f.value, f.line, f.path, "automatic, default_type, support_type, rules, overrides");
+  r.expect_keys(f.value, {"automatic", "default_type", "support_type", "rules", "overrides"}, f.path);
+  JointsDef& j = def.joints;
+  j.line = f.line;
+  j.automatic = r.optional_bool(f.value, "automatic", f.path, true);
+  if (const auto d = r.get(f.value, "default_type", f.path)) j.default_type = joint_type_reference(r, *d, def);
+  if (const auto d = r.get(f.value, "support_type", f.path)) j.support_type = joint_type_reference(r, *d, def);
+  if (const auto rules = r.get(f.value, "rules", f.path)) {
+    r.to_list(*rules, "rules", false);
+    for_each_item(r, *rules, "a rule: kinds, type", {"kinds", "type"},
+                  [&](const YAML::Node& n, const std::string& path, int line, std::size_t) {
+                    JointRuleDef rule;
+                    rule.line = line;
+                    const Field kinds = r.require(n, "kinds", path, "two member kinds, e.g. [beam, column]");
+                    if (!kinds.value.IsSequence() || kinds.value.size() != 2)
+                      r.fail(kinds, "expected a list of two member kinds, e.g. [beam, column]");
+                    rule.kind_1 = parse_kind_name(r, Reader::item(kinds, 0));
+                    rule.kind_2 = parse_kind_name(r, Reader::item(kinds, 1));
+                    rule.type = joint_type_reference(r, r.require(n, "type", path, "a joint type name"), def);
+                    j.rules.push_back(rule);
+                  });
+  }
+  if (const auto overrides = r.get(f.value, "overrides", f.path)) {
+    r.to_list(*overrides, "overrides", false);
+    for_each_item(
+        r, *overrides, "an override: node, members, type", {"node", "members", "type"},
+        [&](const YAML::Node& n, const std::string& path, int line, std::size_t) {
+          JointOverrideDef o;
+          o.line = line;
+          const Field node = r.require(n, "node", path, "the node where the two members meet");
+          o.node = r.to_name(node, "a node id");
+          if (def.node_index(o.node) < 0)
+            r.fail(node, reference_message("node", o.node, def.nodes, &NodeDef::id, "nodes"));
+          const Field members = r.require(n, "members", path, "the two member ids");
+          if (!members.value.IsSequence() || members.value.size() != 2)
+            r.fail(members, "expected a list of two member ids");
+          for (std::size_t i = 0; i < 2; ++i) {
+            const Field m = Reader::item(members, i);
+            const std::string id = r.to_name(m, "a member id");
+            const auto it = std::find_if(def.members.begin(), def.members.end(),
+                                         [&](const MemberDef& md) { return md.id == id; });
+            if (it == def.members.end()) r.fail(m, "unknown member '" + id + "'");
+            if (it->node_a != o.node && it->node_b != o.node)
+              r.fail(m, "member '" + id + "' does not end at node '" + o.node + "'");
+            (i == 0 ? o.member_1 : o.member_2) = id;
+          }
+          if (o.member_1 == o.member_2) r.fail(members, "the two members must differ");
+          o.type = joint_type_reference(r, r.require(n, "type", path, "a joint type name"), def);
+          j.overrides.push_back(o);
+        });
+  }
+}
+
 void parse_supports(const Reader& r, const Field& f, CaseDef& def) {
   r.to_list(f, "supports", false);
   for_each_item(
-      r, f, "a support: node", {"node"}, [&](const YAML::Node& n, const std::string& path, int line, std::size_t) {
+      r, f, "a support: node, joint_type", {"node", "joint_type"},
+      [&](const YAML::Node& n, const std::string& path, int line, std::size_t) {
         SupportDef s;
         s.line = line;
+        if (const auto jt = r.get(n, "joint_type", path)) s.joint_type = joint_type_reference(r, *jt, def);
         const Field node = r.require(n, "node", path, "the id of the supported node");
         s.node = r.to_name(node, "a node id");
         if (def.node_index(s.node) < 0)
@@ -626,6 +858,8 @@ const SectionEntry kSections[] = {
     {"nodes", false, "", parse_nodes},
     {"members", false, "", parse_members},
     {"blocks", false, "", parse_blocks},
+    {"joint_types", false, "", parse_joint_types},
+    {"joints", false, "", parse_joints},
     {"supports", false, "", parse_supports},
     {"ground", false, "", parse_ground},
     {"ground_motion", false, "", parse_ground_motion},
@@ -670,6 +904,45 @@ CaseDef parse_root(const Reader& r, const YAML::Node& root, const std::filesyste
 
 }  // namespace
 
+namespace {
+
+// Counts the documents of a YAML stream from the parser's events, without
+// building nodes. yaml-cpp 0.7's LoadAll never ends on some malformed input
+// (a stray ',' at the top level: the parser returns the same empty document
+// again and again without consuming the token, so LoadAll allocates until
+// memory runs out; found by fuzz_case_file). Each real document consumes
+// text, so a document starting where the previous one started means the
+// parser is stuck there.
+class DocumentScan : public YAML::EventHandler {
+ public:
+  struct Doc {
+    int start_pos = -1;
+    YAML::Mark start;
+    int first_node_line = -1;  // 0-based line of the document's first node
+  };
+  std::vector<Doc> docs;
+  void OnDocumentStart(const YAML::Mark& m) override { docs.push_back({m.pos, m, -1}); }
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark& m, YAML::anchor_t) override { node(m); }
+  void OnAlias(const YAML::Mark& m, YAML::anchor_t) override { node(m); }
+  void OnScalar(const YAML::Mark& m, const std::string&, YAML::anchor_t, const std::string&) override { node(m); }
+  void OnSequenceStart(const YAML::Mark& m, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
+    node(m);
+  }
+  void OnSequenceEnd() override {}
+  void OnMapStart(const YAML::Mark& m, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
+    node(m);
+  }
+  void OnMapEnd() override {}
+
+ private:
+  void node(const YAML::Mark& m) {
+    if (!docs.empty() && docs.back().first_node_line < 0) docs.back().first_node_line = m.line;
+  }
+};
+
+}  // namespace
+
 CaseDef load_case_file(const std::filesystem::path& file) {
   const std::string name = file.string();
   std::error_code ec;
@@ -679,21 +952,54 @@ CaseDef load_case_file(const std::filesystem::path& file) {
   std::stringstream buffer;
   buffer << in.rdbuf();
 
+  const std::string text = buffer.str();
+  // YAML allows no control characters but tab, LF and CR (YAML 1.2, 5.1
+  // c-printable); they mean a binary or corrupted file. Refused here with
+  // their position, before yaml-cpp would echo the raw byte in its message.
+  std::size_t line_no = 1;
+  for (const char ch : text) {
+    const auto c = static_cast<unsigned char>(ch);
+    if (c == '\n') ++line_no;
+    if ((c < 0x20 && c != '\t' && c != '\n' && c != '\r') || c == 0x7f) {
+      static const char* const kHex = "0123456789ABCDEF";
+      throw InputError(name, int(line_no), "",
+                       std::string("control byte 0x") + kHex[c >> 4] + kHex[c & 15] +
+                           " in the text; expected a YAML text file (is this a binary file?)");
+    }
+  }
+
   const Reader r(name);
-  std::vector<YAML::Node> docs;
+  YAML::Node root;
   try {
-    docs = YAML::LoadAll(buffer.str());
+    std::istringstream stream(text);
+    YAML::Parser parser(stream);
+    DocumentScan scan;
+    while (parser.HandleNextDocument(scan)) {
+      const auto& d = scan.docs;
+      if (d.size() >= 2 && d[d.size() - 1].start_pos == d[d.size() - 2].start_pos) {
+        const YAML::Mark& m = d.back().start;
+        const std::size_t pos = std::size_t(m.pos);
+        const std::string shown = pos < text.size() ? "'" + text.substr(pos, 1) + "'" : "the end of the file";
+        throw InputError(name, m.line + 1, "",
+                         "YAML syntax error: unexpected " + shown + " at column " + std::to_string(m.column + 1) +
+                             "; expected a mapping of keys such as 'framequake_case: 1'");
+      }
+    }
+    if (scan.docs.size() > 1) {
+      const DocumentScan::Doc& second = scan.docs[1];
+      const int line = (second.first_node_line >= 0 ? second.first_node_line : second.start.line) + 1;
+      throw InputError(name, line, "",
+                       "expected one YAML document, found " + std::to_string(scan.docs.size()) +
+                           " (remove the '---' separators)");
+    }
+    if (!scan.docs.empty()) root = YAML::Load(text);
   } catch (const YAML::Exception& e) {
     throw InputError(name, e.mark.line >= 0 ? e.mark.line + 1 : 0, "", "YAML syntax error: " + e.msg);
   }
-  if (docs.empty() || (docs.size() == 1 && docs[0].IsNull()))
+  if (!root.IsDefined() || root.IsNull())
     throw InputError(name, 0, "", "the file is empty; expected a mapping starting with 'framequake_case: 1'");
-  if (docs.size() > 1)
-    throw InputError(
-        name, Reader::line_of(docs[1]), "",
-        "expected one YAML document, found " + std::to_string(docs.size()) + " (remove the '---' separators)");
   try {
-    return parse_root(r, docs[0], file);
+    return parse_root(r, root, file);
   } catch (const YAML::Exception& e) {
     // Not expected (types are checked before every access); kept so that a
     // yaml-cpp surprise still names the file and line.

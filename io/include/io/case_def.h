@@ -41,6 +41,8 @@
 #include "dem_core/ground_motion.h"
 #include "dem_core/types.h"
 #include "io/accelerogram.h"
+#include "joints/fracture.h"
+#include "joints/spring_law.h"
 #include "io/output_def.h"
 
 namespace fq {
@@ -111,7 +113,68 @@ struct BlockDef {
 
 // A node tied to the ground body.
 struct SupportDef {
-  std::string node;  // required; id of a NodeDef that is an end of some member
+  std::string node;        // required; id of a NodeDef that is an end of some member
+  std::string joint_type;  // joint tying each member end at the node to the ground;
+                           // empty = joints.support_type (required once joint types exist)
+  int line = 0;
+};
+
+// ---- joints (joint_types, joints) -------------------------------------------
+// Where a joint's springs sit (joints/joint_layout.h):
+//   single_point  one normal and two shear springs at the connection point
+//   four_corner   four such points at (+-f b/2, +-f h/2) of the connected
+//                 member's section (f = corner_fraction)
+//   link_system   seed 000 Fig. 4: axial, diagonal and shear links between two
+//                 square planes of side side_m a gap gap_m apart
+enum class JointLayoutKind { SinglePoint, FourCorner, LinkSystem };
+const char* joint_layout_kind_name(JointLayoutKind kind);
+
+struct JointTypeDef {
+  std::string name;
+  JointLayoutKind layout = JointLayoutKind::FourCorner;
+  double corner_fraction = 1.0;       // four_corner: 1 = section corners (-)
+  SpringDef normal;                   // point layouts: each normal spring
+  SpringDef shear;                    // point layouts: each shear spring
+  bool has_shear = true;              // point layouts: false = no shear springs
+  double side_m = 0.0;                // link_system: a (m); 0 = the member's smaller section edge
+  double gap_m = 0.0;                 // link_system: l (m); required for link_system
+  SpringDef axial;                    // link_system: k
+  SpringDef diagonal;                 // link_system: k'
+  SpringDef shear_link;               // link_system: k_s
+  bool with_shear_links = false;      // link_system
+  JointBreakDef fracture;             // joint-level criterion (joints/fracture.h)
+  int line = 0;
+};
+
+// Joint type for a pair of member kinds meeting at a node.
+struct JointRuleDef {
+  MemberKind kind_1 = MemberKind::Other;
+  MemberKind kind_2 = MemberKind::Other;
+  std::string type;
+  int line = 0;
+};
+
+// A joint type for one specific pair of members at a node.
+struct JointOverrideDef {
+  std::string node;
+  std::string member_1, member_2;
+  std::string type;
+  int line = 0;
+};
+
+// How joints are generated where members share a node (cases/README.md):
+// at every node the "hub" is the first column ending there (file order), or
+// the first member when no column ends there; every other member ending at
+// the node is joined to the hub. Its type is the override for that pair, else
+// the rule for the two kinds, else default_type; a node where none applies is
+// an error. Supports join every member ending at a supported node to the
+// ground body.
+struct JointsDef {
+  bool automatic = true;
+  std::string default_type;  // may be empty
+  std::string support_type;  // default joint type of supports; may be empty
+  std::vector<JointRuleDef> rules;
+  std::vector<JointOverrideDef> overrides;
   int line = 0;
 };
 
@@ -150,6 +213,8 @@ struct CaseDef {
   std::vector<MemberDef> members;
   std::vector<BlockDef> blocks;
   std::vector<SupportDef> supports;
+  std::vector<JointTypeDef> joint_types;
+  JointsDef joints;
   std::optional<GroundDef> ground;               // unset: no `ground` section
   std::optional<GroundMotionDef> ground_motion;  // unset: no shaking
   // folder default: out/<name>, relative to the working directory (filled by
@@ -161,6 +226,7 @@ struct CaseDef {
   int material_index(std::string_view material_name) const;
   int section_index(std::string_view section_name) const;
   int node_index(std::string_view id) const;
+  int joint_type_index(std::string_view type_name) const;
 };
 
 namespace case_def_detail {
@@ -180,6 +246,9 @@ inline int CaseDef::section_index(std::string_view section_name) const {
 }
 inline int CaseDef::node_index(std::string_view id) const {
   return case_def_detail::find_by_key(nodes, &NodeDef::id, id);
+}
+inline int CaseDef::joint_type_index(std::string_view type_name) const {
+  return case_def_detail::find_by_key(joint_types, &JointTypeDef::name, type_name);
 }
 
 // Default output folder of a case named `case_name`: out/<case_name>.

@@ -1,0 +1,69 @@
+// Running a case end to end: case definition -> model -> simulation with its
+// force providers -> output folder. Used by the command line, by tests and by
+// the comparison and sweep commands, so every way of running a case is the
+// same code.
+//
+// Order of checks: everything a user can get wrong (case values, records, a
+// time step above the stable limit) is checked before the output folder is
+// touched, so a refused run leaves nothing behind.
+#pragma once
+
+#include <atomic>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <ostream>
+#include <stdexcept>
+#include <string>
+
+#include "dem_core/simulation.h"
+#include "io/case_def.h"
+#include "joints/joint_system.h"
+
+namespace fq {
+
+// The output folder could not be prepared or written.
+class OutputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct CaseRunOptions {
+  std::optional<std::filesystem::path> output_folder;  // overrides the case's output.folder
+  bool allow_unstable_time_step = false;  // run even if dt exceeds the stable estimate (--force)
+  StepObserver* progress = nullptr;       // e.g. the terminal progress display
+  const std::atomic<bool>* stop_requested = nullptr;  // set (e.g. by SIGINT) to stop after the current step
+};
+
+struct StableTimeStep {
+  double dt_crit_s = std::numeric_limits<double>::infinity();  // 2 / omega_max (central difference)
+  std::string stiffest_element;  // where omega_max was found ("" when nothing is stiff)
+};
+
+// A simulation assembled from a case, with its providers attached.
+struct Scene {
+  std::unique_ptr<Simulation> simulation;
+  JointSystem* joints = nullptr;  // owned by the simulation; null when the case has no joints
+  std::vector<std::string> joint_labels;  // per joint id: where it is and its type
+  StableTimeStep stable_time_step;
+};
+
+// Builds bodies, ground motion and force providers; throws InputError for
+// problems the model builder finds.
+Scene build_scene(const CaseDef& def);
+
+struct CaseRunReport {
+  RunResult result;
+  std::filesystem::path output_folder;
+  StableTimeStep stable_time_step;
+};
+
+// Runs the case and writes its output. Throws InputError (bad case values or
+// a time step above the stable limit, nothing written) or OutputError.
+CaseRunReport run_case(const CaseDef& def, const CaseRunOptions& options);
+
+// Human-readable description: bodies, total mass, time step and its stable
+// limit, duration, ground motion, output plan.
+void describe_case(const CaseDef& def, std::ostream& out);
+
+}  // namespace fq

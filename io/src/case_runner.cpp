@@ -1,0 +1,151 @@
+#include "io/case_runner.h"
+
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+#include "io/input_error.h"
+#include "io/joint_builder.h"
+#include "io/model.h"
+#include "io/run_output.h"
+#include "scene_output.h"
+
+namespace fq {
+
+namespace {
+
+int line_of(const CaseDef& def, const std::string& key) {
+  auto it = def.section_line.find(key);
+  return it == def.section_line.end() ? 0 : it->second;
+}
+
+StableTimeStep estimate_stable_time_step(const Simulation& sim) {
+  StableTimeStep s;
+  double omega_max = 0.0;
+  for (const auto& p : sim.providers()) {
+    const StiffestMode mode = p->stiffest_mode(sim.bodies());
+    if (mode.omega_radps > omega_max) {
+      omega_max = mode.omega_radps;
+      s.stiffest_element = mode.where;
+    }
+  }
+  if (omega_max > 0.0) s.dt_crit_s = 2.0 / omega_max;
+  return s;
+}
+
+}  // namespace
+
+Scene build_scene(const CaseDef& def) {
+  Model model = build_model(def);
+  const std::vector<PlannedJoint> planned = plan_joints(model);
+  Scene scene;
+  scene.simulation = std::make_unique<Simulation>(model.bodies, model.settings, model.ground_motion);
+  Simulation& sim = *scene.simulation;
+  if (!planned.empty()) {
+    auto joints = std::make_unique<JointSystem>(&sim.bonded_pairs());
+    for (const PlannedJoint& p : planned) {
+      try {
+        joints->add_joint(sim.bodies(), p.def);
+      } catch (const std::invalid_argument& e) {
+        throw InputError(def.source_file.string(), p.line, "joint_types." + p.type,
+                         p.label + ": " + e.what());
+      }
+      scene.joint_labels.push_back(p.label);
+    }
+    scene.joints = joints.get();
+    sim.add_force_provider(std::move(joints));
+  }
+  scene.stable_time_step = estimate_stable_time_step(*scene.simulation);
+  return scene;
+}
+
+CaseRunReport run_case(const CaseDef& def, const CaseRunOptions& options) {
+  Scene scene = build_scene(def);
+  Simulation& sim = *scene.simulation;
+  const double dt = sim.settings().dt_s;
+  if (dt > scene.stable_time_step.dt_crit_s && !options.allow_unstable_time_step) {
+    std::ostringstream msg;
+    msg << "dt_s = " << dt << " s exceeds the stable time step of central difference, 2/omega_max = "
+        << scene.stable_time_step.dt_crit_s << " s, set by " << scene.stable_time_step.stiffest_element
+        << "; lower dt_s below it (or run with --force to override)";
+    throw InputError(def.source_file.string(), line_of(def, "time"), "time.dt_s", msg.str());
+  }
+
+  OutputDef output = def.output;
+  if (options.output_folder) output.folder = *options.output_folder;
+  if (output.folder.empty()) output.folder = default_output_folder(def.name);
+
+  std::unique_ptr<RunOutput> writer;
+  try {
+    writer = std::make_unique<RunOutput>(output, def.name);
+    if (scene.joints) attach_joint_output(*writer, *scene.joints);
+    writer->attach(sim);
+  } catch (const std::exception& e) {
+    throw OutputError(e.what());
+  }
+  if (options.progress) {
+    // Progress is redrawn on wall time; asking every ~1000 steps is cheap.
+    sim.add_observer(options.progress, 1000);
+  }
+  {
+    std::ostringstream v;
+    v << std::setprecision(17) << scene.stable_time_step.dt_crit_s;
+    writer->add_summary_field("stable_dt_s", std::isfinite(scene.stable_time_step.dt_crit_s) ? v.str() : "null");
+  }
+
+  CaseRunReport report;
+  report.result = sim.run(options.stop_requested);
+  try {
+    if (scene.joints) add_joint_summary(*writer, *scene.joints, sim.events());
+    writer->finish(sim, report.result);
+  } catch (const std::exception& e) {
+    throw OutputError(e.what());
+  }
+  report.output_folder = writer->folder();
+  report.stable_time_step = scene.stable_time_step;
+  return report;
+}
+
+void describe_case(const CaseDef& def, std::ostream& out) {
+  Scene scene = build_scene(def);
+  const Simulation& sim = *scene.simulation;
+  const BodyStore& bodies = sim.bodies();
+  double total_mass = 0.0;
+  std::size_t free_bodies = 0;
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    if (bodies.is_fixed[i]) continue;
+    total_mass += bodies.mass_kg[i];
+    ++free_bodies;
+  }
+  const SimulationSettings& s = sim.settings();
+  out << "case        " << def.name << "  (" << def.source_file.string() << ")\n";
+  if (!def.description.empty()) out << "            " << def.description << "\n";
+  out << "bodies      " << bodies.size() << " (" << free_bodies << " free, " << bodies.size() - free_bodies
+      << " fixed)\n";
+  out << "total mass  " << total_mass << " kg (free bodies)\n";
+  out << "time step   " << s.dt_s << " s";
+  if (std::isfinite(scene.stable_time_step.dt_crit_s))
+    out << "  (stable limit " << scene.stable_time_step.dt_crit_s << " s, set by "
+        << scene.stable_time_step.stiffest_element << ")";
+  out << "\nduration    " << s.duration_s << " s = " << sim.total_steps() << " steps\n";
+  const GroundMotion& gm = sim.ground_motion();
+  if (gm.empty()) {
+    out << "ground      no ground motion\n";
+  } else {
+    const Vec3 peak = gm.peak_abs_mps2();
+    out << "ground      " << gm.components().size() << " component(s), peak |a_g| x/y/z = " << peak.x() << " / "
+        << peak.y() << " / " << peak.z() << " m/s^2\n";
+    for (const GroundMotionComponent& c : gm.components())
+      out << "            " << c.record.source << "  along (" << c.direction.transpose() << ") x "
+          << c.amplitude_scale << ", time scale " << c.time_scale << ", window from " << c.window_start_s
+          << " s\n";
+  }
+  OutputDef o = def.output;
+  if (o.folder.empty()) o.folder = default_output_folder(def.name);
+  const double frames = std::floor(s.duration_s / o.frame_interval_s) + 1;
+  const double rows = std::floor(s.duration_s / o.history_interval_s) + 1;
+  out << "output      " << o.folder.string() << ": ~" << frames << " frames every " << o.frame_interval_s
+      << " s, ~" << rows << " history rows every " << o.history_interval_s << " s\n";
+}
+
+}  // namespace fq

@@ -1,0 +1,206 @@
+#include "io/joint_builder.h"
+
+#include <algorithm>
+#include <map>
+
+#include "io/input_error.h"
+
+namespace fq {
+
+const char* joint_layout_kind_name(JointLayoutKind kind) {
+  switch (kind) {
+    case JointLayoutKind::SinglePoint: return "single_point";
+    case JointLayoutKind::FourCorner: return "four_corner";
+    case JointLayoutKind::LinkSystem: return "link_system";
+  }
+  return "unknown";
+}
+
+JointLayout layout_for(const JointTypeDef& type, double width_m, double depth_m) {
+  switch (type.layout) {
+    case JointLayoutKind::SinglePoint: {
+      JointLayout l = single_point_layout(type.normal, type.shear);
+      if (!type.has_shear)
+        for (SpringPointDef& p : l.points) p.has_shear = false;
+      return l;
+    }
+    case JointLayoutKind::FourCorner: {
+      JointLayout l = four_corner_layout(0.5 * width_m, 0.5 * depth_m, type.corner_fraction, type.normal, type.shear);
+      if (!type.has_shear)
+        for (SpringPointDef& p : l.points) p.has_shear = false;
+      return l;
+    }
+    case JointLayoutKind::LinkSystem: {
+      LinkSystemDef d;
+      d.side_m = type.side_m > 0.0 ? type.side_m : std::min(width_m, depth_m);
+      d.gap_m = type.gap_m;
+      d.axial = type.axial;
+      d.diagonal = type.diagonal;
+      d.shear = type.shear_link;
+      d.with_shear_links = type.with_shear_links;
+      return link_system_layout(d);
+    }
+  }
+  return {};
+}
+
+namespace {
+
+struct MemberEnd {
+  int member = -1;
+  bool at_a = true;  // the member's node_a is this node
+};
+
+// Joint between `body_a` and member `m` at its end `end` (node position
+// `node_m`): frame n = into member m, t1 = m's local y, t2 = n x t1.
+JointDef joint_for_member_end(const Model& model, BodyId body_a, int m, const MemberEnd& end, const Vec3& node_m,
+                              const JointTypeDef& type) {
+  const CaseDef& def = model.def;
+  const MemberDef& md = def.members[std::size_t(m)];
+  const SectionDef& sec = def.sections[std::size_t(def.section_index(md.section))];
+  const BodyId body_b = model.member_body[std::size_t(m)];
+  const Mat3& r = model.bodies.rotation[body_b];
+  const Vec3 n = end.at_a ? Vec3(r.col(0)) : Vec3(-r.col(0));
+  const Vec3 t1 = r.col(1);
+  const Vec3 t2 = n.cross(t1);
+  JointDef j;
+  j.body_a = body_a;
+  j.body_b = body_b;
+  j.origin_m = node_m;
+  j.frame.col(0) = t1;
+  j.frame.col(1) = t2;
+  j.frame.col(2) = n;
+  j.layout = layout_for(type, sec.width_m, sec.depth_m);
+  j.fracture = type.fracture;
+  return j;
+}
+
+}  // namespace
+
+std::vector<PlannedJoint> plan_joints(const Model& model) {
+  const CaseDef& def = model.def;
+  const std::string file = def.source_file.string();
+  std::vector<PlannedJoint> out;
+  if (def.joint_types.empty() && def.joints.overrides.empty()) {
+    // Without joint types nothing can be joined; members that meet are then
+    // independent bodies and supports are refused (they would hold nothing).
+    if (!def.supports.empty()) {
+      const SupportDef& s = def.supports.front();
+      throw InputError(file, s.line, "supports[0].joint_type",
+                       "support at node '" + s.node +
+                           "' needs a joint type to tie it to the ground: define joint_types and give joint_type "
+                           "here or joints.support_type");
+    }
+    return out;
+  }
+
+  // Member ends per node, in member file order.
+  std::map<std::string, std::vector<MemberEnd>> ends;
+  for (std::size_t i = 0; i < def.members.size(); ++i) {
+    ends[def.members[i].node_a].push_back({int(i), true});
+    ends[def.members[i].node_b].push_back({int(i), false});
+  }
+  auto type_named = [&](const std::string& name) -> const JointTypeDef& {
+    return def.joint_types[std::size_t(def.joint_type_index(name))];
+  };
+  auto override_for = [&](const std::string& node, const std::string& m1,
+                          const std::string& m2) -> const JointOverrideDef* {
+    for (const JointOverrideDef& o : def.joints.overrides)
+      if (o.node == node && ((o.member_1 == m1 && o.member_2 == m2) || (o.member_1 == m2 && o.member_2 == m1)))
+        return &o;
+    return nullptr;
+  };
+  auto rule_for = [&](MemberKind k1, MemberKind k2) -> const JointRuleDef* {
+    for (const JointRuleDef& r : def.joints.rules)
+      if ((r.kind_1 == k1 && r.kind_2 == k2) || (r.kind_1 == k2 && r.kind_2 == k1)) return &r;
+    return nullptr;
+  };
+
+  for (const NodeDef& node : def.nodes) {
+    const auto it = ends.find(node.id);
+    if (it == ends.end() || it->second.size() < 2) continue;
+    const std::vector<MemberEnd>& here = it->second;
+    std::vector<std::pair<int, int>> pairs;  // indices into `here`
+    if (def.joints.automatic) {
+      int hub = 0;
+      for (std::size_t k = 0; k < here.size(); ++k)
+        if (def.members[std::size_t(here[k].member)].kind == MemberKind::Column) {
+          hub = int(k);
+          break;
+        }
+      for (std::size_t k = 0; k < here.size(); ++k)
+        if (int(k) != hub) pairs.emplace_back(hub, int(k));
+    }
+    // Overrides for pairs the hub rule did not produce add joints of their own.
+    for (const JointOverrideDef& o : def.joints.overrides) {
+      if (o.node != node.id) continue;
+      int k1 = -1, k2 = -1;
+      for (std::size_t k = 0; k < here.size(); ++k) {
+        const std::string& id = def.members[std::size_t(here[k].member)].id;
+        if (id == o.member_1) k1 = int(k);
+        if (id == o.member_2) k2 = int(k);
+      }
+      const bool present = std::any_of(pairs.begin(), pairs.end(), [&](const auto& p) {
+        return (p.first == k1 && p.second == k2) || (p.first == k2 && p.second == k1);
+      });
+      if (!present) pairs.emplace_back(k1, k2);
+    }
+    for (const auto& [ka, kb] : pairs) {
+      const MemberDef& ma = def.members[std::size_t(here[std::size_t(ka)].member)];
+      const MemberDef& mb = def.members[std::size_t(here[std::size_t(kb)].member)];
+      std::string type;
+      int line = node.line;
+      if (const JointOverrideDef* o = override_for(node.id, ma.id, mb.id)) {
+        type = o->type;
+        line = o->line;
+      } else if (const JointRuleDef* r = rule_for(ma.kind, mb.kind)) {
+        type = r->type;
+        line = r->line;
+      } else if (!def.joints.default_type.empty()) {
+        type = def.joints.default_type;
+        line = def.joints.line;
+      } else {
+        throw InputError(file, node.line, "nodes[" + std::to_string(def.node_index(node.id)) + "]",
+                         std::string("members '") + ma.id + "' (" + member_kind_name(ma.kind) + ") and '" + mb.id +
+                             "' (" + member_kind_name(mb.kind) + ") meet at node '" + node.id +
+                             "' but no joint type applies: add joints.default_type, a rule for kinds [" +
+                             member_kind_name(ma.kind) + ", " + member_kind_name(mb.kind) + "] or an override");
+      }
+      PlannedJoint p;
+      p.def = joint_for_member_end(model, model.member_body[std::size_t(here[std::size_t(ka)].member)],
+                                   here[std::size_t(kb)].member, here[std::size_t(kb)], node.xyz_m, type_named(type));
+      p.node = node.id;
+      p.type = type;
+      p.member_a = ma.id;
+      p.member_b = mb.id;
+      p.line = line;
+      p.label = "node " + node.id + ": " + member_kind_name(ma.kind) + " " + ma.id + " - " +
+                member_kind_name(mb.kind) + " " + mb.id + " (type " + type + ")";
+      out.push_back(std::move(p));
+    }
+  }
+
+  for (std::size_t si = 0; si < def.supports.size(); ++si) {
+    const SupportDef& s = def.supports[si];
+    const std::string type = !s.joint_type.empty() ? s.joint_type : def.joints.support_type;
+    if (type.empty())
+      throw InputError(file, s.line, "supports[" + std::to_string(si) + "].joint_type",
+                       "support at node '" + s.node + "' has no joint type: give joint_type here or joints.support_type");
+    const NodeDef& node = def.nodes[std::size_t(def.node_index(s.node))];
+    for (const MemberEnd& e : ends[s.node]) {
+      const MemberDef& m = def.members[std::size_t(e.member)];
+      PlannedJoint p;
+      p.def = joint_for_member_end(model, model.ground_body, e.member, e, node.xyz_m, type_named(type));
+      p.node = node.id;
+      p.type = type;
+      p.member_a = "ground";
+      p.member_b = m.id;
+      p.line = s.line;
+      p.label = "support " + node.id + ": ground - " + member_kind_name(m.kind) + " " + m.id + " (type " + type + ")";
+      out.push_back(std::move(p));
+    }
+  }
+  return out;
+}
+
+}  // namespace fq

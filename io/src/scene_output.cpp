@@ -1,0 +1,53 @@
+#include "scene_output.h"
+
+#include <limits>
+#include <sstream>
+
+#include "io/json_writer.h"
+
+namespace fq {
+
+void attach_joint_output(RunOutput& output, const JointSystem& joints) {
+  const JointSystem* js = &joints;
+  output.add_cell_block("springs", [js](const Simulation& /*sim*/, VtkFrameBuilder& frame) {
+    const std::size_t n = js->spring_count();
+    const auto force = frame.cell_array("spring_force_N", VtkArrayType::Float64, 1, std::nan(""));
+    const auto ratio = frame.cell_array("strain_ratio", VtkArrayType::Float64, 1, std::nan(""));
+    const auto state = frame.cell_array("spring_state", VtkArrayType::Int32, 1, -1);
+    const auto role = frame.cell_array("spring_role", VtkArrayType::Int32, 1, -1);
+    const auto joint = frame.cell_array("joint_id", VtkArrayType::Int32, 1, -1);
+    const auto broken = frame.cell_array("joint_broken", VtkArrayType::Int32, 1, -1);
+    for (std::size_t s = 0; s < n; ++s) {
+      const auto a = frame.add_point(js->spring_end_a_m()[s]);
+      const auto b = frame.add_point(js->spring_end_b_m()[s]);
+      const auto cell = frame.add_cell(VtkCellType::Line, {a, b});
+      const auto j = std::size_t(js->spring_joint()[s]);
+      frame.set(force, cell, js->spring_force_N()[s]);
+      frame.set(ratio, cell, js->spring_strain_ratio(s));
+      frame.set(state, cell, double(js->spring_status(s)));
+      frame.set(role, cell, double(js->spring_role()[s]));
+      frame.set(joint, cell, double(j));
+      frame.set(broken, cell, js->joint_status(j) == JointStatus::Broken ? 1.0 : 0.0);
+    }
+  });
+  output.add_history_column("joints_intact_count", [js](const Simulation&) { return double(js->counts().intact); });
+  output.add_history_column("joints_yielded_count", [js](const Simulation&) { return double(js->counts().yielded); });
+  output.add_history_column("joints_broken_count", [js](const Simulation&) { return double(js->counts().broken); });
+}
+
+void add_joint_summary(RunOutput& output, const JointSystem& joints, const EventLog& events) {
+  const JointCounts c = joints.counts();
+  std::ostringstream counts;
+  counts << "{\"total\": " << joints.joint_count() << ", \"intact\": " << c.intact << ", \"yielded\": " << c.yielded
+         << ", \"broken\": " << c.broken << "}";
+  output.add_summary_field("joints", counts.str());
+  double first_failure = std::numeric_limits<double>::quiet_NaN();
+  for (const Event& e : events.all())
+    if (e.kind == EventKind::SpringDeleted || e.kind == EventKind::JointBroken) {
+      first_failure = e.time_s;
+      break;
+    }
+  output.add_summary_field("first_joint_failure_time_s", JsonWriter::number(first_failure));
+}
+
+}  // namespace fq

@@ -1,0 +1,190 @@
+// fq::JointSystem: every joint of a scene as one force provider.
+//
+// Data layout (structures of arrays over springs; springs are stored joint
+// by joint, so a spring's global index orders (joint, spring)). One step:
+//   1. per joint (parallel): joint frame from the two bodies' orientations,
+//      then per spring its world end points, direction, deformation and rate;
+//   2. per law batch (parallel within a batch): force from the law (switch
+//      per batch, no virtual call per spring), dashpot force, energy books,
+//      deletion and yield flags;
+//   3. per joint (parallel): each spring writes force and torque for body a
+//      and body b into its own two slots; the joint's fracture test;
+//   4. per body (parallel): gathers its slots in a fixed order (CSR, spring
+//      index ascending) and adds them to the body store.
+// Every write goes to a slot owned by one loop index, and every sum runs in
+// a fixed order, so results are bitwise identical for any thread count.
+// Nothing is allocated per step.
+//
+// Joint frame (objective, carried by the bodies): the rest frame is stored
+// relative to each body (q_ja = q_a^-1 q_j0, q_jb = q_b^-1 q_j0); the
+// current frame is the half-way rotation between q_a q_ja and q_b q_jb,
+// which for unit quaternions is exactly normalise(q1 + q2) (same
+// hemisphere). It is read from BodyStore::orientation (the quaternion the
+// rotation matrices come from); end points use BodyStore::rotation.
+//
+// Point springs: the force pair f e (on a, at p_a) and -f e (on b, at p_b) is
+// not collinear when p_b != p_a; the frame's dependence on the rotations
+// adds the torque (1/2) d x F to each body (d = p_b - p_a, F = f e), the
+// exact derivative of the spring energy through the mean-rotation frame to
+// first order. With it the pair conserves angular momentum exactly.
+//
+// Energy: elastic = sum of stored energy (law); plastic = work done minus
+// stored (work by the trapezoid rule on each step's deformation increment,
+// exact on linear branches) plus energy released at deletion/breaking;
+// viscous = sum over steps of dt P_d(v_n), P_d the power the dashpot forces
+// (and their share of the frame torque) take from the bodies, evaluated on
+// the geometry of step n with v_n = (v(n-1/2) + v(n+1/2))/2 -- exactly the
+// work the ledger's leapfrog bookkeeping sees (completed in finish_step,
+// when v(n+1/2) is known). Reported through step n as t_0/2 + t_1 + ... +
+// t_{n-1} + t_n/2: the ledger's kinetic energy at n equals KE_0 plus exactly
+// that trapezoid sum of the work terms, because the start shifts v back
+// half a step.
+//
+// stiffest_mode: Gershgorin upper bound of the mass-normalised initial
+// stiffness (translation and rotation of both bodies coupled, rotational
+// inertia replaced by the smallest principal moment), naming the joint of
+// the stiffest spring on the worst body. Dashpots are not included (with
+// damping ratio zeta the central-difference limit is 2/w (sqrt(1+zeta^2) - zeta)).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "dem_core/bonded_pairs.h"
+#include "dem_core/force_provider.h"
+#include "joints/fracture.h"
+#include "joints/joint_layout.h"
+
+namespace fq {
+
+struct JointDef {
+  BodyId body_a = kNoBody;
+  BodyId body_b = kNoBody;
+  Vec3 origin_m = Vec3::Zero();   // connection point, world, at rest (m)
+  Mat3 frame = Mat3::Identity();  // columns t1, t2, n in world (orthonormal, right-handed)
+  JointLayout layout;
+  JointBreakDef fracture;
+};
+
+enum class SpringStatus : std::uint8_t { Elastic = 0, Yielded = 1, Deleted = 2 };
+enum class JointStatus : std::uint8_t { Intact = 0, Yielded = 1, Broken = 2 };
+enum class SpringRole : std::uint8_t { Normal = 0, Shear = 1, Link = 2 };
+
+struct JointCounts {
+  int intact = 0;   // intact and every spring still elastic
+  int yielded = 0;  // intact with at least one spring yielded or deleted
+  int broken = 0;
+};
+
+struct JointSystemSettings {
+  // Loops run on OpenMP threads only when they have at least this many
+  // items: a 16-body frame must not pay for thread start-up (DESIGN.md).
+  int parallel_min_items = 2048;
+};
+
+class JointSystem final : public ForceProvider {
+ public:
+  explicit JointSystem(BondedPairs* bonded_pairs, JointSystemSettings settings = {});
+
+  // Adds a joint whose rest state is the bodies' current pose; registers the
+  // pair as bonded. Returns the joint id (0, 1, ...). Throws
+  // std::invalid_argument naming the joint and field on bad data. Must be
+  // called before the first step.
+  std::int32_t add_joint(const BodyStore& bodies, const JointDef& def);
+
+  const char* name() const override { return "joints"; }
+  void prepare(const BodyStore& bodies) override;
+  void accumulate_forces(BodyStore& bodies, const StepInfo& step) override;
+  void finish_step(const BodyStore& bodies, const StepInfo& step, EventLog& events) override;
+  void report_energy(EnergyLedger& ledger) const override;
+  StiffestMode stiffest_mode(const BodyStore& bodies) const override;
+
+  // Read-only view for output (valid after a force evaluation).
+  std::size_t joint_count() const { return joint_body_a_.size(); }
+  std::size_t spring_count() const { return spring_joint_.size(); }
+  const std::vector<Vec3>& spring_end_a_m() const { return end_a_m_; }    // world (m)
+  const std::vector<Vec3>& spring_end_b_m() const { return end_b_m_; }    // world (m)
+  const std::vector<double>& spring_force_N() const { return force_N_; }  // law + dashpot, + = tension (N)
+  const std::vector<double>& spring_deformation_m() const { return delta_m_; }
+  const std::vector<std::int32_t>& spring_joint() const { return spring_joint_; }
+  const std::vector<SpringRole>& spring_role() const { return spring_role_; }
+  SpringStatus spring_status(std::size_t s) const;
+  // |delta| / ultimate deformation on the side of delta (0 for laws that never fail).
+  double spring_strain_ratio(std::size_t s) const;
+  JointStatus joint_status(std::size_t j) const;
+  BodyId joint_body_a(std::size_t j) const { return joint_body_a_[j]; }
+  BodyId joint_body_b(std::size_t j) const { return joint_body_b_[j]; }
+  std::size_t joint_first_spring(std::size_t j) const { return std::size_t(joint_first_[j]); }
+  std::size_t joint_spring_count(std::size_t j) const { return std::size_t(joint_first_[j + 1] - joint_first_[j]); }
+  JointCounts counts() const;
+  // Stored / dissipated energy of one spring (J).
+  double spring_elastic_J(std::size_t s) const { return stored_J_[s]; }
+  double spring_plastic_J(std::size_t s) const { return plastic_J_[s]; }
+
+ private:
+  void add_spring_(std::int32_t joint, SpringRole role, std::int8_t axis, const Vec3& attach_a_local,
+                   const Vec3& attach_b_local, double rest_length_m, const SpringDef& def, double reduced_mass_kg);
+  void evaluate_laws_();
+  void kill_spring_(std::size_t s);
+  bool parallel_(std::size_t n) const { return n >= std::size_t(settings_.parallel_min_items); }
+
+  BondedPairs* bonded_;
+  JointSystemSettings settings_;
+  bool prepared_ = false;
+  std::size_t body_count_ = 0;
+
+  // Joints.
+  std::vector<BodyId> joint_body_a_, joint_body_b_;
+  std::vector<Quat> joint_frame_a_, joint_frame_b_;  // rest frame relative to body a / b
+  std::vector<Mat3> joint_frame_world_;              // current frame (columns t1, t2, n)
+  std::vector<std::int32_t> joint_first_;            // springs [first[j], first[j+1])
+  std::vector<JointBreakDef> joint_break_;
+  std::vector<std::uint8_t> joint_broken_;
+  std::vector<std::uint8_t> joint_break_pending_;
+  std::vector<std::uint8_t> joint_event_pending_;  // any spring event or break to emit
+
+  // Springs: definition.
+  std::vector<std::int32_t> spring_joint_;
+  std::vector<SpringRole> spring_role_;
+  std::vector<std::int8_t> spring_axis_;                   // 0, 1, 2 joint-frame axis; -1 for links
+  std::vector<Vec3> attach_a_local_m_, attach_b_local_m_;  // body frames (m)
+  std::vector<double> rest_length_m_;                      // links (m)
+  std::vector<double> reference_length_m_;
+  std::vector<double> dashpot_Nspm_;
+  std::vector<double> stiffness0_Npm_;
+  std::vector<double> ultimate_t_m_, ultimate_c_m_;
+  std::vector<SpringLawKind> law_kind_;
+  // Springs: per step.
+  std::vector<Vec3> end_a_m_, end_b_m_, direction_;
+  std::vector<double> delta_m_, rate_mps_;
+  std::vector<double> law_force_N_, dashpot_force_N_, force_N_;
+  // Springs: history and books.
+  std::vector<std::uint8_t> alive_, yielded_;
+  std::vector<std::uint8_t> pending_;  // bit 1: yielded now, bit 2: deleted now
+  std::vector<double> failure_force_N_;
+  std::vector<const char*> failure_mode_;
+  std::vector<double> delta_prev_m_, law_force_prev_N_;
+  std::vector<double> dashpot_power_prev_W_;  // dissipated power at v(n-1/2), geometry n (W)
+  std::vector<std::uint8_t> has_prev_;
+  std::vector<double> work_J_, stored_J_, plastic_J_, viscous_done_J_, viscous_half_J_;
+  // Slots: 2 s for body a, 2 s + 1 for body b.
+  std::vector<Vec3> slot_force_N_, slot_torque_Nm_;
+  std::vector<std::int32_t> body_slot_first_, body_slots_;
+
+  // Law batches: spring ids of each kind, with that kind's laws and states
+  // (index k of a batch belongs to spring ids[k]).
+  template <class Law, class State>
+  struct Batch {
+    std::vector<std::int32_t> ids;
+    std::vector<Law> law;
+    std::vector<State> state;
+  };
+  Batch<LinearElasticParams, LinearElasticState> linear_;
+  Batch<TrilinearLaw, TrilinearState> trilinear_;
+  Batch<CureeLaw, CureeState> curee_;
+  template <class Law, class State, class Eval>
+  void run_batch_(Batch<Law, State>& batch, Eval eval, bool tracks_work);
+};
+
+}  // namespace fq

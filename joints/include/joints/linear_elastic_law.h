@@ -1,0 +1,26 @@
+// Linear elastic spring: F = k delta. Never yields, never fails on its own
+// (a joint holding only linear springs breaks only by its strain criterion).
+#pragma once
+
+#include "joints/law_output.h"
+
+namespace fq {
+
+struct LinearElasticParams {
+  double stiffness_Npm = 0.0;  // k (N/m)
+};
+
+struct LinearElasticState {};
+
+inline LawOutput evaluate_linear_elastic(const LinearElasticParams& p, LinearElasticState& /*io_state*/,
+                                         double delta_m) {
+  LawOutput out;
+  out.force_N = p.stiffness_Npm * delta_m;
+  out.stored_J = 0.5 * p.stiffness_Npm * delta_m * delta_m;
+  return out;
+}
+
+// Throws std::invalid_argument naming the field when k <= 0 or not finite.
+void validate_linear_elastic(const LinearElasticParams& p);
+
+}  // namespace fq

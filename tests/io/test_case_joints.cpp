@@ -1,0 +1,232 @@
+// Joints defined in case files: planning (which members are joined, in which
+// frame), errors a user can make, a run's spring output, and a portal frame
+// built from a case whose static sway matches the closed form of its joints.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <string>
+
+#include "io/case_file.h"
+#include "io/case_runner.h"
+#include "io/input_error.h"
+#include "io/joint_builder.h"
+#include "io/model.h"
+#include "io_test_util.h"
+
+namespace fq {
+namespace {
+
+using test::TempDir;
+
+// Line numbers in the error table below count the lines of this text (the
+// node 'tw' is line 10, `normal:` line 20, `joints:` line 22, `supports:` 23).
+// One-bay portal in the x-z plane: columns 10 x 20 mm (width 10 mm along
+// world x), beam 10 x 10 mm, height H = 0.29 m, span 0.49 m; every joint a
+// four-corner layout of linear springs (k_n normal, k_s shear).
+std::string portal_case(const std::string& extra_joint_keys = "", const std::string& supports = "",
+                        double gravity = -9.80665, const std::string& record = "") {
+  std::string s =
+      "framequake_case: 1\n"
+      "name: portal\n"
+      "time: {dt_s: 1.0e-5, duration_s: 0.1, gravity_mps2: [0, 0, " +
+      std::to_string(gravity) +
+      "]}\n"
+      "materials: [{name: wood, density_kg_per_m3: 450}]\n"
+      "sections:\n"
+      "  - {name: col, width_m: 0.010, depth_m: 0.020}\n"
+      "  - {name: beam, width_m: 0.010, depth_m: 0.010}\n"
+      "nodes:\n"
+      "  - {id: bw, xyz_m: [0, 0, 0]}\n"
+      "  - {id: tw, xyz_m: [0, 0, 0.29]}\n"
+      "  - {id: te, xyz_m: [0.49, 0, 0.29]}\n"
+      "  - {id: be, xyz_m: [0.49, 0, 0]}\n"
+      "members:\n"
+      "  - {id: cw, kind: column, nodes: [bw, tw], section: col, material: wood}\n"
+      "  - {id: ce, kind: column, nodes: [be, te], section: col, material: wood}\n"
+      "  - {id: b, kind: beam, nodes: [tw, te], section: beam, material: wood}\n"
+      "joint_types:\n"
+      "  - name: stiff\n"
+      "    layout: four_corner\n"
+      "    normal: {law: linear, stiffness_N_per_m: 2.0e4, damping_ratio: 0.3}\n"
+      "    shear: {law: linear, stiffness_N_per_m: 1.0e6, damping_ratio: 0.3}\n"
+      "joints: {default_type: stiff" +
+      extra_joint_keys + "}\n";
+  s += supports.empty() ? "supports: [{node: bw, joint_type: stiff}, {node: be, joint_type: stiff}]\n" : supports;
+  if (!record.empty())
+    s += "ground_motion:\n  components: [{file: " + record + ", format: two_column, axis: x}]\n";
+  return s;
+}
+
+TEST(CaseJoints, PortalGetsTwoBeamColumnAndTwoSupportJoints) {
+  TempDir dir;
+  const Model model = build_model(load_case_file(dir.write("portal.yaml", portal_case())));
+  const std::vector<PlannedJoint> joints = plan_joints(model);
+  ASSERT_EQ(joints.size(), 4u);
+  // Beam-column joints: hub = column (first column ending at the node), the
+  // beam joined to it, normal pointing from the node into the beam.
+  EXPECT_EQ(joints[0].member_a, "cw");
+  EXPECT_EQ(joints[0].member_b, "b");
+  EXPECT_TRUE(joints[0].def.frame.col(2).isApprox(Vec3::UnitX(), 1e-12));
+  EXPECT_EQ(joints[1].member_a, "ce");
+  EXPECT_TRUE(joints[1].def.frame.col(2).isApprox(-Vec3::UnitX(), 1e-12));
+  // Supports: ground to column, normal up the column, origin at the base node.
+  EXPECT_EQ(joints[2].member_a, "ground");
+  EXPECT_EQ(joints[2].def.body_a, model.ground_body);
+  EXPECT_TRUE(joints[2].def.frame.col(2).isApprox(Vec3::UnitZ(), 1e-12));
+  EXPECT_TRUE(joints[2].def.origin_m.isApprox(Vec3::Zero()));
+  for (const PlannedJoint& j : joints) {
+    // Right-handed orthonormal frame (t1, t2, n).
+    EXPECT_TRUE((j.def.frame.transpose() * j.def.frame).isApprox(Mat3::Identity(), 1e-12));
+    EXPECT_NEAR(j.def.frame.determinant(), 1.0, 1e-12);
+    EXPECT_EQ(j.def.layout.points.size(), 4u);
+    EXPECT_EQ(j.type, "stiff");
+  }
+  // Four-corner layout on the column section: corners at (+-5, +-10) mm.
+  EXPECT_NEAR(std::abs(joints[2].def.layout.points[0].offset_m.x()), 0.005, 1e-15);
+  EXPECT_NEAR(std::abs(joints[2].def.layout.points[0].offset_m.y()), 0.010, 1e-15);
+}
+
+struct BadJointCase {
+  const char* label;
+  std::string text;
+  int line;
+  const char* field;
+  const char* phrase;
+};
+
+TEST(CaseJoints, UserErrorsNameFileLineAndField) {
+  const std::string base = portal_case();
+  auto replace = [&](const std::string& from, const std::string& to) {
+    std::string s = base;
+    const auto at = s.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    return s.replace(at, from.size(), to);
+  };
+  const std::vector<BadJointCase> table = {
+      {"no type applies at a node", replace("joints: {default_type: stiff}", "joints: {automatic: true}"), 10,
+       "nodes[1]", "no joint type applies"},
+      {"support without type", replace("supports: [{node: bw, joint_type: stiff}", "supports: [{node: bw}"), 23,
+       "supports[0].joint_type", "no joint type"},
+      {"unknown default type", replace("default_type: stiff}", "default_type: tenon}"), 22, "joints.default_type",
+       "unknown joint type 'tenon'"},
+      {"unknown law", replace("law: linear, stiffness_N_per_m: 2.0e4", "law: elastic, stiffness_N_per_m: 2.0e4"), 20,
+       "joint_types[0].normal.law", "linear, trilinear or curee"},
+      {"key of another law", replace("stiffness_N_per_m: 2.0e4", "stiffness_N_per_m: 2.0e4, F0_N: 3"), 20,
+       "joint_types[0].normal.F0_N", "unknown key"},
+      {"negative stiffness", replace("stiffness_N_per_m: 2.0e4", "stiffness_N_per_m: -2.0e4"), 20,
+       "joint_types[0].normal.stiffness_N_per_m", "positive"},
+      {"trilinear without reference length",
+       replace("normal: {law: linear, stiffness_N_per_m: 2.0e4, damping_ratio: 0.3}",
+               "normal: {law: trilinear, yield_strain_tension: 0.01, yield_force_tension_N: 1, "
+               "ultimate_strain_tension: 0.02, ultimate_force_tension_N: 1.5, yield_strain_compression: 0.01, "
+               "yield_force_compression_N: 1, ultimate_strain_compression: 0.02, ultimate_force_compression_N: 1.5}"),
+       20, "joint_types[0].normal.reference_length_m", "missing required key"},
+      {"trilinear ultimate before yield",
+       replace("normal: {law: linear, stiffness_N_per_m: 2.0e4, damping_ratio: 0.3}",
+               "normal: {law: trilinear, reference_length_m: 0.01, yield_strain_tension: 0.03, "
+               "yield_force_tension_N: 1, ultimate_strain_tension: 0.02, ultimate_force_tension_N: 1.5, "
+               "yield_strain_compression: 0.01, yield_force_compression_N: 1, ultimate_strain_compression: 0.02, "
+               "ultimate_force_compression_N: 1.5}"),
+       20, "joint_types[0].normal", "invalid trilinear law parameters"},
+      {"strain limit without its criterion", replace("    shear:", "    fracture: {criterion: never, strain_limit: 0.1}\n    shear:"),
+       21, "joint_types[0].fracture.strain_limit", "applies only"},
+      {"link keys on a point layout", replace("    shear:", "    gap_m: 0.01\n    shear:"), 21,
+       "joint_types[0].gap_m", "link_system"},
+  };
+  TempDir dir;
+  for (const BadJointCase& c : table) {
+    SCOPED_TRACE(c.label);
+    const auto file = dir.write("bad.yaml", c.text);
+    try {
+      CaseRunOptions options;
+      options.output_folder = dir.path() / "out";
+      run_case(load_case_file(file), options);
+      ADD_FAILURE() << "accepted";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.file(), file.string());
+      EXPECT_EQ(e.line(), c.line) << e.what();
+      EXPECT_EQ(e.field(), c.field) << e.what();
+      EXPECT_NE(std::string(e.what()).find(c.phrase), std::string::npos) << e.what();
+    }
+    EXPECT_FALSE(std::filesystem::exists(dir.path() / "out")) << "a refused run must write nothing";
+  }
+}
+
+// Static sway of the portal under a horizontal ground acceleration a,
+// gravity off. Closed form (rigid members, rotational joint springs): the
+// sway mechanism rotates both columns by theta = Delta / H relative to the
+// ground and to the beam, so each of the four joints turns by theta and
+// K_lateral = 4 K_b / H^2 with K_b = 4 k_n c^2, c = 5 mm (the corner offset
+// along x: column width 10 mm at the bases, beam depth 10 mm at the tops).
+// The inertia loads: the beam's m_b a at beam level, each column's m_c a at
+// mid-height, i.e. m_c a / 2 at beam level by virtual work, so
+// Delta = (m_b + m_c) a / K_lateral. Neglected: shear and axial spring
+// flexibility (k_s = 1e6 N/m, 4 per joint: relative effect K_lat / 4k_s <
+// 1e-4) and geometric nonlinearity (theta ~ 1e-3 rad).
+// Loading: a ramps linearly to 0.5 m/s^2 over T_r = 0.5 s and is then held
+// for T_h = 1 s; the sway frequency is omega = sqrt(K_lat / m) >= 40 rad/s
+// (m <= 0.06 kg), so the oscillation left by the ramp has amplitude
+// <= 2 Delta / (omega T_r) = 0.1 Delta, and its mean over the hold differs
+// from zero by <= 2 (0.1 Delta) / (omega T_h) = 0.005 Delta. The mean sway
+// over the hold is therefore Delta within 1 %.
+TEST(CaseJoints, PortalStaticSwayMatchesJointStiffness) {
+  TempDir dir;
+  std::string ramp = "# ramp to 0.5 m/s^2 in 0.5 s, then hold\n";
+  for (int k = 0; k <= 150; ++k) {
+    const double t = 0.01 * k;
+    ramp += std::to_string(t) + " " + std::to_string(0.5 * std::min(1.0, t / 0.5)) + "\n";
+  }
+  dir.write("ramp.txt", ramp);
+  const auto file = dir.write("portal.yaml", portal_case("", "", 0.0, "ramp.txt"));
+  CaseDef def = load_case_file(file);
+  def.time.duration_s = 1.5;
+  Scene scene = build_scene(def);
+  Simulation& sim = *scene.simulation;
+  ASSERT_NE(scene.joints, nullptr);
+  const BodyId beam = 3;
+  ASSERT_EQ(sim.bodies().info[beam].name, "b");
+  const Vec3 rest = sim.bodies().position_m[beam];
+  double sum = 0.0;
+  long count = 0;
+  while (sim.steps_done() < sim.total_steps()) {
+    ASSERT_TRUE(sim.step());
+    if (sim.time_s() > 0.5) {
+      sum += (sim.bodies().position_m[beam] - rest).x();
+      ++count;
+    }
+  }
+  const double mean_delta = sum / double(count);
+
+  const double k_n = 2.0e4, c = 0.005, h = 0.29;
+  const double k_b = 4.0 * k_n * c * c;
+  const double k_lateral = 4.0 * k_b / (h * h);
+  const double m_b = 450.0 * 0.49 * 0.01 * 0.01, m_c = 450.0 * 0.29 * 0.01 * 0.02;
+  // Relative frame: the inertia force is -m a_g, a_g = +0.5 m/s^2 along x.
+  const double expected = -(m_b + m_c) * 0.5 / k_lateral;
+  EXPECT_NEAR(mean_delta, expected, 1e-2 * std::abs(expected));
+}
+
+TEST(CaseJoints, RunWritesSpringCellsAndJointCounts) {
+  TempDir dir;
+  const auto file = dir.write("portal.yaml", portal_case());
+  CaseRunOptions options;
+  options.output_folder = dir.path() / "out";
+  const CaseRunReport report = run_case(load_case_file(file), options);
+  EXPECT_EQ(report.result.status, RunStatus::Completed);
+  std::ifstream history(dir.path() / "out/history.csv");
+  std::string header;
+  std::getline(history, header);
+  EXPECT_NE(header.find("joints_intact_count,joints_yielded_count,joints_broken_count"), std::string::npos);
+  std::ifstream summary(dir.path() / "out/summary.json");
+  std::string text;
+  for (std::string line; std::getline(summary, line);) text += line + "\n";
+  // Linear springs never yield or fail.
+  EXPECT_NE(text.find("\"joints\": {\"total\": 4, \"intact\": 4, \"yielded\": 0, \"broken\": 0}"), std::string::npos)
+      << text;
+  EXPECT_NE(text.find("\"first_joint_failure_time_s\": null"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace fq

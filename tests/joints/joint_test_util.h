@@ -1,0 +1,172 @@
+// Small helpers shared by the joints tests: a fixed body and a free body
+// joined at the world origin (joint frame = world axes, n = z), driven by
+// prescribing the free body's pose and reading the force on it.
+#pragma once
+
+#include <cmath>
+#include <vector>
+
+#include "dem_core/body_store.h"
+#include "dem_core/bonded_pairs.h"
+#include "joints/joint_system.h"
+
+namespace fq::test {
+
+inline BodyStore two_boxes(double edge_m = 0.1, double density = 500.0) {
+  BodyStore store;
+  BoxBodyDef a;
+  a.name = "fixed";
+  a.size_m = Vec3::Constant(edge_m);
+  a.density_kg_per_m3 = density;
+  a.position_m = Vec3(0, 0, -0.5 * edge_m);
+  a.fixed = true;
+  store.add_box(a);
+  BoxBodyDef b = a;
+  b.name = "free";
+  b.fixed = false;
+  b.position_m = Vec3(0, 0, 0.5 * edge_m);
+  store.add_box(b);
+  store.update_rotations();
+  return store;
+}
+
+// Places body `b` at rest pose + translation `disp_m` and rotation `phi_rad`
+// (rotation vector) about the world point `centre_m`, evaluates the joint
+// forces and returns (force on b, torque on b about centre_m).
+struct Wrench {
+  Vec3 force_N = Vec3::Zero();
+  Vec3 torque_Nm = Vec3::Zero();
+};
+inline Wrench drive(JointSystem& js, BodyStore& store, BodyId b, const Vec3& rest_pos, const Quat& rest_q,
+                    const Vec3& disp_m, const Vec3& phi_rad = Vec3::Zero(), const Vec3& centre_m = Vec3::Zero(),
+                    std::int64_t step = 0, double dt_s = 1e-3) {
+  const double angle = phi_rad.norm();
+  const Quat dq = angle > 0.0 ? Quat(Eigen::AngleAxisd(angle, phi_rad / angle)) : Quat::Identity();
+  store.position_m[b] = centre_m + dq * (rest_pos - centre_m) + disp_m;
+  store.orientation[b] = (dq * rest_q).normalized();
+  store.update_rotations();
+  for (std::size_t i = 0; i < store.size(); ++i) {
+    store.force_N[i].setZero();
+    store.torque_Nm[i].setZero();
+  }
+  StepInfo info{step, double(step) * dt_s, dt_s};
+  js.accumulate_forces(store, info);
+  Wrench w;
+  w.force_N = store.force_N[b];
+  w.torque_Nm = store.torque_Nm[b] + (store.position_m[b] - centre_m).cross(store.force_N[b]);
+  return w;
+}
+
+// Area enclosed by a sampled closed F-delta path (shoelace formula), positive
+// when the loop runs clockwise in the (delta, F) plane, as a dissipative
+// force-deformation loop does.
+inline double shoelace_area(const std::vector<double>& x, const std::vector<double>& y) {
+  double a = 0.0;
+  const std::size_t n = x.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t k = (i + 1) % n;
+    a += x[i] * y[k] - x[k] * y[i];
+  }
+  return -0.5 * a;
+}
+
+}  // namespace fq::test
+
+namespace fq::test {
+
+// A vertical chain: a fixed base block below z = 0 and n rigid boxes of
+// section b x h (b along x) and length L = length/n stacked along z, joined
+// by joints with the given layouts (joint 0 at the base, z = 0; joint i at
+// z = i L). Joint frames: t1 = x, t2 = y, n = z.
+struct ChainSpec {
+  int n = 10;
+  double length_m = 1.0;
+  double width_m = 0.02;  // b, along x
+  double depth_m = 0.02;  // h, along y
+  double density_kg_per_m3 = 500.0;
+};
+inline BodyStore chain_bodies(const ChainSpec& c) {
+  BodyStore store;
+  BoxBodyDef base;
+  base.name = "base";
+  base.size_m = Vec3(c.width_m, c.depth_m, 0.02);
+  base.position_m = Vec3(0, 0, -0.01);
+  base.fixed = true;
+  base.density_kg_per_m3 = c.density_kg_per_m3;
+  store.add_box(base);
+  const double l = c.length_m / c.n;
+  for (int i = 0; i < c.n; ++i) {
+    BoxBodyDef e;
+    e.name = "element";
+    e.size_m = Vec3(c.width_m, c.depth_m, l);
+    e.position_m = Vec3(0, 0, (i + 0.5) * l);
+    e.density_kg_per_m3 = c.density_kg_per_m3;
+    store.add_box(e);
+  }
+  store.update_rotations();
+  return store;
+}
+// layout_of(i) gives the layout of joint i (0 = base joint).
+template <class LayoutOf>
+void add_chain_joints(JointSystem& js, const BodyStore& store, const ChainSpec& c, LayoutOf layout_of,
+                      JointBreakDef fracture = {}) {
+  const double l = c.length_m / c.n;
+  for (int i = 0; i < c.n; ++i) {
+    JointDef d;
+    d.body_a = i;  // base is body 0, element i is body i + 1
+    d.body_b = i + 1;
+    d.origin_m = Vec3(0, 0, i * l);
+    d.layout = layout_of(i);
+    d.fracture = fracture;
+    js.add_joint(store, d);
+  }
+}
+
+// Finite-difference stiffness (-dQ/du) of all free bodies, Q = (force,
+// torque about the centre of mass), u = (translation, world rotation vector);
+// central differences with steps h_m, h_rad.
+inline Eigen::MatrixXd system_stiffness(JointSystem& js, BodyStore& store, double h_m, double h_rad) {
+  std::vector<BodyId> free;
+  for (std::size_t i = 0; i < store.size(); ++i)
+    if (!store.is_fixed[i]) free.push_back(BodyId(i));
+  const auto n = Eigen::Index(6 * free.size());
+  Eigen::MatrixXd k(n, n);
+  const std::vector<Vec3> pos0 = store.position_m;
+  const std::vector<Quat> q0 = store.orientation;
+  auto eval = [&](Eigen::VectorXd& out) {
+    store.update_rotations();
+    for (std::size_t i = 0; i < store.size(); ++i) {
+      store.force_N[i].setZero();
+      store.torque_Nm[i].setZero();
+    }
+    js.accumulate_forces(store, StepInfo{0, 0.0, 1e-3});
+    for (std::size_t f = 0; f < free.size(); ++f) {
+      out.segment<3>(Eigen::Index(6 * f)) = store.force_N[free[f]];
+      out.segment<3>(Eigen::Index(6 * f + 3)) = store.torque_Nm[free[f]];
+    }
+  };
+  Eigen::VectorXd qp(n), qm(n);
+  for (Eigen::Index c = 0; c < n; ++c) {
+    const BodyId b = free[std::size_t(c / 6)];
+    const int dof = int(c % 6);
+    for (int sgn : {1, -1}) {
+      store.position_m = pos0;
+      store.orientation = q0;
+      if (dof < 3) {
+        store.position_m[b][dof] += sgn * h_m;
+      } else {
+        Vec3 axis = Vec3::Zero();
+        axis[dof - 3] = 1.0;
+        store.orientation[b] = (Quat(Eigen::AngleAxisd(sgn * h_rad, axis)) * q0[b]).normalized();
+      }
+      eval(sgn > 0 ? qp : qm);
+    }
+    k.col(c) = -(qp - qm) / (2.0 * (dof < 3 ? h_m : h_rad));
+  }
+  store.position_m = pos0;
+  store.orientation = q0;
+  store.update_rotations();
+  return k;
+}
+
+}  // namespace fq::test

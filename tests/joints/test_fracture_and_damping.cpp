@@ -1,0 +1,141 @@
+// Joint fracture criteria and the dashpot's damping ratio.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "dem_core/simulation.h"
+#include "joint_test_util.h"
+
+namespace fq {
+namespace {
+
+TEST(JointFracture, StrainLimitBreaksJointAndReleasesPair) {
+  // seed 001: broken when the joint springs' strain passes a limit. Linear
+  // springs of reference length 0.1 m, limit 1 %: breaks past |delta| = 1 mm.
+  BondedPairs bonded;
+  BodyStore store = test::two_boxes();
+  JointSystem js(&bonded);
+  JointDef d;
+  d.body_a = 0;
+  d.body_b = 1;
+  SpringDef k = linear_spring(1e6);
+  k.reference_length_m = 0.1;
+  d.layout = four_corner_layout(0.04, 0.04, 1.0, k, k);
+  d.fracture.criterion = BreakCriterion::StrainLimit;
+  d.fracture.strain_limit = 0.01;
+  js.add_joint(store, d);
+  js.prepare(store);
+  const Vec3 rest = store.position_m[1];
+  const Quat q = store.orientation[1];
+  EventLog log;
+  std::int64_t step = 0;
+  for (double dx : {0.5e-3, 0.99e-3}) {
+    const test::Wrench w = test::drive(js, store, 1, rest, q, Vec3(dx, 0, 0), Vec3::Zero(), Vec3::Zero(), step);
+    EXPECT_NEAR(w.force_N.x(), -4e6 * dx, 1e-6);  // four shear springs in parallel
+    js.finish_step(store, StepInfo{step++, 0.0, 1e-3}, log);
+  }
+  EXPECT_EQ(log.size(), 0u);
+  EXPECT_TRUE(bonded.bonded(0, 1));
+  test::drive(js, store, 1, rest, q, Vec3(1.01e-3, 0, 0), Vec3::Zero(), Vec3::Zero(), step);
+  js.finish_step(store, StepInfo{step++, 0.0, 1e-3}, log);
+  ASSERT_EQ(log.size(), 1u);
+  EXPECT_EQ(log.all()[0].kind, EventKind::JointBroken);
+  EXPECT_STREQ(log.all()[0].mode, "strain_limit");
+  EXPECT_NEAR(log.all()[0].force_N, 4e6 * 1.01e-3, 1e-6);  // the resultant carried when it broke
+  EXPECT_FALSE(bonded.bonded(0, 1));
+  // A broken joint transmits nothing, and its stored energy went to dissipation.
+  const test::Wrench w = test::drive(js, store, 1, rest, q, Vec3(0.5e-3, 0, 0), Vec3::Zero(), Vec3::Zero(), step);
+  EXPECT_EQ(w.force_N.norm(), 0.0);
+  EnergyLedger books;
+  js.report_energy(books);
+  EXPECT_EQ(books.elastic_J, 0.0);
+  EXPECT_NEAR(books.dissipated_plastic_J, 4 * 0.5 * 1e6 * 1.01e-3 * 1.01e-3, 1e-12);
+}
+
+TEST(JointFracture, AllNormalSpringsDeletedNeedsEveryNormalSpring) {
+  // Four trilinear normal springs; a rotation about t2 stretches the two at
+  // +x beyond ultimate: the joint stays intact (two normal springs left)
+  // until pure tension deletes the other two.
+  BondedPairs bonded;
+  BodyStore store = test::two_boxes();
+  JointSystem js(&bonded);
+  TrilinearParams t;
+  t.yield_strain_tension = t.yield_strain_compression = 0.01;
+  t.yield_force_tension_N = t.yield_force_compression_N = 1000.0;
+  t.ultimate_strain_tension = 0.05;      // 5 mm
+  t.ultimate_strain_compression = 0.1;   // 10 mm
+  t.ultimate_force_tension_N = t.ultimate_force_compression_N = 1200.0;
+  JointDef d;
+  d.body_a = 0;
+  d.body_b = 1;
+  d.layout = four_corner_layout(0.04, 0.04, 1.0, trilinear_spring(t, 0.1), linear_spring(1e6));
+  js.add_joint(store, d);
+  js.prepare(store);
+  const Vec3 rest = store.position_m[1];
+  const Quat q = store.orientation[1];
+  EventLog log;
+  // Rotation phi2 = -0.15 rad about t2: normal deformation -phi2 x, so the
+  // points at x = +0.04 m elongate by ~6 mm (> 5 mm, deleted) and those at
+  // x = -0.04 m shorten by ~6 mm (< 10 mm, kept).
+  test::drive(js, store, 1, rest, q, Vec3::Zero(), Vec3(0, -0.15, 0), Vec3::Zero(), 0);
+  js.finish_step(store, StepInfo{0, 0.0, 1e-3}, log);
+  EXPECT_EQ(log.count(EventKind::SpringDeleted), 2u);
+  EXPECT_EQ(log.count(EventKind::JointBroken), 0u);
+  EXPECT_TRUE(bonded.bonded(0, 1));
+  test::drive(js, store, 1, rest, q, Vec3(0, 0, 0.0051), Vec3::Zero(), Vec3::Zero(), 1);
+  js.finish_step(store, StepInfo{1, 0.0, 1e-3}, log);
+  EXPECT_EQ(log.count(EventKind::SpringDeleted), 4u);
+  EXPECT_EQ(log.count(EventKind::JointBroken), 1u);
+  EXPECT_FALSE(bonded.bonded(0, 1));
+  // Event order within the step: spring events (ascending spring), then the joint.
+  EXPECT_EQ(log.all().back().kind, EventKind::JointBroken);
+}
+
+TEST(JointDashpot, DampingRatioGivesLogarithmicDecrement) {
+  // One normal spring (no lever arm: pure translation, m_eff = m of the free
+  // body) with zeta = 0.05: free decay has logarithmic decrement
+  // 2 pi zeta / sqrt(1 - zeta^2) per period. The explicit dashpot uses
+  // v(n-1/2); the resulting damping differs from zeta by O(w dt) = 2 %
+  // at w dt = 0.02, hence the 5 % tolerance.
+  BodyStore bodies = test::two_boxes();
+  const double k = 1e6, zeta = 0.05, m = bodies.mass_kg[1];
+  const double w = std::sqrt(k / m);
+  SimulationSettings settings;
+  settings.gravity_mps2 = Vec3::Zero();
+  settings.dt_s = 0.02 / w;
+  const double period = 2 * M_PI / (w * std::sqrt(1 - zeta * zeta));
+  settings.duration_s = 3.2 * period;
+  bodies.velocity_mps[1] = Vec3(0, 0, 0.01);
+  Simulation sim(std::move(bodies), settings);
+  auto js = std::make_unique<JointSystem>(&sim.bonded_pairs());
+  JointDef d;
+  d.body_a = 0;
+  d.body_b = 1;
+  SpringPointDef p;
+  p.has_shear = false;
+  p.normal = linear_spring(k, zeta);
+  d.layout.points.push_back(p);
+  const double z0 = sim.bodies().position_m[1].z();
+  js->add_joint(sim.bodies(), d);
+  sim.add_force_provider(std::move(js));
+  sim.initialize();
+  // Successive maxima of z - z0.
+  std::vector<double> peaks;
+  double prev2 = 0.0, prev1 = 0.0;
+  while (sim.steps_done() < sim.total_steps()) {
+    sim.step();
+    const double z = sim.bodies().position_m[1].z() - z0;
+    if (sim.steps_done() > 2 && prev1 > prev2 && prev1 >= z && prev1 > 0.0) peaks.push_back(prev1);
+    prev2 = prev1;
+    prev1 = z;
+  }
+  ASSERT_GE(peaks.size(), 3u);
+  const double decrement = std::log(peaks[0] / peaks[2]) / 2.0;
+  const double expected = 2 * M_PI * zeta / std::sqrt(1 - zeta * zeta);
+  EXPECT_NEAR(decrement, expected, 0.05 * expected);
+  std::printf("dashpot: log decrement %.5f, expected %.5f\n", decrement, expected);
+}
+
+}  // namespace
+}  // namespace fq
