@@ -1,0 +1,46 @@
+// What a narrow-phase routine returns: the points where two shapes touch.
+// Shared by collide_box_ground and collide_box_box.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "dem_core/types.h"
+
+namespace fq {
+
+// An oriented box: centre, rotation (body -> world) and half edge lengths.
+struct OrientedBox {
+  Vec3 center_m = Vec3::Zero();       // world frame (m)
+  Mat3 rotation = Mat3::Identity();   // columns = body axes in world frame
+  Vec3 half_extents_m = Vec3::Ones(); // along body x, y, z (m)
+};
+
+// One contact point between shape a and shape b.
+struct ContactPointGeometry {
+  Vec3 position_m = Vec3::Zero();  // world (m): middle of the overlap along the normal
+  Vec3 normal = Vec3::UnitZ();     // unit, world, from a to b (b is pushed along +normal)
+  double depth_m = 0.0;            // overlap along the normal (m), > 0
+  // Share of the contact stiffness carried by this point (-): 1 for a corner
+  // against the ground and for an edge-edge point; for a clipped face
+  // polygon 4 w_i / P (w_i = half the lengths of the two polygon edges at
+  // vertex i, P = perimeter), which gives 1 at each corner of any rectangle
+  // and sums to 4 for every face contact (see collide_box_box.h).
+  double weight = 1.0;
+  // Which features touch (corner, edge, face of each shape), encoded by the
+  // routine that made the point. Stable as long as the same features touch,
+  // so tangential history can be keyed by (pair, feature). Unique within one
+  // manifold.
+  std::uint32_t feature = 0;
+};
+
+// A face clipped against a face gives at most 8 points (a square clipped by
+// a square); a box below a plane at most its 8 corners.
+inline constexpr int kMaxManifoldPoints = 8;
+
+struct ContactManifold {
+  int count = 0;
+  std::array<ContactPointGeometry, kMaxManifoldPoints> points;
+};
+
+}  // namespace fq

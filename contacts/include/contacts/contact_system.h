@@ -1,0 +1,161 @@
+// The contacts force provider: broken members fall, collide and come to rest.
+//
+// One step (inside accumulate_forces, poses at n, velocities at n-1/2):
+//   1. broad phase update (rebuilds only past the skin, broad_phase.h)
+//   2. narrow phase per candidate pair (collide_box_box) and per box near the
+//      ground (collide_box_ground), in parallel over fixed chunks of work
+//      items; each chunk writes its own buffer, buffers are joined in chunk
+//      order, so the contact list is the same for any thread count
+//   3. contact law per point (linear_contact_law.h) with tangential history
+//      looked up from the previous step's contact list
+//   4. gather: each body sums the forces of its contacts in contact order
+//      (one CSR list per body), so forces are bitwise identical for any
+//      number of OpenMP threads
+//
+// Contact order and keys: pairs sorted by (a, b), then ground contacts
+// sorted by box; points of one manifold sorted by feature. The key of a
+// point is (pair, feature); the list is therefore sorted by key, and the
+// history of a point is found by binary search in the previous list.
+//
+// Tangential history rule: created (zero) when a (pair, feature) first
+// touches, carried while it touches at every step, dropped at the first step
+// it does not (as LAMMPS does when a pair stops touching). A change of
+// reference face or of the kind of contact (face / edge) changes the feature
+// and so starts a new history. The elastic energy of a dropped shear spring,
+// 1/2 |F_s|^2 / k_t, is lost with it and booked as friction dissipation, so
+// the ledger still balances.
+//
+// Per-point stiffness: contact_params.h, scaled by the point's weight s_i
+// (contact_manifold.h). Dashpot mass: the pair's reduced mass (m_a m_b /
+// (m_a + m_b), or the free body's mass against a fixed body or the ground)
+// shared among the touching points in proportion to s_i, so that a flat
+// face impact has exactly the damping ratio of the restitution.
+//
+// Layout: one ContactPoint record per point (array of structs). Every stage
+// after the narrow phase reads and writes whole records, so the AoS layout
+// costs nothing over SoA and keeps the public view simple.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "contacts/broad_phase.h"
+#include "contacts/contact_manifold.h"
+#include "contacts/contact_params.h"
+#include "dem_core/bonded_pairs.h"
+#include "dem_core/force_provider.h"
+
+namespace fq {
+
+// One current contact point, readable for output.
+struct ContactPoint {
+  BodyId body_a = kNoBody;  // the ground contact reports the Ground member here (kNoBody if none)
+  BodyId body_b = kNoBody;
+  std::uint32_t feature = 0;
+  Vec3 position_m = Vec3::Zero();      // world (m)
+  Vec3 normal = Vec3::UnitZ();         // unit, world, from a to b
+  double depth_m = 0.0;                // overlap (m)
+  double normal_force_N = 0.0;         // >= 0 (N)
+  Vec3 tangential_force_N = Vec3::Zero();  // on b, world (N)
+  Vec3 shear_spring_N = Vec3::Zero();  // tangential history (N), world
+  bool sliding = false;
+  // Force on b (N, world); a receives the opposite.
+  Vec3 force_N() const { return normal_force_N * normal + tangential_force_N; }
+
+  // Internal bookkeeping (valid during a step).
+  std::uint64_t pair_key = 0;
+  std::int32_t coeff_index = 0;
+  double stiffness_scale = 1.0;
+  double effective_mass_kg = 0.0;
+  bool history_carried = false;  // set on the previous step's record when this step took its history
+  double elastic_J = 0.0;
+  double viscous_J = 0.0;
+  double friction_J = 0.0;
+};
+
+struct ContactSystemSettings {
+  // Broad-phase skin (m); <= 0 picks 0.4 x the thinnest box dimension.
+  // Trade-off measured on a falling pile of 1e4 boxes 40 mm thick (500
+  // steps): skin 8 mm -> 225 rebuilds, 8.5e3 candidate pairs; 16 mm -> 126
+  // rebuilds, 1.4e4 pairs (fastest); 32 mm -> 69 rebuilds, 3.3e4 pairs. For
+  // the 10 mm members of seed 001 it is 4 mm: at collapse speeds (~1 m/s,
+  // dt = 1e-5 s) a member then moves for ~200 steps between rebuilds.
+  double skin_m = 0.0;
+  // Work below this many items (pairs, contacts, bodies) runs on one thread:
+  // a 16-member frame must not pay for starting threads.
+  int parallel_threshold = 128;
+};
+
+class ContactSystem : public ForceProvider {
+ public:
+  // `bonded` may be null (no joints); it must outlive the system.
+  explicit ContactSystem(const BondedPairs* bonded, ContactSystemSettings settings = {});
+
+  // Material index of a body (default 0).
+  void set_body_material(BodyId body, int material);
+  // Parameters of the material pair (i, j), symmetric. Pairs never set use
+  // ContactParams{} defaults. Throws std::invalid_argument on bad values.
+  void set_pair_params(int material_i, int material_j, const ContactParams& params);
+  // Enables the ground half-space z <= level_m with its contact parameters.
+  void set_ground(double level_m, const ContactParams& params);
+
+  const char* name() const override { return "contacts"; }
+  void prepare(const BodyStore& bodies) override;
+  void accumulate_forces(BodyStore& bodies, const StepInfo& step) override;
+  void report_energy(EnergyLedger& ledger) const override;
+  StiffestMode stiffest_mode(const BodyStore& bodies) const override;
+
+  // Current contact points (forces of the last evaluation).
+  std::span<const ContactPoint> contacts() const { return contacts_; }
+  std::size_t contact_count() const { return contacts_.size(); }
+  // Sum of the normal forces of ground contacts (N) at the last evaluation.
+  double ground_normal_force_N() const;
+  std::int64_t broad_phase_rebuilds() const { return broad_.rebuild_count(); }
+  std::size_t candidate_pair_count() const { return broad_.pairs().size(); }
+  double skin_m() const { return broad_.skin_m(); }
+  double elastic_J() const { return elastic_J_; }
+  double dissipated_viscous_J() const { return viscous_J_; }
+  double dissipated_friction_J() const { return friction_J_; }
+
+ private:
+  int coeff_index_for(int material_i, int material_j) const;
+  void narrow_phase(const BodyStore& bodies, const StepInfo& step);
+  void apply_law(const BodyStore& bodies, const StepInfo& step);
+  void gather(BodyStore& bodies);
+
+  const BondedPairs* bonded_;
+  ContactSystemSettings settings_;
+  std::vector<int> body_material_;
+  std::map<std::pair<int, int>, ContactParams> pair_params_;
+  bool ground_enabled_ = false;
+  double ground_level_m_ = 0.0;
+  ContactParams ground_params_;
+
+  // Built in prepare.
+  bool prepared_ = false;
+  BodyId ground_body_ = kNoBody;
+  std::vector<ContactCoefficients> coeffs_;  // [0] default, then set pairs, last = ground
+  std::vector<int> material_coeff_;          // n_materials^2 -> coeffs_ index
+  int n_materials_ = 1;
+  int ground_coeff_ = 0;
+  std::vector<std::uint8_t> participates_;
+  std::vector<BodyId> ground_candidates_;    // bodies that may touch the ground
+  BroadPhase broad_;
+  std::vector<int> pair_coeff_;              // per broad-phase pair
+
+  // Per step.
+  std::vector<std::vector<ContactPoint>> chunk_buffers_;
+  std::vector<ContactPoint> contacts_;
+  std::vector<ContactPoint> previous_;
+  std::vector<std::int32_t> body_start_;     // CSR of contacts per body
+  std::vector<std::int32_t> body_entries_;   // contact index * 2 + (0: a side, 1: b side)
+  double elastic_J_ = 0.0;
+  double viscous_J_ = 0.0;
+  double friction_J_ = 0.0;
+};
+
+}  // namespace fq

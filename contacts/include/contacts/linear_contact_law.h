@@ -1,0 +1,65 @@
+// Contact law: linear normal spring-dashpot (compression only) and a
+// Cundall-Strack incremental tangential spring-dashpot with a Coulomb cap
+// (seed 001, Fig. 1: "normal and shear stiffness by spring dashpot assembly
+// in direction normal to contact surface and shear spring-dash pot assembly
+// in the plane perpendicular to the normal axis").
+//
+// The one signature a replacement law must keep (STYLE.md 3.4): a pure
+// function of the contact's kinematics, its coefficients and its tangential
+// history, returning forces and energy increments. No virtual call: the
+// contact system calls it directly for every contact point.
+//
+// Point stiffness: k_n and k_t of the pair times the point's share s
+// (ContactPointGeometry::weight); below, k_n and k_t mean the scaled values.
+// Normal:  F_n = max(0, k_n d + c_n d'),  c_n = 2 zeta sqrt(k_n m_eff),
+//          zeta from the restitution (contact_params.h). The clamp keeps the
+//          force from ever pulling; at the clamp the spring energy left in
+//          the overlap is lost (booked as viscous), which makes the real
+//          restitution slightly lower (clamped_restitution_from_damping_ratio).
+// Tangential (Cundall & Strack 1979): the spring force F_s (history) is
+//          first rotated into the current contact plane (normal component
+//          removed, magnitude kept), then incremented by -k_t v_t dt. With
+//          the dashpot c_t = 2 zeta sqrt(k_t m_eff) the trial force is
+//          F_t = F_s - c_t v_t. If |F_t| > mu F_n the contact slides: F_t is
+//          scaled to mu F_n and the spring is reset to F_s = F_t + c_t v_t
+//          (the spring holds what the cap allows, as in LAMMPS'
+//          pair granular with a history-based tangential model).
+// Energies (per evaluation, step dt):
+//   elastic   = 1/2 k_n d^2 + 1/2 |F_s|^2 / k_t (after the update)
+//   viscous   = (F_n - k_n d) d' dt  (normal dashpot; >= 0, includes the clamp loss)
+//             + (-F_t . v_t dt - change of tangential elastic)   when sticking
+//   friction  =  -F_t . v_t dt - change of tangential elastic     when sliding
+// so that stored + dissipated equals the work the law's forces do on the
+// bodies, up to the integrator's O(dt) mismatch (velocities at n-1/2).
+#pragma once
+
+#include "contacts/contact_params.h"
+#include "dem_core/types.h"
+
+namespace fq {
+
+struct ContactLawInput {
+  double depth_m = 0.0;                      ///< overlap d > 0 along the normal (m)
+  double approach_speed_mps = 0.0;           ///< d' (m/s), > 0 while the bodies close in
+  Vec3 normal = Vec3::UnitZ();               ///< unit normal from body a to body b, world frame
+  Vec3 tangential_velocity_mps = Vec3::Zero();  ///< velocity of b relative to a at the point, in the contact plane, world (m/s)
+  double stiffness_scale = 1.0;              ///< share s of the pair's stiffness at this point (-): k = s k_n, s k_t
+  double effective_mass_kg = 0.0;            ///< mass the dashpots act on for this point (kg)
+  double dt_s = 0.0;                         ///< time step (s)
+};
+
+struct ContactLawOutput {
+  double normal_force_N = 0.0;               ///< >= 0, acts on b along +normal (on a along -normal)
+  Vec3 tangential_force_N = Vec3::Zero();    ///< on b, world frame, in the contact plane (on a: opposite)
+  double elastic_J = 0.0;                    ///< energy stored in the point's springs after the update (J)
+  double viscous_J = 0.0;                    ///< dissipated by the dashpots during this step (J)
+  double friction_J = 0.0;                   ///< dissipated by Coulomb sliding during this step (J)
+  bool sliding = false;                      ///< the Coulomb cap was active
+};
+
+// io_shear_spring_N: tangential spring force on b (N, world) carried from the
+// previous step (zero when the contact is new); updated in place.
+ContactLawOutput linear_contact_law(const ContactCoefficients& coeff, const ContactLawInput& in,
+                                    Vec3& io_shear_spring_N);
+
+}  // namespace fq

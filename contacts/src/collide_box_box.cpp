@@ -1,0 +1,253 @@
+#include "contacts/collide_box_box.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace fq {
+
+namespace {
+
+// Relative preference of face axes over edge axes and of box a over box b.
+constexpr double kRelativeTolerance = 0.95;
+// Cross products of edges closer to parallel than this (|sin| of the angle)
+// are skipped: the face axes decide those configurations.
+constexpr double kParallelSine = 1e-6;
+
+struct ClipVertex {
+  Vec3 p;
+  std::uint32_t code;  // point code (see header)
+  int line;            // line the segment to the next vertex lies on: 0..3 incident edges, 4..7 side planes
+};
+
+std::uint32_t corner_code(int plane_a, int plane_b) {
+  const int lo = std::min(plane_a, plane_b), hi = std::max(plane_a, plane_b);
+  return std::uint32_t(8 + (4 + lo) * 4 + hi);
+}
+
+std::uint32_t crossing_code(int line, int plane) {
+  if (line >= 4) return corner_code(line - 4, plane);
+  return std::uint32_t(8 + line * 4 + plane);
+}
+
+// Clip `in` (n vertices) by the half-space d(p) = dir.p - offset <= 0.
+int clip(const ClipVertex* in, int n, const Vec3& dir, double offset, int plane, double tol, ClipVertex* out) {
+  int m = 0;
+  for (int k = 0; k < n; ++k) {
+    const ClipVertex& p = in[k];
+    const ClipVertex& q = in[(k + 1) % n];
+    const double dp = dir.dot(p.p) - offset;
+    const double dq = dir.dot(q.p) - offset;
+    const bool in_p = dp <= tol, in_q = dq <= tol;
+    if (in_p) out[m++] = p;
+    if (in_p && !in_q) {
+      if (dp < -tol) {
+        out[m++] = {p.p + (q.p - p.p) * (dp / (dp - dq)), crossing_code(p.line, plane), 4 + plane};
+      } else {
+        out[m - 1].line = 4 + plane;  // p lies on the plane: the boundary continues along it
+      }
+    } else if (!in_p && in_q && dq < -tol) {
+      out[m++] = {p.p + (q.p - p.p) * (dp / (dp - dq)), crossing_code(p.line, plane), p.line};
+    }
+  }
+  return m;
+}
+
+// Face contact: `ref` owns the reference face with outward normal n (pointing
+// to `inc`) along its axis `ref_axis`; n_sign = +-1.
+int face_contact(const OrientedBox& ref, const OrientedBox& inc, int ref_axis, double n_sign, bool ref_is_b,
+                 ContactManifold& out) {
+  const Vec3 n = n_sign * ref.rotation.col(ref_axis);
+  // Incident face: the face of `inc` most opposed to n.
+  int inc_axis = 0;
+  double best = -1.0;
+  for (int j = 0; j < 3; ++j) {
+    const double d = std::fabs(n.dot(inc.rotation.col(j)));
+    if (d > best) {
+      best = d;
+      inc_axis = j;
+    }
+  }
+  const double inc_sign = n.dot(inc.rotation.col(inc_axis)) > 0.0 ? -1.0 : 1.0;
+  const Vec3 inc_face_center = inc.center_m + inc_sign * inc.half_extents_m[inc_axis] * inc.rotation.col(inc_axis);
+  const int iu = (inc_axis + 1) % 3, iv = (inc_axis + 2) % 3;
+  const Vec3 u = inc.half_extents_m[iu] * inc.rotation.col(iu);
+  const Vec3 v = inc.half_extents_m[iv] * inc.rotation.col(iv);
+
+  ClipVertex buf_a[16], buf_b[16];
+  buf_a[0] = {inc_face_center + u + v, 0u, 0};
+  buf_a[1] = {inc_face_center - u + v, 1u, 1};
+  buf_a[2] = {inc_face_center - u - v, 2u, 2};
+  buf_a[3] = {inc_face_center + u - v, 3u, 3};
+  int count = 4;
+
+  const Vec3 ref_face_center = ref.center_m + ref.half_extents_m[ref_axis] * n;
+  const int r1 = (ref_axis + 1) % 3, r2 = (ref_axis + 2) % 3;
+  const Vec3 a1 = ref.rotation.col(r1), a2 = ref.rotation.col(r2);
+  const double h1 = ref.half_extents_m[r1], h2 = ref.half_extents_m[r2];
+  // Tolerance of "on a side plane": round-off of positions of size ~ the
+  // boxes, far below any physical overlap.
+  const double scale = ref.half_extents_m.maxCoeff() + inc.half_extents_m.maxCoeff() +
+                       (inc.center_m - ref.center_m).lpNorm<Eigen::Infinity>();
+  const double tol = 1e-12 * scale;
+  const Vec3 dirs[4] = {a1, -a1, a2, -a2};
+  const double offs[4] = {a1.dot(ref_face_center) + h1, -a1.dot(ref_face_center) + h1,
+                          a2.dot(ref_face_center) + h2, -a2.dot(ref_face_center) + h2};
+  ClipVertex* src = buf_a;
+  ClipVertex* dst = buf_b;
+  for (int plane = 0; plane < 4 && count > 0; ++plane) {
+    count = clip(src, count, dirs[plane], offs[plane], plane, tol, dst);
+    std::swap(src, dst);
+  }
+
+  const std::uint32_t head = kFeatureFaceContact | (ref_is_b ? (1u << 29) : 0u) |
+                             (std::uint32_t(ref_axis * 2 + (n_sign > 0 ? 1 : 0)) << 26) |
+                             (std::uint32_t(inc_axis * 2 + (inc_sign > 0 ? 1 : 0)) << 23);
+  // Perimeter shares of the clipped polygon (header: point weights).
+  double edge_len[16];
+  double perimeter = 0.0;
+  for (int k = 0; k < count; ++k) {
+    edge_len[k] = (src[(k + 1) % count].p - src[k].p).norm();
+    perimeter += edge_len[k];
+  }
+  const double face_offset = n.dot(ref_face_center);
+  const Vec3 normal_ab = ref_is_b ? Vec3(-n) : n;
+  out.count = 0;
+  for (int k = 0; k < count && out.count < kMaxManifoldPoints; ++k) {
+    const double depth = face_offset - n.dot(src[k].p);
+    if (!(depth > 0.0)) continue;
+    ContactPointGeometry& c = out.points[out.count++];
+    c.position_m = src[k].p + (0.5 * depth) * n;
+    c.normal = normal_ab;
+    c.depth_m = depth;
+    c.feature = head | src[k].code;
+    c.weight = perimeter > 0.0 ? 2.0 * (edge_len[(k + count - 1) % count] + edge_len[k]) / perimeter
+                               : 4.0 / double(count);
+  }
+  return out.count;
+}
+
+// Closest points of segments p1 + s d1 and p2 + t d2, s, t in [0, 1]
+// (non-parallel segments; Ericson, Real-Time Collision Detection, 5.1.9).
+void closest_points_segments(const Vec3& p1, const Vec3& d1, const Vec3& p2, const Vec3& d2, Vec3& c1, Vec3& c2) {
+  const Vec3 r = p1 - p2;
+  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
+  const double c = d1.dot(r), b = d1.dot(d2);
+  const double denom = a * e - b * b;
+  double s = denom > 0.0 ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
+  double t = (b * s + f) / e;
+  if (t < 0.0) {
+    t = 0.0;
+    s = std::clamp(-c / a, 0.0, 1.0);
+  } else if (t > 1.0) {
+    t = 1.0;
+    s = std::clamp((b - c) / a, 0.0, 1.0);
+  }
+  c1 = p1 + s * d1;
+  c2 = p2 + t * d2;
+}
+
+int edge_contact(const OrientedBox& a, const OrientedBox& b, int ia, int jb, const Vec3& axis_ab, double depth,
+                 ContactManifold& out) {
+  // Supporting edge of a along +axis, of b along -axis.
+  Vec3 pa = a.center_m, pb = b.center_m;
+  std::uint32_t bits_a = 0, bits_b = 0;
+  int slot = 0;
+  for (int k = 0; k < 3; ++k) {
+    if (k == ia) continue;
+    const double s = axis_ab.dot(a.rotation.col(k)) >= 0.0 ? 1.0 : -1.0;
+    pa += s * a.half_extents_m[k] * a.rotation.col(k);
+    if (s > 0) bits_a |= 1u << slot;
+    ++slot;
+  }
+  slot = 0;
+  for (int k = 0; k < 3; ++k) {
+    if (k == jb) continue;
+    const double s = axis_ab.dot(b.rotation.col(k)) >= 0.0 ? -1.0 : 1.0;
+    pb += s * b.half_extents_m[k] * b.rotation.col(k);
+    if (s > 0) bits_b |= 1u << slot;
+    ++slot;
+  }
+  const Vec3 da = a.half_extents_m[ia] * a.rotation.col(ia);
+  const Vec3 db = b.half_extents_m[jb] * b.rotation.col(jb);
+  Vec3 ca, cb;
+  closest_points_segments(pa - da, 2.0 * da, pb - db, 2.0 * db, ca, cb);
+  ContactPointGeometry& c = out.points[0];
+  c.position_m = 0.5 * (ca + cb);
+  c.normal = axis_ab;
+  c.depth_m = depth;
+  c.weight = 1.0;
+  c.feature = kFeatureEdgeContact | (std::uint32_t(ia * 4) + bits_a) << 8 | (std::uint32_t(jb * 4) + bits_b);
+  out.count = 1;
+  return 1;
+}
+
+}  // namespace
+
+int collide_box_box(const OrientedBox& a, const OrientedBox& b, ContactManifold& out) {
+  out.count = 0;
+  const Mat3& ra = a.rotation;
+  const Mat3& rb = b.rotation;
+  const Vec3& ha = a.half_extents_m;
+  const Vec3& hb = b.half_extents_m;
+  // Everything in a's frame: r(i, j) = a_i . b_j, t = centre offset.
+  const Mat3 r = ra.transpose() * rb;
+  const Vec3 t = ra.transpose() * (b.center_m - a.center_m);
+  // A small epsilon on |r| keeps the test conservative when edges are
+  // parallel and their cross product degenerates (Gottschalk's OBB tree).
+  const Mat3 abs_r = r.cwiseAbs().array() + 1e-14;
+
+  double best_a = HUGE_VAL, best_b = HUGE_VAL, best_e = HUGE_VAL;
+  int axis_a = -1, axis_b = -1, edge_i = -1, edge_j = -1;
+  Vec3 edge_axis_local = Vec3::Zero();
+  for (int i = 0; i < 3; ++i) {
+    const double pen = ha[i] + hb.dot(abs_r.row(i)) - std::fabs(t[i]);
+    if (pen < 0.0) return 0;
+    if (pen < best_a) {
+      best_a = pen;
+      axis_a = i;
+    }
+  }
+  for (int j = 0; j < 3; ++j) {
+    const double pen = ha.dot(abs_r.col(j)) + hb[j] - std::fabs(t.dot(r.col(j)));
+    if (pen < 0.0) return 0;
+    if (pen < best_b) {
+      best_b = pen;
+      axis_b = j;
+    }
+  }
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      const Vec3 l = Vec3::Unit(i).cross(r.col(j));  // a's frame
+      const double len = l.norm();
+      if (len < kParallelSine) continue;
+      const double ra_l = ha.dot(l.cwiseAbs());
+      const double rb_l = std::fabs(hb[0] * l.dot(r.col(0))) + std::fabs(hb[1] * l.dot(r.col(1))) +
+                          std::fabs(hb[2] * l.dot(r.col(2)));
+      const double pen = (ra_l + rb_l - std::fabs(t.dot(l))) / len;
+      if (pen < 0.0) return 0;
+      if (pen < best_e) {
+        best_e = pen;
+        edge_i = i;
+        edge_j = j;
+        edge_axis_local = l / len;
+      }
+    }
+  }
+
+  const bool use_b_face = best_b < kRelativeTolerance * best_a;
+  const double best_face = use_b_face ? best_b : best_a;
+  const double scale = ha.maxCoeff() + hb.maxCoeff();
+  if (edge_i >= 0 && best_e < kRelativeTolerance * best_face - 1e-9 * scale) {
+    Vec3 axis = ra * edge_axis_local;
+    if (axis.dot(b.center_m - a.center_m) < 0.0) axis = -axis;
+    return edge_contact(a, b, edge_i, edge_j, axis, best_e, out);
+  }
+  if (!use_b_face) {
+    const double s = t[axis_a] >= 0.0 ? 1.0 : -1.0;
+    return face_contact(a, b, axis_a, s, false, out);
+  }
+  const double s = t.dot(r.col(axis_b)) >= 0.0 ? -1.0 : 1.0;  // b's face pointing towards a
+  return face_contact(b, a, axis_b, s, true, out);
+}
+
+}  // namespace fq

@@ -1,0 +1,359 @@
+#include "contacts/contact_system.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "contacts/collide_box_box.h"
+#include "contacts/collide_box_ground.h"
+#include "contacts/linear_contact_law.h"
+
+namespace fq {
+
+namespace {
+
+// Work items per narrow-phase chunk: large enough to amortise the chunk
+// bookkeeping, small enough to balance two threads on a few hundred pairs.
+constexpr std::size_t kChunkItems = 64;
+constexpr std::uint64_t kGroundKeyHigh = 0xFFFFFFFFull << 32;
+
+std::uint64_t pair_key(BodyId a, BodyId b) { return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b); }
+
+OrientedBox box_of(const BodyStore& bodies, BodyId i) {
+  return {bodies.position_m[i], bodies.rotation[i], bodies.half_extents_m[i]};
+}
+
+bool key_less(const ContactPoint& c, std::uint64_t key, std::uint32_t feature) {
+  return c.pair_key != key ? c.pair_key < key : c.feature < feature;
+}
+
+}  // namespace
+
+ContactSystem::ContactSystem(const BondedPairs* bonded, ContactSystemSettings settings)
+    : bonded_(bonded), settings_(settings) {}
+
+void ContactSystem::set_body_material(BodyId body, int material) {
+  if (body < 0) throw std::invalid_argument("set_body_material: body id must be >= 0");
+  if (material < 0) throw std::invalid_argument("set_body_material: material index must be >= 0");
+  if (std::size_t(body) >= body_material_.size()) body_material_.resize(std::size_t(body) + 1, 0);
+  body_material_[std::size_t(body)] = material;
+  prepared_ = false;
+}
+
+void ContactSystem::set_pair_params(int material_i, int material_j, const ContactParams& params) {
+  if (material_i < 0 || material_j < 0) throw std::invalid_argument("set_pair_params: material index must be >= 0");
+  const std::string what = "material pair (" + std::to_string(material_i) + ", " + std::to_string(material_j) + ")";
+  (void)make_contact_coefficients(params, what.c_str());  // validate now, with the caller on the stack
+  pair_params_[{std::min(material_i, material_j), std::max(material_i, material_j)}] = params;
+  prepared_ = false;
+}
+
+void ContactSystem::set_ground(double level_m, const ContactParams& params) {
+  if (!std::isfinite(level_m)) throw std::invalid_argument("set_ground: ground level must be a finite number of metres");
+  (void)make_contact_coefficients(params, "the ground");
+  ground_enabled_ = true;
+  ground_level_m_ = level_m;
+  ground_params_ = params;
+  prepared_ = false;
+}
+
+int ContactSystem::coeff_index_for(int material_i, int material_j) const {
+  return material_coeff_[std::size_t(material_i * n_materials_ + material_j)];
+}
+
+void ContactSystem::prepare(const BodyStore& bodies) {
+  const std::size_t n = bodies.size();
+  body_material_.resize(n, 0);
+  n_materials_ = 1;
+  for (int m : body_material_) n_materials_ = std::max(n_materials_, m + 1);
+  for (const auto& [key, params] : pair_params_) n_materials_ = std::max(n_materials_, key.second + 1);
+
+  coeffs_.clear();
+  coeffs_.push_back(make_contact_coefficients(ContactParams{}, "the default pair"));
+  material_coeff_.assign(std::size_t(n_materials_ * n_materials_), 0);
+  for (const auto& [key, params] : pair_params_) {
+    const std::string what = "material pair (" + std::to_string(key.first) + ", " + std::to_string(key.second) + ")";
+    coeffs_.push_back(make_contact_coefficients(params, what.c_str()));
+    const int idx = int(coeffs_.size()) - 1;
+    material_coeff_[std::size_t(key.first * n_materials_ + key.second)] = idx;
+    material_coeff_[std::size_t(key.second * n_materials_ + key.first)] = idx;
+  }
+  ground_coeff_ = 0;
+  if (ground_enabled_) {
+    coeffs_.push_back(make_contact_coefficients(ground_params_, "the ground"));
+    ground_coeff_ = int(coeffs_.size()) - 1;
+  }
+
+  participates_.assign(n, 1);
+  ground_body_ = kNoBody;
+  ground_candidates_.clear();
+  double thinnest_m = HUGE_VAL;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (bodies.info[i].kind == MemberKind::Ground) {
+      participates_[i] = 0;
+      if (ground_body_ == kNoBody) ground_body_ = BodyId(i);
+      continue;
+    }
+    thinnest_m = std::min(thinnest_m, 2.0 * bodies.half_extents_m[i].minCoeff());
+    if (!bodies.is_fixed[i]) ground_candidates_.push_back(BodyId(i));
+  }
+  if (!ground_enabled_) ground_candidates_.clear();
+  const double skin = settings_.skin_m > 0.0 ? settings_.skin_m : (std::isfinite(thinnest_m) ? 0.4 * thinnest_m : 1.0);
+  broad_.configure(skin, participates_);
+  contacts_.clear();
+  previous_.clear();
+  prepared_ = true;
+}
+
+void ContactSystem::accumulate_forces(BodyStore& bodies, const StepInfo& step) {
+  if (!prepared_ || body_material_.size() != bodies.size()) prepare(bodies);
+  if (broad_.update(bodies, bonded_)) {
+    const auto& pairs = broad_.pairs();
+    pair_coeff_.resize(pairs.size());
+    for (std::size_t p = 0; p < pairs.size(); ++p)
+      pair_coeff_[p] = coeff_index_for(body_material_[pairs[p].a], body_material_[pairs[p].b]);
+  }
+  std::swap(previous_, contacts_);
+  narrow_phase(bodies, step);
+  apply_law(bodies, step);
+  gather(bodies);
+}
+
+void ContactSystem::narrow_phase(const BodyStore& bodies, const StepInfo& /*step*/) {
+  const auto& pairs = broad_.pairs();
+  const std::size_t n_pairs = pairs.size();
+  const std::size_t n_items = n_pairs + ground_candidates_.size();
+  const std::size_t n_chunks = (n_items + kChunkItems - 1) / kChunkItems;
+  if (chunk_buffers_.size() < n_chunks) chunk_buffers_.resize(n_chunks);
+
+  const std::int64_t chunks = std::int64_t(n_chunks);
+#if defined(_OPENMP)
+#pragma omp parallel for schedule(dynamic, 1) if (n_items >= std::size_t(settings_.parallel_threshold))
+#endif
+  for (std::int64_t c = 0; c < chunks; ++c) {
+    std::vector<ContactPoint>& buf = chunk_buffers_[std::size_t(c)];
+    buf.clear();
+    ContactManifold manifold;
+    const std::size_t begin = std::size_t(c) * kChunkItems;
+    const std::size_t end = std::min(n_items, begin + kChunkItems);
+    for (std::size_t item = begin; item < end; ++item) {
+      BodyId a, b;
+      std::uint64_t key;
+      int coeff;
+      double pair_mass;
+      if (item < n_pairs) {
+        a = pairs[item].a;
+        b = pairs[item].b;
+        // Bounding spheres first: most candidates inside the skin do not touch.
+        const double reach = bodies.half_extents_m[a].norm() + bodies.half_extents_m[b].norm();
+        if ((bodies.position_m[b] - bodies.position_m[a]).squaredNorm() > reach * reach) continue;
+        if (collide_box_box(box_of(bodies, a), box_of(bodies, b), manifold) == 0) continue;
+        key = pair_key(a, b);
+        coeff = pair_coeff_[item];
+        const double ma = bodies.mass_kg[a], mb = bodies.mass_kg[b];
+        pair_mass = bodies.is_fixed[a] ? mb : bodies.is_fixed[b] ? ma : ma * mb / (ma + mb);
+      } else {
+        b = ground_candidates_[item - n_pairs];
+        a = ground_body_;
+        const OrientedBox box = box_of(bodies, b);
+        if (!(box_lowest_z_m(box) < ground_level_m_)) continue;
+        if (collide_box_ground(box, ground_level_m_, manifold) == 0) continue;
+        key = kGroundKeyHigh | std::uint32_t(b);
+        coeff = ground_coeff_;
+        pair_mass = bodies.mass_kg[b];
+      }
+      auto first = manifold.points.begin();
+      auto last = first + manifold.count;
+      std::sort(first, last, [](const ContactPointGeometry& p, const ContactPointGeometry& q) {
+        return p.feature < q.feature;
+      });
+      // Features are unique by construction; drop any duplicate defensively.
+      last = std::unique(first, last, [](const ContactPointGeometry& p, const ContactPointGeometry& q) {
+        return p.feature == q.feature;
+      });
+      double weight_sum = 0.0;
+      for (auto it = first; it != last; ++it) weight_sum += it->weight;
+      const double mass_per_weight = pair_mass / weight_sum;
+      for (auto it = first; it != last; ++it) {
+        ContactPoint cp;
+        cp.body_a = a;
+        cp.body_b = b;
+        cp.feature = it->feature;
+        cp.position_m = it->position_m;
+        cp.normal = it->normal;
+        cp.depth_m = it->depth_m;
+        cp.pair_key = key;
+        cp.coeff_index = coeff;
+        cp.stiffness_scale = it->weight;
+        cp.effective_mass_kg = mass_per_weight * it->weight;
+        buf.push_back(cp);
+      }
+    }
+  }
+
+  std::size_t total = 0;
+  for (std::size_t c = 0; c < n_chunks; ++c) total += chunk_buffers_[c].size();
+  contacts_.resize(total);
+  std::size_t offset = 0;
+  for (std::size_t c = 0; c < n_chunks; ++c) {
+    std::copy(chunk_buffers_[c].begin(), chunk_buffers_[c].end(), contacts_.begin() + std::ptrdiff_t(offset));
+    offset += chunk_buffers_[c].size();
+  }
+}
+
+void ContactSystem::apply_law(const BodyStore& bodies, const StepInfo& step) {
+  const std::int64_t n = std::int64_t(contacts_.size());
+#if defined(_OPENMP)
+#pragma omp parallel for schedule(static) if (n >= settings_.parallel_threshold)
+#endif
+  for (std::int64_t k = 0; k < n; ++k) {
+    ContactPoint& c = contacts_[std::size_t(k)];
+    // Tangential history of the same (pair, feature) at the previous step.
+    const auto it = std::lower_bound(previous_.begin(), previous_.end(), c, [](const ContactPoint& p, const ContactPoint& q) {
+      return key_less(p, q.pair_key, q.feature);
+    });
+    Vec3 shear = Vec3::Zero();
+    if (it != previous_.end() && it->pair_key == c.pair_key && it->feature == c.feature) {
+      shear = it->shear_spring_N;
+      // Keys are unique, so no two contacts write the same record.
+      previous_[std::size_t(it - previous_.begin())].history_carried = true;
+    }
+
+    const Vec3 va = c.body_a >= 0 && (c.pair_key & kGroundKeyHigh) != kGroundKeyHigh
+                        ? bodies.point_velocity(c.body_a, c.position_m)
+                        : Vec3(Vec3::Zero());
+    const Vec3 v_rel = bodies.point_velocity(c.body_b, c.position_m) - va;
+    const double vn = c.normal.dot(v_rel);
+    ContactLawInput in;
+    in.depth_m = c.depth_m;
+    in.approach_speed_mps = -vn;
+    in.normal = c.normal;
+    in.tangential_velocity_mps = v_rel - vn * c.normal;
+    in.stiffness_scale = c.stiffness_scale;
+    in.effective_mass_kg = c.effective_mass_kg;
+    in.dt_s = step.dt_s;
+    const ContactLawOutput out = linear_contact_law(coeffs_[std::size_t(c.coeff_index)], in, shear);
+    c.normal_force_N = out.normal_force_N;
+    c.tangential_force_N = out.tangential_force_N;
+    c.shear_spring_N = shear;
+    c.sliding = out.sliding;
+    c.elastic_J = out.elastic_J;
+    c.viscous_J = out.viscous_J;
+    c.friction_J = out.friction_J;
+  }
+  // Energies summed in contact order (deterministic).
+  double elastic = 0.0, viscous = 0.0, friction = 0.0;
+  for (const ContactPoint& c : contacts_) {
+    elastic += c.elastic_J;
+    viscous += c.viscous_J;
+    friction += c.friction_J;
+  }
+  // Shear springs of contacts that ended lose their energy (header).
+  for (const ContactPoint& p : previous_) {
+    if (p.history_carried) continue;
+    const double kt = p.stiffness_scale * coeffs_[std::size_t(p.coeff_index)].tangential_stiffness_N_per_m;
+    if (kt > 0.0) friction += 0.5 * p.shear_spring_N.squaredNorm() / kt;
+  }
+  elastic_J_ = elastic;
+  viscous_J_ += viscous;
+  friction_J_ += friction;
+}
+
+void ContactSystem::gather(BodyStore& bodies) {
+  const std::size_t n = bodies.size();
+  body_start_.assign(n + 1, 0);
+  for (const ContactPoint& c : contacts_) {
+    if (c.body_a >= 0) ++body_start_[std::size_t(c.body_a) + 1];
+    ++body_start_[std::size_t(c.body_b) + 1];
+  }
+  for (std::size_t i = 0; i < n; ++i) body_start_[i + 1] += body_start_[i];
+  body_entries_.resize(std::size_t(body_start_[n]));
+  {
+    // Fill in contact order; a running cursor per body (reuses the CSR shape).
+    std::vector<std::int32_t>& cursor = body_start_;
+    const std::int32_t cn = std::int32_t(contacts_.size());
+    for (std::int32_t k = 0; k < cn; ++k) {
+      const ContactPoint& c = contacts_[std::size_t(k)];
+      if (c.body_a >= 0) body_entries_[std::size_t(cursor[std::size_t(c.body_a)]++)] = 2 * k;
+      body_entries_[std::size_t(cursor[std::size_t(c.body_b)]++)] = 2 * k + 1;
+    }
+    // Cursors now hold the ends; shift back to starts.
+    for (std::size_t i = n; i > 0; --i) body_start_[i] = body_start_[i - 1];
+    body_start_[0] = 0;
+  }
+  const std::int64_t nb = std::int64_t(n);
+#if defined(_OPENMP)
+#pragma omp parallel for schedule(static) if (nb >= settings_.parallel_threshold && contacts_.size() >= std::size_t(settings_.parallel_threshold))
+#endif
+  for (std::int64_t i = 0; i < nb; ++i) {
+    const std::int32_t s = body_start_[std::size_t(i)], e = body_start_[std::size_t(i) + 1];
+    if (s == e) continue;
+    Vec3 f = Vec3::Zero(), t = Vec3::Zero();
+    const Vec3 x = bodies.position_m[std::size_t(i)];
+    for (std::int32_t k = s; k < e; ++k) {
+      const std::int32_t entry = body_entries_[std::size_t(k)];
+      const ContactPoint& c = contacts_[std::size_t(entry >> 1)];
+      const Vec3 fb = c.force_N();
+      const Vec3 fi = (entry & 1) ? fb : Vec3(-fb);
+      f += fi;
+      t += (c.position_m - x).cross(fi);
+    }
+    bodies.force_N[std::size_t(i)] += f;
+    bodies.torque_Nm[std::size_t(i)] += t;
+  }
+}
+
+void ContactSystem::report_energy(EnergyLedger& ledger) const {
+  ledger.elastic_J += elastic_J_;
+  ledger.dissipated_viscous_J += viscous_J_;
+  ledger.dissipated_friction_J += friction_J_;
+}
+
+double ContactSystem::ground_normal_force_N() const {
+  double sum = 0.0;
+  for (const ContactPoint& c : contacts_)
+    if ((c.pair_key & kGroundKeyHigh) == kGroundKeyHigh) sum += c.normal_force_N;
+  return sum;
+}
+
+StiffestMode ContactSystem::stiffest_mode(const BodyStore& bodies) const {
+  // Envelope of the fastest contact mode, in units of k/m: a thin plate on
+  // its four corner springs rocks at w^2 = 12 k/m (the highest mode of a box
+  // on a face contact; the bounce is 4 k/m), and two free bodies of equal
+  // mass halve the reduced mass -> w^2 = 24 k/m with the lightest mass. A
+  // body squeezed in a stack of face contacts stays below this (chain bound
+  // 4 * 4k/m = 16 k/m). The dashpot lowers the central-difference limit to
+  // dt = (2/w)(sqrt(1 + zeta^2) - zeta); it is folded into the w reported.
+  StiffestMode mode;
+  double m_min = HUGE_VAL;
+  BodyId lightest = kNoBody;
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    if (bodies.is_fixed[i] || bodies.info[i].kind == MemberKind::Ground) continue;
+    if (bodies.mass_kg[i] < m_min) {
+      m_min = bodies.mass_kg[i];
+      lightest = BodyId(i);
+    }
+  }
+  if (lightest == kNoBody) return mode;
+  std::vector<ContactCoefficients> all = coeffs_;
+  if (all.empty()) all.push_back(make_contact_coefficients(ContactParams{}, "the default pair"));
+  if (!prepared_) {
+    for (const auto& [key, params] : pair_params_) all.push_back(make_contact_coefficients(params, "a pair"));
+    if (ground_enabled_) all.push_back(make_contact_coefficients(ground_params_, "the ground"));
+  }
+  double k_max = 0.0, zeta_max = 0.0;
+  for (const ContactCoefficients& c : all) {
+    k_max = std::max({k_max, c.normal_stiffness_N_per_m, c.tangential_stiffness_N_per_m});
+    zeta_max = std::max(zeta_max, c.damping_ratio);
+  }
+  const double w = std::sqrt(24.0 * k_max / m_min);
+  mode.omega_radps = w / (std::sqrt(1.0 + zeta_max * zeta_max) - zeta_max);
+  std::ostringstream where;
+  where << "contact spring k = " << k_max << " N/m on the lightest body '" << bodies.info[lightest].name
+        << "' (m = " << m_min << " kg, damping ratio " << zeta_max << ")";
+  mode.where = where.str();
+  return mode;
+}
+
+}  // namespace fq

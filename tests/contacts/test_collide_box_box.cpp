@@ -1,0 +1,181 @@
+// Box-box narrow phase. Expected values are geometry worked out by hand for
+// each configuration (stated next to each case), not program output.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "contacts/collide_box_box.h"
+
+namespace {
+
+using fq::ContactManifold;
+using fq::Mat3;
+using fq::OrientedBox;
+using fq::Vec3;
+
+OrientedBox cube(const Vec3& c, const Mat3& r = Mat3::Identity(), double half = 0.5) {
+  return {c, r, Vec3::Constant(half)};
+}
+
+Mat3 rot(double angle, const Vec3& axis) { return Eigen::AngleAxisd(angle, axis.normalized()).toRotationMatrix(); }
+
+constexpr double kTol = 1e-12;
+
+TEST(CollideBoxBox, FaceFaceGivesFourCornerPoints) {
+  // Unit cubes, b resting on a with overlap 0.01: the incident face (b's
+  // bottom) coincides laterally with a's top face -> its 4 corners, depth
+  // 0.01, normal +z, each point midway (z = 0.495).
+  ContactManifold m;
+  ASSERT_EQ(fq::collide_box_box(cube(Vec3::Zero()), cube(Vec3(0, 0, 0.99)), m), 4);
+  for (int k = 0; k < m.count; ++k) {
+    EXPECT_NEAR(m.points[k].depth_m, 0.01, kTol);
+    EXPECT_NEAR((m.points[k].normal - Vec3::UnitZ()).norm(), 0.0, kTol);
+    EXPECT_NEAR(std::fabs(m.points[k].position_m.x()), 0.5, kTol);
+    EXPECT_NEAR(std::fabs(m.points[k].position_m.y()), 0.5, kTol);
+    EXPECT_NEAR(m.points[k].position_m.z(), 0.495, kTol);
+    EXPECT_EQ(m.points[k].feature & fq::kFeatureKindMask, fq::kFeatureFaceContact);
+    for (int j = 0; j < k; ++j) EXPECT_NE(m.points[k].feature, m.points[j].feature);
+  }
+}
+
+TEST(CollideBoxBox, SmallBoxOnLargeFaceGivesItsFourCorners) {
+  // b (half 0.25) on a (half 0.5): b's bottom corners at (+-0.25, +-0.25).
+  ContactManifold m;
+  ASSERT_EQ(fq::collide_box_box(cube(Vec3::Zero()), cube(Vec3(0.1, 0, 0.5 + 0.25 - 0.002), Mat3::Identity(), 0.25), m), 4);
+  for (int k = 0; k < m.count; ++k) {
+    EXPECT_NEAR(m.points[k].depth_m, 0.002, kTol);
+    EXPECT_NEAR(std::fabs(m.points[k].position_m.x() - 0.1), 0.25, kTol);
+    EXPECT_NEAR(std::fabs(m.points[k].position_m.y()), 0.25, kTol);
+  }
+}
+
+TEST(CollideBoxBox, ParallelOffsetFacesGiveTheOverlapRectangle) {
+  // Same cubes offset by (0.3, 0.2) in the plane: the contact patch is the
+  // rectangle x in [-0.2, 0.5], y in [-0.3, 0.5]; its 4 corners are the points.
+  ContactManifold m;
+  ASSERT_EQ(fq::collide_box_box(cube(Vec3::Zero()), cube(Vec3(0.3, 0.2, 0.99)), m), 4);
+  for (int k = 0; k < m.count; ++k) {
+    const Vec3& p = m.points[k].position_m;
+    const bool x_ok = std::fabs(p.x() + 0.2) < 1e-9 || std::fabs(p.x() - 0.5) < 1e-9;
+    const bool y_ok = std::fabs(p.y() + 0.3) < 1e-9 || std::fabs(p.y() - 0.5) < 1e-9;
+    EXPECT_TRUE(x_ok && y_ok) << p.transpose();
+    EXPECT_NEAR(m.points[k].depth_m, 0.01, kTol);
+  }
+}
+
+TEST(CollideBoxBox, EdgeEdgeGivesOnePoint) {
+  // a turned 45 deg about x: its top is a ridge along x at z = sqrt(2)/2.
+  // b turned 45 deg about y: its bottom is a ridge along y at
+  // z_b - sqrt(2)/2. With z_b = sqrt(2) - d the ridges cross at the origin's
+  // vertical with overlap d: one point at (0, 0, sqrt(2)/2 - d/2), normal +z.
+  const double d = 0.003;
+  const double r2 = std::sqrt(2.0) / 2.0;
+  ContactManifold m;
+  ASSERT_EQ(fq::collide_box_box(cube(Vec3::Zero(), rot(std::numbers::pi / 4, Vec3::UnitX())),
+                                cube(Vec3(0, 0, 2 * r2 - d), rot(std::numbers::pi / 4, Vec3::UnitY())), m),
+            1);
+  EXPECT_NEAR(m.points[0].depth_m, d, 1e-12);
+  EXPECT_NEAR((m.points[0].normal - Vec3::UnitZ()).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((m.points[0].position_m - Vec3(0, 0, r2 - d / 2)).norm(), 0.0, 1e-12);
+  EXPECT_EQ(m.points[0].feature & fq::kFeatureKindMask, fq::kFeatureEdgeContact);
+}
+
+TEST(CollideBoxBox, EdgeEdgeSeparatedOnlyAlongTheCrossAxis) {
+  // Same ridges 0.003 apart: every face axis still overlaps (the projections
+  // of the turned cubes on their face normals overlap), only the cross
+  // product of the two ridges separates -> no contact.
+  const double r2 = std::sqrt(2.0) / 2.0;
+  ContactManifold m;
+  EXPECT_EQ(fq::collide_box_box(cube(Vec3::Zero(), rot(std::numbers::pi / 4, Vec3::UnitX())),
+                                cube(Vec3(0, 0, 2 * r2 + 0.003), rot(std::numbers::pi / 4, Vec3::UnitY())), m),
+            0);
+}
+
+TEST(CollideBoxBox, VertexFaceGivesOnePointAtTheCorner) {
+  // b turned so that its body diagonal (1,1,1) points along +z: its corner
+  // (-,-,-) is lowest, sqrt(3)/2 below its centre. With z_b = 0.5 +
+  // sqrt(3)/2 - d it dips d into a's top face: one point at (0, 0, 0.5 - d/2).
+  const double d = 0.004;
+  const Mat3 r = Eigen::Quaterniond::FromTwoVectors(Vec3(1, 1, 1).normalized(), Vec3::UnitZ()).toRotationMatrix();
+  ContactManifold m;
+  ASSERT_EQ(fq::collide_box_box(cube(Vec3::Zero()), cube(Vec3(0, 0, 0.5 + std::sqrt(3.0) / 2 - d), r), m), 1);
+  EXPECT_NEAR(m.points[0].depth_m, d, 1e-12);
+  EXPECT_NEAR((m.points[0].normal - Vec3::UnitZ()).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((m.points[0].position_m - Vec3(0, 0, 0.5 - d / 2)).norm(), 0.0, 1e-12);
+}
+
+TEST(CollideBoxBox, DeepOverlapTakesTheAxisOfLeastPenetration) {
+  // Centres 0.3 apart in z and 0.1 in x: overlaps are 0.7 along z, 0.9
+  // along x, 1.0 along y -> normal +z, depth 0.7, the 4 clipped corners.
+  ContactManifold m;
+  ASSERT_EQ(fq::collide_box_box(cube(Vec3::Zero()), cube(Vec3(0.1, 0, 0.3)), m), 4);
+  for (int k = 0; k < m.count; ++k) {
+    EXPECT_NEAR(m.points[k].depth_m, 0.7, kTol);
+    EXPECT_NEAR((m.points[k].normal - Vec3::UnitZ()).norm(), 0.0, kTol);
+  }
+}
+
+TEST(CollideBoxBox, SeparatedGivesNone) {
+  ContactManifold m;
+  EXPECT_EQ(fq::collide_box_box(cube(Vec3::Zero()), cube(Vec3(0, 0, 1.0001)), m), 0);
+  EXPECT_EQ(fq::collide_box_box(cube(Vec3::Zero()), cube(Vec3(1.2, 0.3, 0.2), rot(0.3, Vec3(1, 2, 3))), m), 0);
+}
+
+TEST(CollideBoxBox, RotatedConfigurationHasKnownDepthAndNormal) {
+  // The face-face set-up in an arbitrarily rotated frame q, with b further
+  // turned by 30 deg about the contact normal n = q z. b's bottom square,
+  // turned 30 deg over a's equal top square, is cut to an octagon: 8 points,
+  // all with depth d and normal n; swapping a and b flips the normal.
+  const double d = 0.02;
+  const Mat3 q = rot(0.7, Vec3(0.3, -1.0, 0.5));
+  const Vec3 n = q.col(2);
+  const Vec3 c = Vec3(0.4, -0.2, 1.1);
+  const OrientedBox a = cube(c, q);
+  const OrientedBox b = cube(c + (1.0 - d) * n, rot(std::numbers::pi / 6, n) * q);
+  ContactManifold m;
+  ASSERT_EQ(fq::collide_box_box(a, b, m), 8);
+  for (int k = 0; k < m.count; ++k) {
+    EXPECT_NEAR(m.points[k].depth_m, d, 1e-12);
+    EXPECT_NEAR((m.points[k].normal - n).norm(), 0.0, 1e-12);
+    // Every point lies midway between the two faces, inside a's top face.
+    const Vec3 local = q.transpose() * (m.points[k].position_m - c);
+    EXPECT_NEAR(local.z(), 0.5 - d / 2, 1e-12);
+    EXPECT_LE(std::fabs(local.x()), 0.5 + 1e-12);
+    EXPECT_LE(std::fabs(local.y()), 0.5 + 1e-12);
+  }
+  ContactManifold swapped;
+  ASSERT_EQ(fq::collide_box_box(b, a, swapped), 8);
+  for (int k = 0; k < swapped.count; ++k) {
+    EXPECT_NEAR(swapped.points[k].depth_m, d, 1e-12);
+    EXPECT_NEAR((swapped.points[k].normal + n).norm(), 0.0, 1e-12);
+  }
+}
+
+TEST(CollideBoxBox, TiltedBoxRestingOnAnEdgeGivesTwoPoints) {
+  // b tilted 10 deg about y, its lowest edge (along y) dipping d into a's
+  // top face: the two ends of that edge, at y = +-0.5.
+  const double d = 0.001;
+  const double th = 10.0 * std::numbers::pi / 180.0;
+  const double drop = 0.5 * (std::cos(th) + std::sin(th));  // centre height above the lowest edge
+  ContactManifold m;
+  ASSERT_EQ(fq::collide_box_box(cube(Vec3::Zero()), cube(Vec3(0, 0, 0.5 + drop - d), rot(th, Vec3::UnitY())), m), 2);
+  for (int k = 0; k < 2; ++k) {
+    EXPECT_NEAR(m.points[k].depth_m, d, 1e-12);
+    EXPECT_NEAR(std::fabs(m.points[k].position_m.y()), 0.5, 1e-12);
+  }
+}
+
+TEST(CollideBoxBox, FeaturesStayWhileTheSameFeaturesTouch) {
+  // A small slide of b keeps the same 4 corner features (history continuity).
+  ContactManifold m1, m2;
+  ASSERT_EQ(fq::collide_box_box(cube(Vec3::Zero()), cube(Vec3(0.1, 0, 0.5 + 0.25 - 0.002), Mat3::Identity(), 0.25), m1), 4);
+  ASSERT_EQ(fq::collide_box_box(cube(Vec3::Zero()), cube(Vec3(0.11, 0.01, 0.5 + 0.25 - 0.0021), Mat3::Identity(), 0.25), m2), 4);
+  for (int k = 0; k < 4; ++k) {
+    bool found = false;
+    for (int j = 0; j < 4; ++j) found = found || m1.points[k].feature == m2.points[j].feature;
+    EXPECT_TRUE(found);
+  }
+}
+
+}  // namespace
