@@ -1,5 +1,7 @@
 #include "contacts/contact_system.h"
 
+#include <type_traits>
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -114,9 +116,29 @@ void ContactSystem::accumulate_forces(BodyStore& bodies, const StepInfo& step) {
     for (std::size_t p = 0; p < pairs.size(); ++p)
       pair_coeff_[p] = coeff_index_for(body_material_[pairs[p].a], body_material_[pairs[p].b]);
   }
+  if (bonded_) {
+    const auto& released = bonded_->released();
+    for (; released_read_ < released.size(); ++released_read_) {
+      const std::uint64_t key = pair_key(released[released_read_].first, released[released_read_].second);
+      soft_start_pairs_.insert(std::lower_bound(soft_start_pairs_.begin(), soft_start_pairs_.end(), key), key);
+    }
+  }
   std::swap(previous_, contacts_);
   narrow_phase(bodies, step);
   apply_law(bodies, step);
+  if (!soft_start_pairs_.empty()) {
+    // A released pair without any contact point has separated: from now on
+    // it is an ordinary pair. contacts_ is sorted by pair key.
+    std::erase_if(soft_start_pairs_, [&](std::uint64_t key) {
+      return !std::binary_search(contacts_.begin(), contacts_.end(), key,
+                                 [](const auto& x, const auto& y) {
+                                   if constexpr (std::is_same_v<std::decay_t<decltype(x)>, ContactPoint>)
+                                     return x.pair_key < y;
+                                   else
+                                     return x < y.pair_key;
+                                 });
+    });
+  }
   gather(bodies);
 }
 
@@ -214,10 +236,15 @@ void ContactSystem::apply_law(const BodyStore& bodies, const StepInfo& step) {
       return key_less(p, q.pair_key, q.feature);
     });
     Vec3 shear = Vec3::Zero();
+    c.reference_depth_m = 0.0;
     if (it != previous_.end() && it->pair_key == c.pair_key && it->feature == c.feature) {
       shear = it->shear_spring_N;
+      c.reference_depth_m = std::min(it->reference_depth_m, c.depth_m);
       // Keys are unique, so no two contacts write the same record.
       previous_[std::size_t(it - previous_.begin())].history_carried = true;
+    } else if (!soft_start_pairs_.empty() &&
+               std::binary_search(soft_start_pairs_.begin(), soft_start_pairs_.end(), c.pair_key)) {
+      c.reference_depth_m = c.depth_m;  // first touch of a pair released from a joint
     }
 
     const Vec3 va = c.body_a >= 0 && (c.pair_key & kGroundKeyHigh) != kGroundKeyHigh
@@ -226,7 +253,7 @@ void ContactSystem::apply_law(const BodyStore& bodies, const StepInfo& step) {
     const Vec3 v_rel = bodies.point_velocity(c.body_b, c.position_m) - va;
     const double vn = c.normal.dot(v_rel);
     ContactLawInput in;
-    in.depth_m = c.depth_m;
+    in.depth_m = c.depth_m - c.reference_depth_m;
     in.approach_speed_mps = -vn;
     in.normal = c.normal;
     in.tangential_velocity_mps = v_rel - vn * c.normal;

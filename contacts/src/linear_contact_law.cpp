@@ -37,9 +37,14 @@ ContactLawOutput linear_contact_law(const ContactCoefficients& coeff, const Cont
   const double cap = coeff.friction_coefficient * fn;
   const double ft_len = ft.norm();
   if (ft_len > cap) {
+    // Sliding: the contact transmits mu F_n along the trial force, and the
+    // spring is reset to carry exactly that force (Cundall-Strack). Storing
+    // fs = ft + c_t v_t instead would park the dashpot's share in the spring:
+    // energy that no elastic unloading gives back, and a jerk of c_t v_t when
+    // sliding stops.
     out.sliding = true;
     ft = ft_len > 0.0 ? Vec3(ft * (cap / ft_len)) : Vec3::Zero();
-    fs = ft + ct * vt;
+    fs = ft;
   }
   io_shear_spring_N = fs;
   out.tangential_force_N = ft;

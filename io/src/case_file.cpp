@@ -399,8 +399,8 @@ std::string reference_message(const std::string& kind, const std::string& given,
 void parse_members(const Reader& r, const Field& f, CaseDef& def) {
   r.to_list(f, "members", false);
   for_each_item(
-      r, f, "a member: id, kind, nodes, section, material, roll_deg",
-      {"id", "kind", "nodes", "section", "material", "roll_deg"},
+      r, f, "a member: id, kind, nodes, section, material, roll_deg, trim_m",
+      {"id", "kind", "nodes", "section", "material", "roll_deg", "trim_m"},
       [&](const YAML::Node& n, const std::string& path, int line, std::size_t) {
         MemberDef m;
         m.line = line;
@@ -444,6 +444,12 @@ void parse_members(const Reader& r, const Field& f, CaseDef& def) {
           r.fail(material, reference_message("material", m.material, def.materials, &MaterialDef::name, "materials"));
 
         m.roll_rad = r.optional_number(n, "roll_deg", path, 0.0) * kRadPerDeg;
+        if (const auto trim = r.get(n, "trim_m", path)) {
+          if (!trim->value.IsSequence() || trim->value.size() != 2)
+            r.fail(*trim, "expected a list of two lengths >= 0 (m): [trim at node a, trim at node b]");
+          m.trim_a_m = r.to_non_negative(Reader::item(*trim, 0));
+          m.trim_b_m = r.to_non_negative(Reader::item(*trim, 1));
+        }
         def.members.push_back(m);
       });
 }
@@ -715,6 +721,66 @@ void parse_joints(const Reader& r, const Field& f, CaseDef& def) {
   }
 }
 
+
+// ---- contacts ----------------------------------------------------------------
+
+ContactParams parse_contact_params(const Reader& r, const Field& f, const std::string& what) {
+  r.expect_map(f.value, f.line, f.path, what);
+  r.expect_keys(f.value,
+                {"normal_stiffness_N_per_m", "restitution", "tangential_stiffness_N_per_m", "friction_coefficient"},
+                f.path);
+  ContactParams p;
+  p.normal_stiffness_N_per_m = r.optional_positive(f.value, "normal_stiffness_N_per_m", f.path, p.normal_stiffness_N_per_m);
+  p.restitution = r.optional_positive(f.value, "restitution", f.path, p.restitution);
+  p.tangential_stiffness_N_per_m =
+      r.optional_non_negative(f.value, "tangential_stiffness_N_per_m", f.path, p.tangential_stiffness_N_per_m);
+  p.friction_coefficient = r.optional_non_negative(f.value, "friction_coefficient", f.path, p.friction_coefficient);
+  try {
+    (void)make_contact_coefficients(p, f.path.c_str());
+  } catch (const std::invalid_argument& e) {
+    r.fail(f, std::string("invalid contact parameters: ") + e.what());
+  }
+  return p;
+}
+
+void parse_contact(const Reader& r, const Field& f, CaseDef& def) {
+  r.expect_map(f.value, f.line, f.path, "ground, default, pairs");
+  r.expect_keys(f.value, {"ground", "default", "pairs"}, f.path);
+  ContactDef c;
+  c.line = f.line;
+  if (const auto g = r.get(f.value, "ground", f.path)) c.ground = parse_contact_params(r, *g, "ground contact parameters");
+  if (const auto d = r.get(f.value, "default", f.path))
+    c.default_pair = parse_contact_params(r, *d, "default contact parameters");
+  if (const auto pairs = r.get(f.value, "pairs", f.path)) {
+    r.to_list(*pairs, "material pairs", false);
+    const Keys keys = {"materials", "normal_stiffness_N_per_m", "restitution", "tangential_stiffness_N_per_m",
+                       "friction_coefficient"};
+    for_each_item(r, *pairs, "a material pair", keys,
+                  [&](const YAML::Node& n, const std::string& path, int line, std::size_t) {
+                    ContactPairDef p;
+                    p.line = line;
+                    const Field mats = r.require(n, "materials", path, "two material names");
+                    if (!mats.value.IsSequence() || mats.value.size() != 2)
+                      r.fail(mats, "expected a list of two material names");
+                    for (std::size_t i = 0; i < 2; ++i) {
+                      const Field m = Reader::item(mats, i);
+                      const std::string name = r.to_name(m, "a material name");
+                      if (def.material_index(name) < 0)
+                        r.fail(m, reference_message("material", name, def.materials, &MaterialDef::name,
+                                                    "materials"));
+                      (i == 0 ? p.material_1 : p.material_2) = name;
+                    }
+                    // The pair's own keys are parameters; `materials` is not.
+                    YAML::Node params(YAML::NodeType::Map);
+                    for (auto it = n.begin(); it != n.end(); ++it)
+                      if (it->first.Scalar() != "materials") params[it->first] = it->second;
+                    p.params = parse_contact_params(r, Field{params, line, path}, "contact parameters");
+                    c.pairs.push_back(p);
+                  });
+  }
+  def.contact = c;
+}
+
 void parse_supports(const Reader& r, const Field& f, CaseDef& def) {
   r.to_list(f, "supports", false);
   for_each_item(
@@ -861,6 +927,7 @@ const SectionEntry kSections[] = {
     {"joint_types", false, "", parse_joint_types},
     {"joints", false, "", parse_joints},
     {"supports", false, "", parse_supports},
+    {"contact", false, "", parse_contact},
     {"ground", false, "", parse_ground},
     {"ground_motion", false, "", parse_ground_motion},
     {"output", false, "", parse_output},

@@ -55,6 +55,22 @@ Scene build_scene(const CaseDef& def) {
     scene.joints = joints.get();
     sim.add_force_provider(std::move(joints));
   }
+  if (def.contact) {
+    const ContactDef& c = *def.contact;
+    auto contacts = std::make_unique<ContactSystem>(&sim.bonded_pairs());
+    for (std::size_t i = 0; i < def.members.size(); ++i)
+      contacts->set_body_material(model.member_body[i], def.material_index(def.members[i].material));
+    for (std::size_t i = 0; i < def.blocks.size(); ++i)
+      contacts->set_body_material(model.block_body[i], def.material_index(def.blocks[i].material));
+    const int materials = int(def.materials.size());
+    for (int i = 0; i < materials; ++i)
+      for (int j = i; j < materials; ++j) contacts->set_pair_params(i, j, c.default_pair);
+    for (const ContactPairDef& p : c.pairs)
+      contacts->set_pair_params(def.material_index(p.material_1), def.material_index(p.material_2), p.params);
+    if (c.ground) contacts->set_ground(def.ground ? def.ground->level_m : 0.0, *c.ground);
+    scene.contacts = contacts.get();
+    sim.add_force_provider(std::move(contacts));
+  }
   scene.stable_time_step = estimate_stable_time_step(*scene.simulation);
   return scene;
 }
@@ -79,6 +95,7 @@ CaseRunReport run_case(const CaseDef& def, const CaseRunOptions& options) {
   try {
     writer = std::make_unique<RunOutput>(output, def.name);
     if (scene.joints) attach_joint_output(*writer, *scene.joints);
+    if (scene.contacts) attach_contact_output(*writer, *scene.contacts);
     writer->attach(sim);
   } catch (const std::exception& e) {
     throw OutputError(e.what());

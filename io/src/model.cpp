@@ -154,12 +154,18 @@ Model build_model(const CaseDef& def_in) {
       fail(sec.line, item_path("sections", std::size_t(s)), "expected a positive width_m and depth_m");
     if (m.kind == MemberKind::Ground) fail(m.line, path + ".kind", "a member cannot be of kind ground");
 
+    if (!(m.trim_a_m >= 0.0) || !(m.trim_b_m >= 0.0) || !(m.trim_a_m + m.trim_b_m < length_m - kMinMemberLength_m))
+      fail(m.line, path + ".trim_m",
+           "expected two trims >= 0 whose sum is less than the member length " + std::to_string(length_m) + " m");
+    const Vec3 axis = (pb - pa) / length_m;
+    const double box_length_m = length_m - m.trim_a_m - m.trim_b_m;
+
     BoxBodyDef box;
     box.name = m.id;
     box.kind = m.kind;
-    box.size_m = Vec3(length_m, sec.width_m, sec.depth_m);
+    box.size_m = Vec3(box_length_m, sec.width_m, sec.depth_m);
     box.density_kg_per_m3 = material_density(m.material, m.line, path);
-    box.position_m = 0.5 * (pa + pb);
+    box.position_m = pa + (m.trim_a_m + 0.5 * box_length_m) * axis;
     box.orientation = member_orientation(pa, pb, m.roll_rad);
     extend_bounds(box.position_m, box.orientation, box.size_m, lo, hi);
     member_boxes.push_back(box);

@@ -35,6 +35,26 @@ void attach_joint_output(RunOutput& output, const JointSystem& joints) {
   output.add_history_column("joints_broken_count", [js](const Simulation&) { return double(js->counts().broken); });
 }
 
+void attach_contact_output(RunOutput& output, const ContactSystem& contacts) {
+  const ContactSystem* cs = &contacts;
+  output.add_cell_block("contacts", [cs](const Simulation& /*sim*/, VtkFrameBuilder& frame) {
+    const auto force = frame.cell_array("contact_force_N", VtkArrayType::Float64, 3, std::nan(""));
+    const auto normal = frame.cell_array("contact_normal", VtkArrayType::Float64, 3, std::nan(""));
+    const auto depth = frame.cell_array("contact_depth_m", VtkArrayType::Float64, 1, std::nan(""));
+    const auto sliding = frame.cell_array("contact_sliding", VtkArrayType::Int32, 1, -1);
+    for (const ContactPoint& c : cs->contacts()) {
+      const auto p = frame.add_point(c.position_m);
+      const auto cell = frame.add_cell(VtkCellType::Vertex, {p});
+      frame.set(force, cell, c.force_N());
+      frame.set(normal, cell, c.normal);
+      frame.set(depth, cell, c.depth_m);
+      frame.set(sliding, cell, c.sliding ? 1.0 : 0.0);
+    }
+  });
+  output.add_history_column("contact_points_count", [cs](const Simulation&) { return double(cs->contact_count()); });
+  output.add_history_column("ground_normal_force_N", [cs](const Simulation&) { return cs->ground_normal_force_N(); });
+}
+
 void add_joint_summary(RunOutput& output, const JointSystem& joints, const EventLog& events) {
   const JointCounts c = joints.counts();
   std::ostringstream counts;

@@ -2,6 +2,7 @@
 // cells in every frame, joint counts in history.csv and summary.json.
 #pragma once
 
+#include "contacts/contact_system.h"
 #include "io/run_output.h"
 #include "joints/joint_system.h"
 
@@ -17,5 +18,11 @@ void attach_joint_output(RunOutput& output, const JointSystem& joints);
 // Summary fields: joint counts at the end and the time of the first joint
 // failure (first spring deletion or joint break; null when none).
 void add_joint_summary(RunOutput& output, const JointSystem& joints, const EventLog& events);
+
+// Contact points as VTK vertex cells with contact_force_N (force on body b,
+// 3 components), contact_normal (unit, a to b), contact_depth_m and
+// contact_sliding (0/1); history columns contact_points_count and
+// ground_normal_force_N.
+void attach_contact_output(RunOutput& output, const ContactSystem& contacts);
 
 }  // namespace fq

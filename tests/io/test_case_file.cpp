@@ -642,6 +642,7 @@ TEST(CaseFile, ReadmeTablesMatchAllowedKeys) {
       "               fracture: {@fracture@criterion: never}}]\n"
       "joints: {@joints@default_type: t}\n"
       "supports: [{@supports@node: a}]\n"
+      "contact: {@contact@ground: {@contact_params@restitution: 0.5}, pairs: [{materials: [spruce, spruce]}]}\n"
       "ground: {@ground@level_m: 0}\n"
       "ground_motion: {@ground_motion@components: [{@components@file: rec.txt, format: two_column, axis: x}]}\n"
       "output: {@output@folder: out/x}\n";
@@ -658,6 +659,8 @@ TEST(CaseFile, ReadmeTablesMatchAllowedKeys) {
       {"### `joint_types[i]`", "joint_types"},
       {"#### `fracture`", "fracture"},
       {"### `joints`", "joints"},
+      {"### `contact`", "contact"},
+      {"#### Contact parameters (`contact.ground`, `contact.default`, `contact.pairs[i]`)", "contact_params"},
       {"### `ground`", "ground"},
       {"### `ground_motion`", "ground_motion"},
       {"#### `ground_motion.components[i]`", "components"},

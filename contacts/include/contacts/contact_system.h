@@ -25,6 +25,18 @@
 // 1/2 |F_s|^2 / k_t, is lost with it and booked as friction dissipation, so
 // the ledger still balances.
 //
+// Pairs released by a joint break (STYLE.md 3.2: contacts switch on in the
+// same place the joint breaks): the two members may still overlap where the
+// joint held them (a beam end inside a column, a rotated tenon). A contact
+// that began at that overlap would push them apart with k d at once,
+// energy k d^2 / 2 that no work put in. Such a pair therefore starts from its
+// overlap: each of its points takes the depth at first touch as a reference
+// depth d0, the normal spring acts on d - d0 only, and d0 follows min(d0, d)
+// while the point is carried, so it fades as the members separate and any
+// further penetration is resisted in full. The pair leaves this regime once
+// it has no contact point at all (DEM codes use the same idea for particles
+// generated in overlap).
+//
 // Per-point stiffness: contact_params.h, scaled by the point's weight s_i
 // (contact_manifold.h). Dashpot mass: the pair's reduced mass (m_a m_b /
 // (m_a + m_b), or the free body's mass against a fixed body or the ground)
@@ -62,6 +74,9 @@ struct ContactPoint {
   double normal_force_N = 0.0;         // >= 0 (N)
   Vec3 tangential_force_N = Vec3::Zero();  // on b, world (N)
   Vec3 shear_spring_N = Vec3::Zero();  // tangential history (N), world
+  // Overlap the pair had when its joint broke (m): the normal spring acts on
+  // depth_m - reference_depth_m only (see ContactSystem).
+  double reference_depth_m = 0.0;
   bool sliding = false;
   // Force on b (N, world); a receives the opposite.
   Vec3 force_N() const { return normal_force_N * normal + tangential_force_N; }
@@ -151,6 +166,10 @@ class ContactSystem : public ForceProvider {
   std::vector<std::vector<ContactPoint>> chunk_buffers_;
   std::vector<ContactPoint> contacts_;
   std::vector<ContactPoint> previous_;
+  // Pairs released by a joint that have not yet separated (pair keys), and
+  // how many entries of BondedPairs::released() have been read.
+  std::vector<std::uint64_t> soft_start_pairs_;  // sorted
+  std::size_t released_read_ = 0;
   std::vector<std::int32_t> body_start_;     // CSR of contacts per body
   std::vector<std::int32_t> body_entries_;   // contact index * 2 + (0: a side, 1: b side)
   double elastic_J_ = 0.0;

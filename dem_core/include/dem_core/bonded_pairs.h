@@ -7,6 +7,8 @@
 
 #include <cstdint>
 #include <unordered_map>
+#include <utility>
+#include <vector>
 
 #include "dem_core/types.h"
 
@@ -19,8 +21,14 @@ class BondedPairs {
   // joint holds it any more.
   void release(BodyId a, BodyId b) {
     auto it = count_.find(key(a, b));
-    if (it != count_.end() && --it->second <= 0) count_.erase(it);
+    if (it != count_.end() && --it->second <= 0) {
+      count_.erase(it);
+      released_.emplace_back(a < b ? a : b, a < b ? b : a);
+    }
   }
+  // Every pair that became free, in the order it happened (lower id first).
+  // Contacts read it to start such pairs from their overlap at release.
+  const std::vector<std::pair<BodyId, BodyId>>& released() const { return released_; }
   bool bonded(BodyId a, BodyId b) const { return count_.count(key(a, b)) != 0; }
   std::size_t size() const { return count_.size(); }
 
@@ -31,6 +39,7 @@ class BondedPairs {
     return (std::uint64_t(hi) << 32) | lo;
   }
   std::unordered_map<std::uint64_t, int> count_;
+  std::vector<std::pair<BodyId, BodyId>> released_;
 };
 
 }  // namespace fq

@@ -40,6 +40,7 @@
 #include "dem_core/body_store.h"
 #include "dem_core/ground_motion.h"
 #include "dem_core/types.h"
+#include "contacts/contact_params.h"
 #include "io/accelerogram.h"
 #include "joints/fracture.h"
 #include "joints/spring_law.h"
@@ -94,6 +95,13 @@ struct MemberDef {
   std::string section;                  // required; name of a SectionDef
   std::string material;                 // required; name of a MaterialDef
   double roll_rad = 0.0;                // section roll about local x (rad); file: roll_deg
+  // End trims (m): the box is shortened by trim_a_m at node a and trim_b_m at
+  // node b (file: trim_m: [a, b]) so it stops at the face of the member it
+  // meets instead of overlapping it; the nodes stay where joints act. Members
+  // that overlap at rest would push each other apart through contact as soon
+  // as their joint breaks.
+  double trim_a_m = 0.0;
+  double trim_b_m = 0.0;
   int line = 0;
 };
 
@@ -201,6 +209,23 @@ struct GroundMotionDef {
   std::vector<GroundMotionComponentDef> components;  // non-empty
 };
 
+// ---- contacts (contact) -----------------------------------------------------
+// Contact parameters (contacts/contact_params.h, every default argued there)
+// for the ground and for material pairs. Without a `contact` section bodies
+// pass through each other and through the ground.
+struct ContactPairDef {
+  std::string material_1, material_2;
+  ContactParams params;
+  int line = 0;
+};
+
+struct ContactDef {
+  std::optional<ContactParams> ground;  // box-ground half-space at ground.level_m; unset = no ground contact
+  ContactParams default_pair;           // every material pair without an entry in `pairs`
+  std::vector<ContactPairDef> pairs;
+  int line = 0;
+};
+
 struct CaseDef {
   std::filesystem::path source_file;  // case file as given; empty when built in code
   int schema_version = kCaseSchemaVersion;
@@ -215,6 +240,7 @@ struct CaseDef {
   std::vector<SupportDef> supports;
   std::vector<JointTypeDef> joint_types;
   JointsDef joints;
+  std::optional<ContactDef> contact;  // unset: no contacts
   std::optional<GroundDef> ground;               // unset: no `ground` section
   std::optional<GroundMotionDef> ground_motion;  // unset: no shaking
   // folder default: out/<name>, relative to the working directory (filled by

@@ -17,6 +17,7 @@
 #include <string>
 
 #include "dem_core/simulation.h"
+#include "contacts/contact_system.h"
 #include "io/case_def.h"
 #include "joints/joint_system.h"
 
@@ -43,7 +44,8 @@ struct StableTimeStep {
 // A simulation assembled from a case, with its providers attached.
 struct Scene {
   std::unique_ptr<Simulation> simulation;
-  JointSystem* joints = nullptr;  // owned by the simulation; null when the case has no joints
+  JointSystem* joints = nullptr;      // owned by the simulation; null when the case has no joints
+  ContactSystem* contacts = nullptr;  // owned by the simulation; null without a contact section
   std::vector<std::string> joint_labels;  // per joint id: where it is and its type
   StableTimeStep stable_time_step;
 };
