@@ -5,6 +5,11 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install_deps.sh
 BUILD_DIR=build BUILD_TYPE=Release bash scripts/build.sh
-echo "[framequake] running the main job"
-./build/apps/framequake run cases/demo_falling_block.yaml --out out/demo_falling_block
-echo "[framequake] done: open out/demo_falling_block/case.pvd in ParaView"
+# Until the frames A/B/C comparison exists, the main job runs the two
+# demonstration cases: a jointed portal frame on the Kobe record and free
+# blocks sliding, rocking and landing on shaking ground.
+for case in demo_portal_frame demo_falling_block; do
+  echo "[framequake] running cases/$case.yaml"
+  ./build/apps/framequake run "cases/$case.yaml" --out "out/$case"
+done
+echo "[framequake] done: open out/demo_portal_frame/case.pvd or out/demo_falling_block/case.pvd in ParaView"

@@ -237,9 +237,13 @@ void ContactSystem::apply_law(const BodyStore& bodies, const StepInfo& step) {
     });
     Vec3 shear = Vec3::Zero();
     c.reference_depth_m = 0.0;
+    c.elastic_prev_J = 0.0;  // a new point starts with empty springs
+    c.elastic_tangential_prev_J = 0.0;
     if (it != previous_.end() && it->pair_key == c.pair_key && it->feature == c.feature) {
       shear = it->shear_spring_N;
       c.reference_depth_m = std::min(it->reference_depth_m, c.depth_m);
+      c.elastic_prev_J = it->elastic_J;
+      c.elastic_tangential_prev_J = it->elastic_tangential_J;
       // Keys are unique, so no two contacts write the same record.
       previous_[std::size_t(it - previous_.begin())].history_carried = true;
     } else if (!soft_start_pairs_.empty() &&
@@ -247,10 +251,14 @@ void ContactSystem::apply_law(const BodyStore& bodies, const StepInfo& step) {
       c.reference_depth_m = c.depth_m;  // first touch of a pair released from a joint
     }
 
-    const Vec3 va = c.body_a >= 0 && (c.pair_key & kGroundKeyHigh) != kGroundKeyHigh
-                        ? bodies.point_velocity(c.body_a, c.position_m)
-                        : Vec3(Vec3::Zero());
-    const Vec3 v_rel = bodies.point_velocity(c.body_b, c.position_m) - va;
+    // Arms at n and the velocity at n-1/2, kept for finish_step's books.
+    const bool moving_a = c.body_a >= 0 && (c.pair_key & kGroundKeyHigh) != kGroundKeyHigh;
+    c.arm_a_m = moving_a ? Vec3(c.position_m - bodies.position_m[c.body_a]) : Vec3(Vec3::Zero());
+    c.arm_b_m = c.position_m - bodies.position_m[c.body_b];
+    const Vec3 va = moving_a ? Vec3(bodies.velocity_mps[c.body_a] + bodies.angular_velocity_radps[c.body_a].cross(c.arm_a_m))
+                             : Vec3(Vec3::Zero());
+    const Vec3 v_rel = bodies.velocity_mps[c.body_b] + bodies.angular_velocity_radps[c.body_b].cross(c.arm_b_m) - va;
+    c.velocity_prev_mps = v_rel;
     const double vn = c.normal.dot(v_rel);
     ContactLawInput in;
     in.depth_m = c.depth_m - c.reference_depth_m;
@@ -266,25 +274,69 @@ void ContactSystem::apply_law(const BodyStore& bodies, const StepInfo& step) {
     c.shear_spring_N = shear;
     c.sliding = out.sliding;
     c.elastic_J = out.elastic_J;
-    c.viscous_J = out.viscous_J;
-    c.friction_J = out.friction_J;
+    c.elastic_tangential_J = out.elastic_tangential_J;
+    if (step.step == 0) {
+      // The ledger's initial stored energy already holds the springs at t = 0.
+      c.elastic_prev_J = c.elastic_J;
+      c.elastic_tangential_prev_J = c.elastic_tangential_J;
+    }
+    c.viscous_J = 0.0;  // booked in finish_step
+    c.friction_J = 0.0;
   }
-  // Energies summed in contact order (deterministic).
+  // Elastic energy summed in contact order (deterministic).
   double elastic = 0.0, viscous = 0.0, friction = 0.0;
-  for (const ContactPoint& c : contacts_) {
-    elastic += c.elastic_J;
-    viscous += c.viscous_J;
-    friction += c.friction_J;
-  }
-  // Shear springs of contacts that ended lose their energy (header).
+  for (const ContactPoint& c : contacts_) elastic += c.elastic_J;
+  // Springs of contacts that ended lose their energy (header): the shear
+  // spring's as friction, the normal spring's as viscous.
   for (const ContactPoint& p : previous_) {
     if (p.history_carried) continue;
-    const double kt = p.stiffness_scale * coeffs_[std::size_t(p.coeff_index)].tangential_stiffness_N_per_m;
-    if (kt > 0.0) friction += 0.5 * p.shear_spring_N.squaredNorm() / kt;
+    friction += p.elastic_tangential_J;
+    viscous += p.elastic_J - p.elastic_tangential_J;
   }
   elastic_J_ = elastic;
   viscous_J_ += viscous;
   friction_J_ += friction;
+}
+
+void ContactSystem::finish_step(const BodyStore& bodies, const StepInfo& step, EventLog& /*events*/) {
+  // Losses of step n from the work of the contact forces with v_n (header).
+  // The bodies hold v(n+1/2) and w(n+1/2); the arms are those of step n.
+  const double dt = step.dt_s;
+  const std::int64_t n = std::int64_t(contacts_.size());
+#if defined(_OPENMP)
+#pragma omp parallel for schedule(static) if (n >= settings_.parallel_threshold)
+#endif
+  for (std::int64_t k = 0; k < n; ++k) {
+    ContactPoint& c = contacts_[std::size_t(k)];
+    const bool moving_a = c.body_a >= 0 && (c.pair_key & kGroundKeyHigh) != kGroundKeyHigh;
+    const Vec3 va = moving_a ? Vec3(bodies.velocity_mps[c.body_a] + bodies.angular_velocity_radps[c.body_a].cross(c.arm_a_m))
+                             : Vec3(Vec3::Zero());
+    const Vec3 v_next = bodies.velocity_mps[c.body_b] + bodies.angular_velocity_radps[c.body_b].cross(c.arm_b_m) - va;
+    const Vec3 v_rel = 0.5 * (c.velocity_prev_mps + v_next);
+    const double loss_normal_J = -dt * c.normal_force_N * c.normal.dot(v_rel);   // -W_N
+    const double loss_tangential_J = -dt * c.tangential_force_N.dot(v_rel);      // -W_T
+    const double d_elastic_t = c.elastic_tangential_J - c.elastic_tangential_prev_J;
+    const double d_elastic_n = (c.elastic_J - c.elastic_tangential_J) - (c.elastic_prev_J - c.elastic_tangential_prev_J);
+    c.viscous_work_loss_J = loss_normal_J + (c.sliding ? 0.0 : loss_tangential_J);
+    c.friction_work_loss_J = c.sliding ? loss_tangential_J : 0.0;
+    c.viscous_J = c.viscous_work_loss_J - d_elastic_n - (c.sliding ? 0.0 : d_elastic_t);
+    c.friction_J = c.friction_work_loss_J - (c.sliding ? d_elastic_t : 0.0);
+  }
+  // Summed in contact order (deterministic). The ledger counts step 0's
+  // work from t = 0 only (its second half), and reports each step's work
+  // half at the step itself (energy_ledger.h); elastic changes count in full.
+  const double first_missing = step.step == 0 ? 0.5 : 0.0;
+  double viscous = 0.0, friction = 0.0, viscous_half = 0.0, friction_half = 0.0;
+  for (const ContactPoint& c : contacts_) {
+    viscous += c.viscous_J - first_missing * c.viscous_work_loss_J;
+    friction += c.friction_J - first_missing * c.friction_work_loss_J;
+    viscous_half += 0.5 * c.viscous_work_loss_J;
+    friction_half += 0.5 * c.friction_work_loss_J;
+  }
+  viscous_J_ += viscous;
+  friction_J_ += friction;
+  viscous_half_J_ = viscous_half;
+  friction_half_J_ = friction_half;
 }
 
 void ContactSystem::gather(BodyStore& bodies) {
@@ -333,8 +385,8 @@ void ContactSystem::gather(BodyStore& bodies) {
 
 void ContactSystem::report_energy(EnergyLedger& ledger) const {
   ledger.elastic_J += elastic_J_;
-  ledger.dissipated_viscous_J += viscous_J_;
-  ledger.dissipated_friction_J += friction_J_;
+  ledger.dissipated_viscous_J += dissipated_viscous_J();
+  ledger.dissipated_friction_J += dissipated_friction_J();
 }
 
 double ContactSystem::ground_normal_force_N() const {

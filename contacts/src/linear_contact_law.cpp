@@ -50,6 +50,7 @@ ContactLawOutput linear_contact_law(const ContactCoefficients& coeff, const Cont
   out.tangential_force_N = ft;
   const double elastic_t = kt > 0.0 ? 0.5 * fs.squaredNorm() / kt : 0.0;
   out.elastic_J = 0.5 * kn * d * d + elastic_t;
+  out.elastic_tangential_J = elastic_t;
   const double loss_t = -ft.dot(vt) * dt - (elastic_t - elastic_t_old);
   if (out.sliding) {
     out.friction_J = loss_t;

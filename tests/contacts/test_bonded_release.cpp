@@ -1,6 +1,9 @@
 // Pairs held by an intact joint do not collide; after BondedPairs::release
-// the pair is in contact at the very next force evaluation. The ground
-// member (MemberKind::Ground) never collides as a box.
+// the pair is in contact at the very next force evaluation, starting from the
+// overlap the joint held it at (contact_system.h: a released pair's overlap
+// is the reference depth, so the break creates no energy) and resisting any
+// further penetration in full. The ground member (MemberKind::Ground) never
+// collides as a box.
 #include <gtest/gtest.h>
 
 #include "scene_helpers.h"
@@ -37,9 +40,17 @@ TEST(BondedRelease, PairCollidesTheStepAfterItsJointReleasesIt) {
     EXPECT_EQ(c.body_a, 0);
     EXPECT_EQ(c.body_b, 1);
     EXPECT_NEAR(c.normal.x(), 1.0, 1e-12);  // face contact along x, from 0 to 1
+    EXPECT_NEAR(c.depth_m, 1e-3, 1e-12);
+    EXPECT_EQ(c.reference_depth_m, c.depth_m);  // the held overlap is the reference
+    EXPECT_EQ(c.normal_force_N, 0.0);
   }
-  EXPECT_LT(sim.bodies().velocity_mps[0].x(), 0.0);  // pushed apart
-  EXPECT_GT(sim.bodies().velocity_mps[1].x(), 0.0);
+  EXPECT_EQ(sim.bodies().velocity_mps[0], Vec3::Zero());  // not thrown apart
+  EXPECT_EQ(sim.bodies().velocity_mps[1], Vec3::Zero());
+  // Pressing further in is resisted: body 1 moving towards body 0 pushes it.
+  sim.bodies().velocity_mps[1] = Vec3(-0.01, 0, 0);
+  for (int k = 0; k < 20; ++k) sim.step();
+  EXPECT_LT(sim.bodies().velocity_mps[0].x(), 0.0);
+  EXPECT_GT(scene.contacts->contacts()[0].normal_force_N, 0.0);
 }
 
 }  // namespace

@@ -2,6 +2,14 @@
 // contact-only scene (kinetic + gravity potential + contact elastic) must not
 // grow beyond the integrator's error; with dissipation, the ledger must
 // balance (what is lost is booked as viscous or friction loss).
+//
+// Booking (contact_system.h): the contacts book as loss the work their
+// forces do with the leapfrog velocity v_n minus the change of their elastic
+// energy, so a conservative contact books as "viscous" (either sign) what
+// the former booking left in the balance error: its springs' leapfrog
+// mismatch and the jumps of stored energy when a manifold switches (see the
+// limitation below). The growth of the stored energy is therefore what
+// tells whether contacts create energy.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -16,10 +24,14 @@ using fq::Vec3;
 struct MaxError : fq::StepObserver {
   double max_rel = 0.0;
   double max_abs = 0.0;
+  double max_growth_rel = 0.0;  // (stored - initial stored) / scale
+  double max_growth = 0.0;
   void on_sample(const fq::Simulation& sim) override {
     const auto& l = sim.ledger();
-    max_abs = std::max(max_abs, l.balance_error_J());
-    max_rel = std::max(max_rel, l.balance_error_J() / l.scale_J);
+    max_abs = std::max(max_abs, std::fabs(l.balance_error_J()));
+    max_rel = std::max(max_rel, std::fabs(l.balance_error_J()) / l.scale_J);
+    max_growth = std::max(max_growth, l.stored_J() - l.initial_stored_J);
+    max_growth_rel = std::max(max_growth_rel, (l.stored_J() - l.initial_stored_J) / l.scale_J);
   }
 };
 
@@ -69,16 +81,24 @@ TEST(ContactEnergy, ConservativeContactsDoNotCreateEnergy) {
   scene.sim->run();
   const double w_dt = std::sqrt(24.0 * 1e5 / scene.sim->bodies().mass_kg[0]) * s.dt_s;
   EXPECT_GT(scene.contacts->broad_phase_rebuilds(), 1);
-  EXPECT_EQ(scene.sim->ledger().dissipated_J(), 0.0);
+  // No energy created: the stored energy stays within the bound above. (With
+  // nothing dissipative this is the same check as the balance error under
+  // the former booking, which booked no loss here.)
+  EXPECT_LT(obs.max_growth_rel, w_dt * w_dt / 4.0) << "max growth " << obs.max_growth << " J";
+  // The balance error holds no contact term any more (the books are the
+  // contacts' work, header of contact_system.h): it stays within the same
+  // integrator bound (rotation's drift error).
+  EXPECT_EQ(scene.sim->ledger().dissipated_plastic_J, 0.0);
   EXPECT_LT(obs.max_rel, w_dt * w_dt / 4.0) << "max error " << obs.max_abs << " J";
 }
 
 TEST(ContactEnergy, DissipativeContactsBalanceTheLedger) {
   // Same scene with e = 0.5, mu = 0.4: energy now leaves through dashpots and
-  // friction. The books must still close: the balance error stays within
-  // the conservative run's integrator bound plus the first-order mismatch
-  // of Cundall's scheme (dashpot and friction power evaluated with the
-  // velocity half a step old): zeta w dt of the dissipated energy.
+  // friction. The books must still close: the losses are booked as the work
+  // the contact forces do with v_n, the work the ledger's kinetic energy
+  // sees (contact_system.h), so no first-order term is left (the former
+  // booking from v(n-1/2) left zeta w dt of the dissipated energy) and the
+  // balance error stays within the conservative run's integrator bound.
   fq::SimulationSettings s;
   s.dt_s = 2e-5;
   s.duration_s = 1.0;
@@ -95,8 +115,9 @@ TEST(ContactEnergy, DissipativeContactsBalanceTheLedger) {
   EXPECT_GT(l.dissipated_friction_J, 0.0);
   const double w_dt = std::sqrt(24.0 * 1e5 / scene.sim->bodies().mass_kg[0]) * s.dt_s;
   const double zeta = fq::damping_ratio_from_restitution(0.5);
-  EXPECT_LT(std::fabs(l.balance_error_J()), (w_dt * w_dt / 4.0) * l.scale_J + zeta * w_dt * l.dissipated_J())
-      << "stored " << l.stored_J() << " dissipated " << l.dissipated_J();
+  EXPECT_LT(obs.max_rel, w_dt * w_dt / 4.0)
+      << "max error " << obs.max_abs << " J; stored " << l.stored_J() << " dissipated " << l.dissipated_J()
+      << " (former bound's first-order part zeta w dt D = " << zeta * w_dt * l.dissipated_J() << " J)";
 }
 
 }  // namespace

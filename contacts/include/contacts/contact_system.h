@@ -22,8 +22,46 @@
 // it does not (as LAMMPS does when a pair stops touching). A change of
 // reference face or of the kind of contact (face / edge) changes the feature
 // and so starts a new history. The elastic energy of a dropped shear spring,
-// 1/2 |F_s|^2 / k_t, is lost with it and booked as friction dissipation, so
-// the ledger still balances.
+// 1/2 |F_s|^2 / k_t, is lost with it and booked as friction dissipation (and
+// the normal spring's 1/2 k_n (d - d0)^2 left at the last touch as viscous),
+// so the ledger still balances.
+//
+// Energy booking (why: energy_ledger.h counts the work of every force as
+// dt F_n . v_n with v_n = (v(n-1/2) + v(n+1/2)) / 2; a loss computed inside
+// the law from v(n-1/2), the velocity the forces are computed from, misses
+// that by a first-order term, zeta w dt of the impact energy). The forces
+// stay those of the law at v(n-1/2); only the books change:
+//   accumulate_forces (step n) keeps per point the arms p - x_a(n),
+//     p - x_b(n), the relative velocity of the point at n-1/2 and the
+//     elastic energies E_N(n) = 1/2 k_n (d - d0)^2, E_T(n) = 1/2 |F_s|^2 / k_t
+//     and those of the same point at n-1 (zero for a new point; at step 0
+//     the values at 0, which the ledger's initial stored energy holds). A
+//     new point's energy counts as loaded at its first step: at first touch
+//     F_n ~ c_n v >> k_n d, so a sliding point's shear spring is reset to
+//     mu c_n v at once, an energy of order 1 in dt that no work put in.
+//   finish_step (bodies at v(n+1/2), w(n+1/2)) forms the relative velocity
+//     of the point at n, v_rel = (v_rel(n-1/2) + v_rel(n+1/2)) / 2 (the
+//     ground does not move), the work of the force pair on the bodies
+//     W_N = dt F_n n . v_rel (normal), W_T = dt F_t . v_rel (tangential; F on
+//     b, -F on a, both applied at the point, as gather applies them), and
+//     books the step's loss as
+//       friction = -W_T - (E_T(n) - E_T(n-1))   when the point slides,
+//       viscous  = -W_N - (E_N(n) - E_N(n-1))   (+ the tangential term when it sticks).
+//     The split is a convention (sliding: the slip takes the tangential
+//     loss, dashpot included; sticking: the tangential dashpot); the SUM of
+//     the two is exactly -W - dE, so over a contact's life (its springs end
+//     empty: see the dropped energies above) the books hold exactly the work
+//     the contact did, as the ledger counts it. The contacts leave nothing
+//     in the balance error; what remains is the integrator's own (rotation:
+//     O(dt^2), test_contact_ledger_order) and that of other providers.
+//   report_energy at n follows the ledger's trapezoid (as JointSystem does):
+//     work terms count half at step 0 and half at the current step n, so
+//     the losses reported are sum_{k<=n} (c_k (-W_k) - dE_k) with c_0 = c_n =
+//     1/2, else 1. Consequence: a conservative contact (e = 1, mu = 0) books
+//     as "viscous" (either sign) the leapfrog mismatch of its springs and
+//     the jumps of stored energy when a box-box manifold switches, which
+//     the former booking (in the law, from v(n-1/2)) left in the balance
+//     error; the stored energy's growth still shows them.
 //
 // Pairs released by a joint break (STYLE.md 3.2: contacts switch on in the
 // same place the joint breaks): the two members may still overlap where the
@@ -87,9 +125,20 @@ struct ContactPoint {
   double stiffness_scale = 1.0;
   double effective_mass_kg = 0.0;
   bool history_carried = false;  // set on the previous step's record when this step took its history
-  double elastic_J = 0.0;
+  double elastic_J = 0.0;              // E_N + E_T at this step (J)
+  double elastic_tangential_J = 0.0;   // E_T at this step (J)
+  double elastic_prev_J = 0.0;         // E_N + E_T of the same point at the previous step (J, header)
+  double elastic_tangential_prev_J = 0.0;
+  Vec3 arm_a_m = Vec3::Zero();         // position_m - x_a(n) (m); zero for the ground
+  Vec3 arm_b_m = Vec3::Zero();         // position_m - x_b(n) (m)
+  Vec3 velocity_prev_mps = Vec3::Zero();  // velocity of the point of b relative to a at n-1/2 (m/s)
+  // Losses of this step, set in finish_step (J): -W - dE split as in the
+  // header (whole step, before report_energy's trapezoid weights), and
+  // their work parts -W alone.
   double viscous_J = 0.0;
   double friction_J = 0.0;
+  double viscous_work_loss_J = 0.0;
+  double friction_work_loss_J = 0.0;
 };
 
 struct ContactSystemSettings {
@@ -121,6 +170,9 @@ class ContactSystem : public ForceProvider {
   const char* name() const override { return "contacts"; }
   void prepare(const BodyStore& bodies) override;
   void accumulate_forces(BodyStore& bodies, const StepInfo& step) override;
+  // Books the losses of step n from the work of the contact forces with
+  // v_n (header); the bodies hold v(n+1/2) and w(n+1/2).
+  void finish_step(const BodyStore& bodies, const StepInfo& step, EventLog& events) override;
   void report_energy(EnergyLedger& ledger) const override;
   StiffestMode stiffest_mode(const BodyStore& bodies) const override;
 
@@ -133,8 +185,9 @@ class ContactSystem : public ForceProvider {
   std::size_t candidate_pair_count() const { return broad_.pairs().size(); }
   double skin_m() const { return broad_.skin_m(); }
   double elastic_J() const { return elastic_J_; }
-  double dissipated_viscous_J() const { return viscous_J_; }
-  double dissipated_friction_J() const { return friction_J_; }
+  // Cumulative losses through the current step, as reported to the ledger (J).
+  double dissipated_viscous_J() const { return viscous_J_ - viscous_half_J_; }
+  double dissipated_friction_J() const { return friction_J_ - friction_half_J_; }
 
  private:
   int coeff_index_for(int material_i, int material_j) const;
@@ -173,8 +226,13 @@ class ContactSystem : public ForceProvider {
   std::vector<std::int32_t> body_start_;     // CSR of contacts per body
   std::vector<std::int32_t> body_entries_;   // contact index * 2 + (0: a side, 1: b side)
   double elastic_J_ = 0.0;
+  // Losses booked through the last finished step, its work term in full
+  // (step 0's in half), and half the last step's work terms (J), which
+  // report_energy takes off (header).
   double viscous_J_ = 0.0;
   double friction_J_ = 0.0;
+  double viscous_half_J_ = 0.0;
+  double friction_half_J_ = 0.0;
 };
 
 }  // namespace fq

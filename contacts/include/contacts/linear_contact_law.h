@@ -30,7 +30,10 @@
 //             + (-F_t . v_t dt - change of tangential elastic)   when sticking
 //   friction  =  -F_t . v_t dt - change of tangential elastic     when sliding
 // so that stored + dissipated equals the work the law's forces do on the
-// bodies, up to the integrator's O(dt) mismatch (velocities at n-1/2).
+// bodies, up to an O(dt) mismatch (velocities at n-1/2). These viscous and
+// friction values are the law's own estimate; ContactSystem does not book
+// them: it books the work the forces do with the leapfrog velocity at n
+// (contact_system.h) and uses only elastic_J and elastic_tangential_J here.
 #pragma once
 
 #include "contacts/contact_params.h"
@@ -52,6 +55,7 @@ struct ContactLawOutput {
   double normal_force_N = 0.0;               ///< >= 0, acts on b along +normal (on a along -normal)
   Vec3 tangential_force_N = Vec3::Zero();    ///< on b, world frame, in the contact plane (on a: opposite)
   double elastic_J = 0.0;                    ///< energy stored in the point's springs after the update (J)
+  double elastic_tangential_J = 0.0;         ///< part of elastic_J in the shear spring, 1/2 |F_s|^2 / k_t (J)
   double viscous_J = 0.0;                    ///< dissipated by the dashpots during this step (J)
   double friction_J = 0.0;                   ///< dissipated by Coulomb sliding during this step (J)
   bool sliding = false;                      ///< the Coulomb cap was active
