@@ -42,6 +42,25 @@ double seconds_between(Clock::time_point a, Clock::time_point b) {
 // ledger is bitwise the same whatever the number of threads.
 constexpr std::size_t kReductionChunk = 1024;
 
+// Energy blow-up guard. With elastic energy >= 0 and dissipation >= 0 (every
+// spring, dashpot and friction law of the design), the energy balance
+// (energy_ledger.h) bounds the kinetic energy by what the system was given:
+//   KE(t) <= available(t) = initial_stored + W_gravity(t) + W_ground(t) + W_external(t).
+// A stable leapfrog run breaks this only by its integration error, a small
+// fraction of the energies involved. The run is stopped as unstable when
+//   KE(t) - available(t) > kBlowUpFactor * E_scale,
+//   E_scale = max(|initial_stored|, |W_gravity|, |W_ground|, |W_external|, E_floor),
+// E_scale deliberately not containing KE itself (a runaway KE would raise its
+// own threshold). kBlowUpFactor = 1e6: no integration error of a run that
+// still means anything is a million times the energy in play. E_floor is the
+// kinetic energy of all free mass at 1 m/s, so with nothing else in play
+// (no gravity, no ground motion) the guard fires only at rms speeds of
+// 1000 m/s; a body falling 100 m reaches 44 m/s, nothing in a collapsing
+// frame comes near. Cost: O(1) per step (the sums are made anyway); the
+// O(n) search for the body to name runs only when it fires.
+constexpr double kBlowUpFactor = 1.0e6;
+constexpr double kFloorSpeed_mps = 1.0;
+
 struct ChunkSums {
   Vec3 momentum_old = Vec3::Zero();  // sum m v(n-1/2) (kg m/s)
   Vec3 momentum_new = Vec3::Zero();  // sum m v(n+1/2)
@@ -151,6 +170,19 @@ void Simulation::initialize() {
   for (auto& p : providers_) p->report_energy(ledger_);
   ledger_.initial_stored_J = ledger_.stored_J();
   ledger_.update_scale();
+  double free_mass_kg = 0.0;
+  for (std::size_t i = 0; i < n; ++i)
+    if (!bodies_.is_fixed[i]) free_mass_kg += bodies_.mass_kg[i];
+  energy_floor_J_ = 0.5 * free_mass_kg * kFloorSpeed_mps * kFloorSpeed_mps;
+}
+
+bool Simulation::energy_blew_up() const {
+  const EnergyLedger& l = ledger_;
+  const double work_gravity_J = -l.gravity_potential_J;
+  const double available_J = l.initial_stored_J + work_gravity_J + l.work_ground_motion_J + l.work_external_J;
+  const double scale_J = std::max({std::abs(l.initial_stored_J), std::abs(work_gravity_J),
+                                   std::abs(l.work_ground_motion_J), std::abs(l.work_external_J), energy_floor_J_});
+  return l.kinetic_J - available_J > kBlowUpFactor * scale_J;
 }
 
 void Simulation::integrate() {
@@ -236,6 +268,32 @@ void Simulation::integrate() {
   forces_current_ = false;
 }
 
+// Instability event for an energy blow-up found after step n = step_ - 1
+// (the ledger then describes t_n), naming the body with the largest kinetic
+// energy (the one running away). O(n), only when the guard fired.
+void Simulation::record_blow_up() {
+  const std::size_t n = bodies_.size();
+  std::size_t worst = 0;
+  double worst_J = -1.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (bodies_.is_fixed[i]) continue;
+    const double ke = 0.5 * bodies_.mass_kg[i] * bodies_.velocity_mps[i].squaredNorm() +
+                      0.5 * bodies_.angular_momentum_Nms[i].dot(bodies_.angular_velocity_radps[i]);
+    if (ke > worst_J) {
+      worst_J = ke;
+      worst = i;
+    }
+  }
+  Event e;
+  e.step = step_ - 1;
+  e.time_s = double(e.step) * settings_.dt_s;
+  e.kind = EventKind::Instability;
+  e.body_a = BodyId(worst);
+  e.mode = "energy_blow_up";
+  e.position_m = bodies_.position_m[worst];
+  events_.add(e);
+}
+
 void Simulation::finish_step() {
   const StepInfo info{step_, time_s(), settings_.dt_s};
   for (auto& p : providers_) p->finish_step(bodies_, info, events_);
@@ -306,12 +364,23 @@ RunResult Simulation::run(const std::atomic<bool>* stop_requested) {
       result.status = RunStatus::Stopped;
       break;
     }
-    if (!step()) {
+    // The energy guard runs here, not in step(): run() is what users'
+    // cases go through, while step() stays the bare scheme (tests drive it
+    // past its stability limit on purpose).
+    const bool stepped = step();
+    const bool blew_up = stepped && energy_blew_up();
+    if (blew_up) record_blow_up();
+    if (!stepped || blew_up) {
       result.status = RunStatus::Unstable;
       const Event& e = events_.all().back();
       std::ostringstream msg;
-      msg << "state became non-finite at step " << e.step << " (t = " << e.time_s << " s), first in body " << e.body_a
-          << " '" << bodies_.info[e.body_a].name << "'";
+      if (blew_up)
+        msg << "kinetic energy " << ledger_.kinetic_J << " J exceeds a million times the energy put in at step "
+            << e.step << " (t = " << e.time_s << " s), largest in body " << e.body_a << " '"
+            << bodies_.info[e.body_a].name << "'";
+      else
+        msg << "state became non-finite at step " << e.step << " (t = " << e.time_s << " s), first in body "
+            << e.body_a << " '" << bodies_.info[e.body_a].name << "'";
       result.message = msg.str();
       break;
     }

@@ -88,6 +88,9 @@ class Simulation {
   // of the ledger and an Instability event names the first bad body).
   bool step();
   // Runs to settings.duration_s, or until *stop_requested becomes true.
+  // Also stops as Unstable when, after a step, the kinetic energy exceeds a
+  // million times the energy put in (event mode "energy_blow_up" naming the
+  // body with the largest kinetic energy; kBlowUpFactor in simulation.cpp).
   RunResult run(const std::atomic<bool>* stop_requested = nullptr);
 
   const BodyStore& bodies() const { return bodies_; }
@@ -115,6 +118,8 @@ class Simulation {
   void observe(bool force_all);
   void observe_undue();
   void gather_provider_energy();  // observers not due at this step (final sample)
+  bool energy_blew_up() const;    // kinetic energy beyond any physical bound (O(1))
+  void record_blow_up();          // Instability event naming the most energetic body
 
   BodyStore bodies_;
   SimulationSettings settings_;
@@ -139,6 +144,7 @@ class Simulation {
   double work_ground_through_prev_J_ = 0.0;
   std::chrono::steady_clock::time_point wall_start_;
   bool wall_started_ = false;
+  double energy_floor_J_ = 0.0;  // kinetic energy of all free mass at 1 m/s (blow-up guard)
 };
 
 }  // namespace fq

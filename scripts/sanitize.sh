@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# Builds everything with AddressSanitizer + UndefinedBehaviorSanitizer and
+# runs the test suite (all but the `validation` label) so that any sanitizer
+# report fails the run.
+#
+#   scripts/sanitize.sh            (FQ_JOBS=N to change the parallelism, default 2)
+#
+# Build folder: build_asan (-DFQ_SANITIZE=address,undefined,
+# -DCMAKE_BUILD_TYPE=RelWithAsserts; benchmarks are not built). Every report is
+# fatal: -fno-sanitize-recover=all (cmake/FramequakeSanitizers.cmake) makes
+# UBSan abort, ASan stops at the first error, and LeakSanitizer fails a
+# program that leaks at exit. Tests that start the `framequake` binary
+# (tests/apps) run the sanitized binary with the same options, so a report in
+# the child shows up as a wrong exit code there.
+set -euo pipefail
+
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+BUILD="${ROOT}/build_asan"
+JOBS="${FQ_JOBS:-2}"
+start=$(date +%s)
+
+mkdir -p "${BUILD}"
+cmake -S "${ROOT}" -B "${BUILD}" \
+  -DCMAKE_BUILD_TYPE=RelWithAsserts \
+  -DFQ_SANITIZE=address,undefined \
+  -DFQ_BUILD_TESTS=ON -DFQ_BUILD_BENCHMARKS=OFF > "${BUILD}/configure.log" 2>&1 || {
+  cat "${BUILD}/configure.log" >&2; exit 1; }
+cmake --build "${BUILD}" -j"${JOBS}"
+built=$(date +%s)
+
+# halt_on_error / abort_on_error: the first report ends the program with a
+# non-zero status; detect_leaks: leaks at exit are errors; the stack
+# use-after-return and init-order checks are off by default in ASan.
+export ASAN_OPTIONS="halt_on_error=1:detect_leaks=1:detect_stack_use_after_return=1:check_initialization_order=1:strict_init_order=1:detect_odr_violation=2:print_summary=1"
+export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1:report_error_type=1"
+export LSAN_OPTIONS="print_suppressions=0"
+
+set +e
+ctest --test-dir "${BUILD}" --output-on-failure -j "${JOBS}" -LE validation
+rc=$?
+set -e
+end=$(date +%s)
+echo "[sanitize] build $((built - start)) s, tests $((end - built)) s, total $((end - start)) s; ctest exit ${rc}"
+exit ${rc}

@@ -1,0 +1,270 @@
+// Bad input at the command line, through the real `framequake` binary.
+//
+// Each row of kCaseRows / kRecordRows breaks one thing in an otherwise valid
+// case (kBaseCase) or record (kBaseRecord). Expected: exit code 2 (usage /
+// bad input, apps/main.cpp), stderr naming the file, the line of the broken
+// text (counted in the texts below: the row says which line it edits),
+// the field path (cases/README.md spelling, accelerogram.h field names) and
+// what was expected; and no output folder created. The expected lines and
+// fields come from where each row puts its fault, the message words from the
+// contracts in io/case_file.h and io/accelerogram.h, not from the program.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "app_process.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using fq_test::run_app;
+using fq_test::TempDir;
+
+// Line numbers are fixed by this text; rows refer to them.
+const char* const kBaseCase =
+    "framequake_case: 1\n"                                                                      // 1
+    "name: cli_errors\n"                                                                        // 2
+    "time:\n"                                                                                   // 3
+    "  dt_s: 1.0e-4\n"                                                                          // 4
+    "  duration_s: 0.01\n"                                                                      // 5
+    "materials:\n"                                                                              // 6
+    "  - name: spruce\n"                                                                        // 7
+    "    density_kg_per_m3: 450\n"                                                              // 8
+    "sections:\n"                                                                               // 9
+    "  - name: s50\n"                                                                           // 10
+    "    width_m: 0.05\n"                                                                       // 11
+    "    depth_m: 0.05\n"                                                                       // 12
+    "nodes:\n"                                                                                  // 13
+    "  - {id: a, xyz_m: [0, 0, 0]}\n"                                                           // 14
+    "  - {id: b, xyz_m: [0, 0, 1]}\n"                                                           // 15
+    "members:\n"                                                                                // 16
+    "  - {id: col, kind: column, nodes: [a, b], section: s50, material: spruce}\n"              // 17
+    "blocks:\n"                                                                                 // 18
+    "  - {id: cube, size_m: [0.1, 0.1, 0.1], center_m: [1, 0, 0.05], material: spruce}\n"       // 19
+    "ground_motion:\n"                                                                          // 20
+    "  components:\n"                                                                           // 21
+    "    - {file: rec.AT2, format: peer_at2, axis: x}\n";                                       // 22
+
+// A PEER .AT2 record: 4 header lines, 6 values in g.
+const char* const kBaseRecord =
+    "PEER NGA STRONG MOTION DATABASE RECORD\n"            // 1
+    "Test event, 1 Jan 2000, station, 000\n"              // 2
+    "ACCELERATION TIME SERIES IN UNITS OF G\n"            // 3
+    "NPTS=    6, DT=   .0100 SEC\n"                       // 4
+    "  .1000000E-02  .2000000E-02 -.1000000E-02  .0000000E+00  .3000000E-02\n"  // 5
+    "  .1000000E-02\n";                                   // 6
+
+struct Row {
+  const char* name;
+  const char* find;     // text replaced in the base file ("" = whole file)
+  const char* replace;  // replacement
+  const char* file;     // file the message must name: "case.yaml" or "rec.AT2"
+  int line;             // expected line; 0 = the file as a whole (no line printed)
+  const char* field;    // expected field path ("" = none printed)
+  const char* message;  // words the explanation must contain
+};
+
+std::string substitute(std::string base, const Row& r) {
+  if (std::string(r.find).empty()) return r.replace;
+  const auto at = base.find(r.find);
+  if (at == std::string::npos) ADD_FAILURE() << r.name << ": row text not found in the base file: " << r.find;
+  else base.replace(at, std::string(r.find).size(), r.replace);
+  return base;
+}
+
+// Faults in the case file.
+const Row kCaseRows[] = {
+    {"yaml_syntax_error", "name: cli_errors\n", "name: cli_errors: extra\n", "case.yaml", 2, "",
+     "YAML syntax error"},
+    {"unknown_key", "  dt_s: 1.0e-4\n", "  dt: 1.0e-4\n", "case.yaml", 4, "time.dt", "unknown key 'dt'"},
+    {"unknown_top_level_key", "sections:\n", "section:\n", "case.yaml", 9, "section", "unknown key 'section'"},
+    {"key_twice", "  duration_s: 0.01\n", "  duration_s: 0.01\n  dt_s: 2.0e-4\n", "case.yaml", 6, "time.dt_s",
+     "appears twice"},
+    {"wrong_type_text_for_number", "density_kg_per_m3: 450", "density_kg_per_m3: heavy", "case.yaml", 8,
+     "materials[0].density_kg_per_m3", "expected a positive number"},
+    {"wrong_type_quoted_number", "width_m: 0.05", "width_m: \"0.05\"", "case.yaml", 11, "sections[0].width_m",
+     "quoted text"},
+    {"wrong_type_scalar_for_list", "materials:\n  - name: spruce\n    density_kg_per_m3: 450\n",
+     "materials: spruce\n\n\n", "case.yaml", 6, "materials", "expected a list of materials"},
+    {"non_finite_number", "dt_s: 1.0e-4", "dt_s: inf", "case.yaml", 4, "time.dt_s", "finite"},
+    {"yaml_nan", "dt_s: 1.0e-4", "dt_s: .nan", "case.yaml", 4, "time.dt_s", "expected a positive number"},
+    {"missing_field", "    depth_m: 0.05\n", "", "case.yaml", 10, "sections[0].depth_m",
+     "missing required key 'depth_m'"},
+    {"missing_required_section", "framequake_case: 1\n", "\n", "case.yaml", 2, "framequake_case",
+     "missing required key 'framequake_case'"},
+    {"negative_dimension", "width_m: 0.05", "width_m: -0.05", "case.yaml", 11, "sections[0].width_m",
+     "expected a positive number"},
+    {"negative_block_size", "size_m: [0.1, 0.1, 0.1]", "size_m: [0.1, -0.1, 0.1]", "case.yaml", 19,
+     "blocks[0].size_m[1]", "positive edge length"},
+    {"zero_time_step", "dt_s: 1.0e-4", "dt_s: 0", "case.yaml", 4, "time.dt_s", "expected a positive number"},
+    {"member_between_identical_nodes", "nodes: [a, b]", "nodes: [a, a]", "case.yaml", 17, "members[0].nodes",
+     "two different nodes"},
+    {"member_between_coincident_nodes", "{id: b, xyz_m: [0, 0, 1]}", "{id: b, xyz_m: [0, 0, 0]}", "case.yaml", 17,
+     "members[0].nodes", "same position"},
+    {"unknown_section", "section: s50,", "section: s60,", "case.yaml", 17, "members[0].section",
+     "no section named 's60'"},
+    {"unknown_material", "center_m: [1, 0, 0.05], material: spruce", "center_m: [1, 0, 0.05], material: oak",
+     "case.yaml", 19, "blocks[0].material", "no material named 'oak'"},
+    {"unknown_node", "nodes: [a, b]", "nodes: [a, c]", "case.yaml", 17, "members[0].nodes[1]",
+     "no node named 'c'"},
+    {"unknown_schema_version", "framequake_case: 1", "framequake_case: 2", "case.yaml", 1, "framequake_case",
+     "unknown schema version 2"},
+    {"missing_record_file", "file: rec.AT2", "file: missing.AT2", "case.yaml", 22, "ground_motion.components[0].file",
+     "record file not found"},
+    {"empty_case_file", "", "", "case.yaml", 0, "", "the file is empty"},
+    {"two_yaml_documents", "", "framequake_case: 1\n---\nname: x\n", "case.yaml", 3, "", "one YAML document"},
+    // yaml-cpp 0.7 alone would loop here until memory ran out (fuzz_case_file).
+    {"yaml_stray_comma", "", ",\n", "case.yaml", 1, "", "unexpected ','"},
+    {"control_byte", "name: cli_errors\n", "name: cli\x01_errors\n", "case.yaml", 2, "", "control byte 0x01"},
+};
+
+// Faults in the record the case refers to (rec.AT2, read while loading).
+const Row kRecordRows[] = {
+    {"record_too_few_samples", "", "banner\nevent\nACCELERATION TIME SERIES IN UNITS OF G\nNPTS= 1, DT= .01 SEC\n.1E-02\n",
+     "rec.AT2", 4, "NPTS", "at least 2 samples"},
+    {"record_npts_above_data", "NPTS=    6", "NPTS=    7", "rec.AT2", 6, "NPTS",
+     "declares NPTS=7 but the file holds 6 values"},
+    {"record_npts_below_data", "NPTS=    6", "NPTS=    5", "rec.AT2", 6, "NPTS",
+     "declares NPTS=5 but the file holds 6 values"},
+    {"record_non_numeric_value", ".2000000E-02", "abc", "rec.AT2", 5, "value", "expected a finite number"},
+    {"record_missing_dt", "NPTS=    6, DT=   .0100 SEC", "NPTS=    6", "rec.AT2", 4, "DT", "DT="},
+    {"record_in_velocity_units", "IN UNITS OF G", "IN UNITS OF CM/SEC", "rec.AT2", 3, "header", "UNITS OF G"},
+    {"record_header_cut_short", "", "PEER NGA STRONG MOTION DATABASE RECORD\nevent\n", "rec.AT2", 3, "header",
+     "expected 4 header lines"},
+    {"record_empty", "", "", "rec.AT2", 0, "file", "the file is empty"},
+};
+
+// Binary garbage: no line to expect (any byte may end up on any line), but
+// the file must still be named and the run refused.
+const std::string kGarbage = std::string("\x7f" "ELF\x02\x01\x01\x00\x00\x00\xff\xfe\n\x01\x02\x03", 16) +
+                             std::string("\x00\x89PNG\r\n\x1a\n", 9);
+
+struct Outcome {
+  fq_test::AppResult app;
+  bool out_folder_exists = false;
+};
+
+// Writes case.yaml and rec.AT2 into a fresh folder and runs
+// `framequake run case.yaml --out <dir>/out --quiet`.
+Outcome run_case(const std::string& case_text, const std::string& record_text) {
+  TempDir dir;
+  std::ofstream(dir.path() / "case.yaml", std::ios::binary) << case_text;
+  std::ofstream(dir.path() / "rec.AT2", std::ios::binary) << record_text;
+  const fs::path out = dir.path() / "out";
+  Outcome o;
+  o.app = run_app({"run", (dir.path() / "case.yaml").string(), "--out", out.string(), "--quiet"}, dir.path());
+  o.out_folder_exists = fs::exists(out);
+  return o;
+}
+
+void check_row(const Row& row, const Outcome& o) {
+  SCOPED_TRACE(row.name);
+  EXPECT_EQ(o.app.code, 2) << o.app.err;
+  EXPECT_FALSE(o.out_folder_exists) << "an output folder was created for bad input";
+  // file:line: field 'path': message (input_error.h); line 0 prints no line.
+  const std::string where = std::string(row.file) + (row.line > 0 ? ":" + std::to_string(row.line) : "") + ": ";
+  EXPECT_NE(o.app.err.find(where), std::string::npos) << "expected '" << where << "' in: " << o.app.err;
+  if (*row.field) {
+    const std::string field = "field '" + std::string(row.field) + "'";
+    EXPECT_NE(o.app.err.find(field), std::string::npos) << "expected " << field << " in: " << o.app.err;
+  }
+  EXPECT_NE(o.app.err.find(row.message), std::string::npos) << "expected '" << row.message << "' in: " << o.app.err;
+  EXPECT_EQ(o.app.err.find("internal error"), std::string::npos) << o.app.err;
+}
+
+TEST(CliErrors, TheBaseCaseIsValid) {
+  // Without this the rows would prove nothing: the unbroken files load.
+  TempDir dir;
+  std::ofstream(dir.path() / "case.yaml") << kBaseCase;
+  std::ofstream(dir.path() / "rec.AT2") << kBaseRecord;
+  const auto r = run_app({"info", (dir.path() / "case.yaml").string()}, dir.path());
+  EXPECT_EQ(r.code, 0) << r.err;
+}
+
+TEST(CliErrors, MalformedCaseFiles) {
+  for (const Row& row : kCaseRows) check_row(row, run_case(substitute(kBaseCase, row), kBaseRecord));
+}
+
+TEST(CliErrors, MalformedRecords) {
+  for (const Row& row : kRecordRows) check_row(row, run_case(kBaseCase, substitute(kBaseRecord, row)));
+}
+
+TEST(CliErrors, BinaryGarbageIsRefusedNamingTheFile) {
+  for (const bool in_record : {false, true}) {
+    SCOPED_TRACE(in_record ? "record" : "case file");
+    const Outcome o = in_record ? run_case(kBaseCase, kGarbage) : run_case(kGarbage, kBaseRecord);
+    EXPECT_EQ(o.app.code, 2) << o.app.err;
+    EXPECT_FALSE(o.out_folder_exists);
+    EXPECT_NE(o.app.err.find(in_record ? "rec.AT2:" : "case.yaml:"), std::string::npos) << o.app.err;
+    EXPECT_NE(o.app.err.find("expected"), std::string::npos) << o.app.err;
+  }
+}
+
+TEST(CliErrors, MissingCaseFile) {
+  TempDir dir;
+  const fs::path out = dir.path() / "out";
+  const auto r = run_app({"run", (dir.path() / "nope.yaml").string(), "--out", out.string()}, dir.path());
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("nope.yaml"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("not found"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+// ---- usage -------------------------------------------------------------------
+
+TEST(CliUsage, HelpForEveryCommandExitsZeroWithUsage) {
+  TempDir dir;
+  const std::vector<std::vector<std::string>> calls = {
+      {"--help"}, {"-h"}, {"help"}, {"run", "--help"}, {"info", "--help"}};
+  for (const auto& args : calls) {
+    SCOPED_TRACE(args.size() > 1 ? args[0] + " " + args[1] : args[0]);
+    const auto r = run_app(args, dir.path());
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("Usage"), std::string::npos) << r.out;
+    EXPECT_TRUE(r.err.empty()) << r.err;
+  }
+  const auto run_help = run_app({"run", "--help"}, dir.path());
+  EXPECT_NE(run_help.out.find("--out DIR"), std::string::npos);
+  EXPECT_NE(run_help.out.find("Exit codes"), std::string::npos);
+  const auto version = run_app({"--version"}, dir.path());
+  EXPECT_EQ(version.code, 0);
+  EXPECT_EQ(version.out.rfind("framequake ", 0), 0u) << version.out;
+}
+
+TEST(CliUsage, UsageErrorsExitTwoWithUsageOnStderr) {
+  TempDir dir;
+  std::ofstream(dir.path() / "case.yaml") << kBaseCase;
+  std::ofstream(dir.path() / "rec.AT2") << kBaseRecord;
+  const std::string c = (dir.path() / "case.yaml").string();
+  struct UsageRow {
+    std::vector<std::string> args;
+    const char* message;
+  };
+  const UsageRow rows[] = {
+      {{}, "missing command"},
+      {{"frobnicate"}, "unknown command 'frobnicate'"},
+      {{"run"}, "missing CASE"},
+      {{"info"}, "missing CASE"},
+      {{"run", c, "--bogus"}, "unknown option '--bogus'"},
+      {{"info", c, "--out", "x"}, "unknown option '--out'"},
+      {{"run", c, "--out"}, "--out needs a value"},
+      {{"run", c, "--threads", "0"}, "--threads expects a whole number"},
+      {{"run", c, "--threads", "two"}, "--threads expects a whole number"},
+      {{"run", c, c}, "unexpected argument"},
+  };
+  for (const UsageRow& row : rows) {
+    std::string shown;
+    for (const auto& a : row.args) shown += a + " ";
+    SCOPED_TRACE(shown);
+    const auto r = run_app(row.args, dir.path());
+    EXPECT_EQ(r.code, 2) << r.err;
+    EXPECT_NE(r.err.find(row.message), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("Usage"), std::string::npos) << r.err;
+    EXPECT_TRUE(r.out.empty()) << r.out;
+  }
+}
+
+}  // namespace
