@@ -1,14 +1,24 @@
 #!/usr/bin/env bash
-# Installs what is missing, builds with assertions on, and runs the whole
-# test suite (GoogleTest through CTest).
-# Usage: bash scripts/test.sh
+# The whole verification, as CI runs it (.ci/run calls exactly this):
+#   1. install what is missing (Debian packages),
+#   2. build with assertions and warnings as errors, run the test suite,
+#   3. fuzz the case-file and accelerogram readers for FQ_FUZZ_SECONDS
+#      (default 30) each with libFuzzer + ASan/UBSan,
+#   4. build with AddressSanitizer + UndefinedBehaviorSanitizer and run the
+#      test suite again.
+# Usage: bash scripts/test.sh        (FQ_QUICK=1 stops after step 2)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install_deps.sh
 BUILD_DIR=build-test BUILD_TYPE=RelWithAsserts bash scripts/build.sh -DFQ_WARNINGS_AS_ERRORS=ON
-echo "[framequake] running the test suite"
 # Threads that wait passively: the determinism tests force OpenMP on tiny
 # scenes, where libgomp's default spinning costs milliseconds per parallel
 # region on a loaded 2-core machine.
 export OMP_WAIT_POLICY=${OMP_WAIT_POLICY:-passive}
+echo "[framequake] running the test suite"
 ctest --test-dir build-test --output-on-failure -j "${JOBS:-$(nproc)}" -LE validation
+if [ "${FQ_QUICK:-0}" = "1" ]; then exit 0; fi
+echo "[framequake] fuzzing the input readers"
+bash scripts/fuzz.sh "${FQ_FUZZ_SECONDS:-30}"
+echo "[framequake] running the test suite under AddressSanitizer and UndefinedBehaviorSanitizer"
+bash scripts/sanitize.sh
