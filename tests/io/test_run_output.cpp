@@ -14,6 +14,7 @@
 // volume. Frame and row counts follow from the intervals: samples at every
 // k-th step from 0 to N, plus the last state N when k does not divide N.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <atomic>
 #include <cmath>
@@ -119,9 +120,11 @@ std::unique_ptr<fq::Simulation> make_simulation(double duration_s) {
 
 fs::path output_root() { return fs::path(FQ_BINARY_DIR) / "test_output" / "run_output"; }
 
-// A fresh folder for one test (only this test program writes under output_root()).
+// A fresh folder for one test. CTest runs each test of this program in its
+// own process, several at once, so the folder carries the process id: two
+// tests sharing main_run() must not remove each other's output.
 fs::path fresh_folder(const std::string& name) {
-  const fs::path p = output_root() / name;
+  const fs::path p = output_root() / (name + "_" + std::to_string(::getpid()));
   fs::remove_all(p);
   fs::create_directories(p.parent_path());
   return p;
