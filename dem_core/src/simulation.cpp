@@ -96,6 +96,24 @@ std::int64_t Simulation::total_steps() const {
   return static_cast<std::int64_t>(std::llround(settings_.duration_s / settings_.dt_s));
 }
 
+std::uint64_t Simulation::state_hash() const {
+  std::uint64_t h = 1469598103934665603ull;  // FNV-1a 64-bit offset basis
+  auto mix = [&h](const double* values, std::size_t count) {
+    const auto* bytes = reinterpret_cast<const unsigned char*>(values);
+    for (std::size_t k = 0; k < count * sizeof(double); ++k) {
+      h ^= bytes[k];
+      h *= 1099511628211ull;  // FNV prime
+    }
+  };
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    mix(bodies_.position_m[i].data(), 3);
+    mix(bodies_.orientation[i].coeffs().data(), 4);
+    mix(bodies_.velocity_mps[i].data(), 3);
+    mix(bodies_.angular_momentum_Nms[i].data(), 3);
+  }
+  return h;
+}
+
 double Simulation::wall_seconds() const { return wall_started_ ? seconds_between(wall_start_, Clock::now()) : 0.0; }
 
 void Simulation::compute_forces() {

@@ -1,6 +1,7 @@
 #include "io/case_runner.h"
 
 #include <cmath>
+#include <cstdio>
 #include <iomanip>
 #include <sstream>
 
@@ -114,6 +115,9 @@ CaseRunReport run_case(const CaseDef& def, const CaseRunOptions& options) {
   report.result = sim.run(options.stop_requested);
   try {
     if (scene.joints) add_joint_summary(*writer, *scene.joints, sim.events());
+    char hash[19];
+    std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(sim.state_hash()));
+    writer->add_summary_field("state_hash", std::string("\"") + hash + "\"");
     writer->finish(sim, report.result);
   } catch (const std::exception& e) {
     throw OutputError(e.what());

@@ -110,6 +110,10 @@ class Simulation {
   std::int64_t total_steps() const;
   Vec3 ground_acceleration_mps2() const { return ground_acceleration_; }  // a_g at the last force evaluation
   double wall_seconds() const;
+  // FNV-1a hash of the bits of every body's position, orientation,
+  // velocity and angular momentum: equal hashes mean bitwise-equal states
+  // (determinism checks across thread counts and runs).
+  std::uint64_t state_hash() const;
 
  private:
   void compute_forces();
