@@ -61,15 +61,6 @@ constexpr std::size_t kReductionChunk = 1024;
 constexpr double kBlowUpFactor = 1.0e6;
 constexpr double kFloorSpeed_mps = 1.0;
 
-struct ChunkSums {
-  Vec3 momentum_old = Vec3::Zero();  // sum m v(n-1/2) (kg m/s)
-  Vec3 momentum_new = Vec3::Zero();  // sum m v(n+1/2)
-  double kinetic_old_J = 0.0;        // translational + rotational at n-1/2
-  double kinetic_new_J = 0.0;
-  double rotational_old_J = 0.0;
-  double rotational_new_J = 0.0;
-  bool finite = true;
-};
 
 }  // namespace
 
@@ -207,13 +198,14 @@ void Simulation::integrate() {
   const double dt = settings_.dt_s;
   const std::size_t n = bodies_.size();
   const std::size_t chunks = (n + kReductionChunk - 1) / kReductionChunk;
-  std::vector<ChunkSums> sums(chunks);  // small: one entry per 1024 bodies
+  std::vector<ChunkSums>& sums = chunk_sums_;
+  if (sums.size() != chunks) sums.resize(chunks);  // once: no allocation in the step loop
 
 #if defined(_OPENMP)
 #pragma omp parallel for schedule(static) if (n >= 4 * kReductionChunk)
 #endif
   for (std::size_t c = 0; c < chunks; ++c) {
-    ChunkSums s;
+    ChunkSums s{};
     const std::size_t end = std::min(n, (c + 1) * kReductionChunk);
     for (std::size_t i = c * kReductionChunk; i < end; ++i) {
       if (bodies_.is_fixed[i]) continue;
@@ -241,7 +233,7 @@ void Simulation::integrate() {
     sums[c] = s;
   }
 
-  ChunkSums total;
+  ChunkSums total{};
   for (const ChunkSums& s : sums) {
     total.momentum_old += s.momentum_old;
     total.momentum_new += s.momentum_new;

@@ -125,6 +125,18 @@ class Simulation {
   bool energy_blew_up() const;    // kinetic energy beyond any physical bound (O(1))
   void record_blow_up();          // Instability event naming the most energetic body
 
+  // Per-chunk partial sums of the integrate stage (chunks of 1024 bodies,
+  // added in order so the ledger does not depend on the thread count).
+  struct ChunkSums {
+    Vec3 momentum_old = Vec3::Zero();  // sum m v(n-1/2) (kg m/s)
+    Vec3 momentum_new = Vec3::Zero();  // sum m v(n+1/2)
+    double kinetic_old_J = 0.0;        // translational + rotational at n-1/2
+    double kinetic_new_J = 0.0;
+    double rotational_old_J = 0.0;
+    double rotational_new_J = 0.0;
+    bool finite = true;
+  };
+
   BodyStore bodies_;
   SimulationSettings settings_;
   GroundMotion ground_motion_;
@@ -137,6 +149,7 @@ class Simulation {
   EnergyLedger ledger_;
   EventLog events_;
   BondedPairs bonded_pairs_;
+  std::vector<ChunkSums> chunk_sums_;
   StageProfile profile_;
 
   bool initialized_ = false;
