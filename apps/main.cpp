@@ -2,6 +2,8 @@
 //
 //   framequake run CASE [--out DIR] [--quiet] [--force] [--threads N]
 //   framequake info CASE
+//   framequake compare CASE... [--out DIR] [--jobs N] [--window-length S]
+//   framequake sweep CASE... [--scales LIST] [--record FILE]... [--out DIR]
 //   framequake --help | --version
 //
 // Exit codes: 0 run completed; 1 the run became unstable (output kept up to
@@ -26,6 +28,7 @@
 #include "io/case_runner.h"
 #include "io/input_error.h"
 #include "progress_display.h"
+#include "study_commands.h"
 
 #if defined(_OPENMP)
 #include <omp.h>
@@ -49,6 +52,8 @@ const char* kMainHelp =
     "Usage:\n"
     "  framequake run CASE [options]   run a case file, write VTK frames, history and summary\n"
     "  framequake info CASE            describe a case: bodies, total mass, time step, output plan\n"
+    "  framequake compare CASE...      run cases side by side; table of storey drifts and verdicts, figure\n"
+    "  framequake sweep CASE...        run cases over amplitude scales (and records); collapse scales, figure\n"
     "  framequake --help               this text;  framequake COMMAND --help for a command\n"
     "  framequake --version            print the version\n"
     "\n"
@@ -202,6 +207,11 @@ int main(int argc, char** argv) {
     }
     if (command == "run") return command_run(argc, argv);
     if (command == "info") return command_info(argc, argv);
+    if (command == "compare" || command == "sweep") {
+      std::signal(SIGINT, on_sigint);
+      return command == "compare" ? fq_app::command_compare(argc, argv, &g_stop_requested)
+                                  : fq_app::command_sweep(argc, argv, &g_stop_requested);
+    }
   } catch (const std::exception& e) {
     // Anything not foreseen above still ends in a message and a non-zero code.
     std::cerr << "framequake: internal error: " << e.what() << "\n";

@@ -668,11 +668,12 @@ MemberKind parse_kind_name(const Reader& r, const Field& f) {
 }
 
 void parse_joints(const Reader& r, const Field& f, CaseDef& def) {
-  r.expect_map(f.value, f.line, f.path, "automatic, default_type, support_type, rules, overrides");
-  r.expect_keys(f.value, {"automatic", "default_type", "support_type", "rules", "overrides"}, f.path);
+  r.expect_map(f.value, f.line, f.path, "automatic, hub_kind, default_type, support_type, rules, overrides");
+  r.expect_keys(f.value, {"automatic", "hub_kind", "default_type", "support_type", "rules", "overrides"}, f.path);
   JointsDef& j = def.joints;
   j.line = f.line;
   j.automatic = r.optional_bool(f.value, "automatic", f.path, true);
+  if (const auto h = r.get(f.value, "hub_kind", f.path)) j.hub_kind = parse_kind_name(r, *h);
   if (const auto d = r.get(f.value, "default_type", f.path)) j.default_type = joint_type_reference(r, *d, def);
   if (const auto d = r.get(f.value, "support_type", f.path)) j.support_type = joint_type_reference(r, *d, def);
   if (const auto rules = r.get(f.value, "rules", f.path)) {
@@ -814,6 +815,18 @@ void parse_ground(const Reader& r, const Field& f, CaseDef& def) {
   def.ground = g;
 }
 
+void parse_assessment(const Reader& r, const Field& f, CaseDef& def) {
+  r.expect_map(f.value, f.line, f.path, "safety_drift_ratio_rad and collapse_drift_ratio_rad");
+  r.expect_keys(f.value, {"safety_drift_ratio_rad", "collapse_drift_ratio_rad"}, f.path);
+  AssessmentDef& a = def.assessment;
+  a.safety_drift_ratio_rad = r.optional_positive(f.value, "safety_drift_ratio_rad", f.path, a.safety_drift_ratio_rad);
+  a.collapse_drift_ratio_rad =
+      r.optional_positive(f.value, "collapse_drift_ratio_rad", f.path, a.collapse_drift_ratio_rad);
+  if (a.collapse_drift_ratio_rad <= a.safety_drift_ratio_rad)
+    r.fail(f, "collapse_drift_ratio_rad (" + fmt(a.collapse_drift_ratio_rad) +
+                        ") must be larger than safety_drift_ratio_rad (" + fmt(a.safety_drift_ratio_rad) + ")");
+}
+
 // Direction of a component: a signed axis name or a non-zero 3-vector.
 Vec3 parse_axis(const Reader& r, const Field& f) {
   if (f.value.IsScalar()) {
@@ -931,6 +944,7 @@ const SectionEntry kSections[] = {
     {"ground", false, "", parse_ground},
     {"ground_motion", false, "", parse_ground_motion},
     {"output", false, "", parse_output},
+    {"assessment", false, "", parse_assessment},
 };
 
 CaseDef parse_root(const Reader& r, const YAML::Node& root, const std::filesystem::path& file) {

@@ -1,5 +1,6 @@
 #include "io/case_runner.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iomanip>
@@ -40,6 +41,7 @@ Scene build_scene(const CaseDef& def) {
   Model model = build_model(def);
   const std::vector<PlannedJoint> planned = plan_joints(model);
   Scene scene;
+  scene.storeys = find_storeys(model);
   scene.simulation = std::make_unique<Simulation>(model.bodies, model.settings, model.ground_motion);
   Simulation& sim = *scene.simulation;
   if (!planned.empty()) {
@@ -93,10 +95,12 @@ CaseRunReport run_case(const CaseDef& def, const CaseRunOptions& options) {
   if (output.folder.empty()) output.folder = default_output_folder(def.name);
 
   std::unique_ptr<RunOutput> writer;
+  StoreyDriftMonitor storeys(scene.storeys, def.assessment);
   try {
     writer = std::make_unique<RunOutput>(output, def.name);
     if (scene.joints) attach_joint_output(*writer, *scene.joints);
     if (scene.contacts) attach_contact_output(*writer, *scene.contacts);
+    if (!scene.storeys.empty()) attach_storey_output(*writer, storeys);
     writer->attach(sim);
   } catch (const std::exception& e) {
     throw OutputError(e.what());
@@ -115,6 +119,7 @@ CaseRunReport run_case(const CaseDef& def, const CaseRunOptions& options) {
   report.result = sim.run(options.stop_requested);
   try {
     if (scene.joints) add_joint_summary(*writer, *scene.joints, sim.events());
+    if (!scene.storeys.empty()) add_storey_summary(*writer, storeys);
     char hash[19];
     std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(sim.state_hash()));
     writer->add_summary_field("state_hash", std::string("\"") + hash + "\"");
@@ -124,6 +129,21 @@ CaseRunReport run_case(const CaseDef& def, const CaseRunOptions& options) {
   }
   report.output_folder = writer->folder();
   report.stable_time_step = scene.stable_time_step;
+  report.assessment = def.assessment;
+  for (std::size_t i = 0; i < storeys.storeys().size(); ++i)
+    report.storeys.push_back({storeys.storeys()[i].number, storeys.storeys()[i].height_m(), storeys.records()[i],
+                              storeys.verdict(i)});
+  if (scene.joints) {
+    report.joints = scene.joints->counts();
+    report.joint_count = scene.joints->joint_count();
+  }
+  report.first_joint_failure_time_s = first_joint_failure_time_s(sim.events());
+  report.energy_balance_error_relative = sim.ledger().balance_error_relative();
+  {
+    const Vec3 peak = sim.ground_motion().peak_abs_mps2();
+    report.peak_ground_acceleration_mps2 = std::max(peak.x(), peak.y());
+  }
+  report.wall_s = report.result.wall_s;
   return report;
 }
 

@@ -124,7 +124,7 @@ std::vector<PlannedJoint> plan_joints(const Model& model) {
     if (def.joints.automatic) {
       int hub = 0;
       for (std::size_t k = 0; k < here.size(); ++k)
-        if (def.members[std::size_t(here[k].member)].kind == MemberKind::Column) {
+        if (def.members[std::size_t(here[k].member)].kind == def.joints.hub_kind) {
           hub = int(k);
           break;
         }

@@ -1,6 +1,6 @@
 #include "pvd_collection.h"
 
-#include "atomic_file.h"
+#include "io/atomic_file.h"
 #include "number_format.h"
 
 namespace fq::detail {

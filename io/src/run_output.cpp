@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "atomic_file.h"
+#include "io/atomic_file.h"
 #include "event_csv_writer.h"
 #include "fq_config.h"
 #include "io/json_writer.h"

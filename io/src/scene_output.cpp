@@ -61,13 +61,82 @@ void add_joint_summary(RunOutput& output, const JointSystem& joints, const Event
   counts << "{\"total\": " << joints.joint_count() << ", \"intact\": " << c.intact << ", \"yielded\": " << c.yielded
          << ", \"broken\": " << c.broken << "}";
   output.add_summary_field("joints", counts.str());
-  double first_failure = std::numeric_limits<double>::quiet_NaN();
+  output.add_summary_field("first_joint_failure_time_s", JsonWriter::number(first_joint_failure_time_s(events)));
+}
+
+double first_joint_failure_time_s(const EventLog& events) {
   for (const Event& e : events.all())
-    if (e.kind == EventKind::SpringDeleted || e.kind == EventKind::JointBroken) {
-      first_failure = e.time_s;
-      break;
-    }
-  output.add_summary_field("first_joint_failure_time_s", JsonWriter::number(first_failure));
+    if (e.kind == EventKind::SpringDeleted || e.kind == EventKind::JointBroken) return e.time_s;
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+void attach_storey_output(RunOutput& output, StoreyDriftMonitor& monitor) {
+  StoreyDriftMonitor* m = &monitor;
+  for (std::size_t i = 0; i < monitor.storeys().size(); ++i) {
+    const std::string prefix = "storey" + std::to_string(monitor.storeys()[i].number) + "_drift";
+    auto sampled = [m](const Simulation& sim) -> StoreyDriftMonitor& {
+      m->sample(sim.bodies(), sim.steps_done(), sim.time_s());
+      return *m;
+    };
+    output.add_history_column(prefix + "_x_m", [=](const Simulation& sim) { return sampled(sim).drift_m(i).x(); });
+    output.add_history_column(prefix + "_y_m", [=](const Simulation& sim) { return sampled(sim).drift_m(i).y(); });
+    output.add_history_column(prefix + "_ratio_x_rad",
+                              [=](const Simulation& sim) { return sampled(sim).drift_ratio_rad(i).x(); });
+    output.add_history_column(prefix + "_ratio_y_rad",
+                              [=](const Simulation& sim) { return sampled(sim).drift_ratio_rad(i).y(); });
+  }
+}
+
+void add_storey_summary(RunOutput& output, const StoreyDriftMonitor& monitor) {
+  const AssessmentDef& a = monitor.limits();
+  JsonWriter limits(0);
+  limits.begin_object()
+      .key("safety_drift_ratio_rad")
+      .value(a.safety_drift_ratio_rad)
+      .key("collapse_drift_ratio_rad")
+      .value(a.collapse_drift_ratio_rad)
+      .key("criterion")
+      .value(
+          "storey drift = mean horizontal displacement of its columns' top points relative to their bottom points; "
+          "verdict collapsed if the peak drift ratio (x-y magnitude) reached collapse_drift_ratio_rad, damaged if it "
+          "exceeded safety_drift_ratio_rad, else standing")
+      .end_object();
+  output.add_summary_field("assessment", limits.str());
+  JsonWriter w(0);
+  w.begin_array();
+  for (std::size_t i = 0; i < monitor.storeys().size(); ++i) {
+    const Storey& s = monitor.storeys()[i];
+    const StoreyDriftRecord& r = monitor.records()[i];
+    w.begin_object()
+        .key("storey")
+        .value(s.number)
+        .key("bottom_z_m")
+        .value(s.bottom_z_m)
+        .key("height_m")
+        .value(s.height_m())
+        .key("columns")
+        .value(s.columns.size())
+        .key("peak_drift_ratio_rad")
+        .value(r.peak_ratio_rad)
+        .key("peak_drift_ratio_x_rad")
+        .value(r.peak_ratio_x_rad)
+        .key("peak_drift_ratio_y_rad")
+        .value(r.peak_ratio_y_rad)
+        .key("peak_time_s")
+        .value(r.peak_time_s)
+        .key("residual_drift_ratio_x_rad")
+        .value(r.final_ratio_x_rad)
+        .key("residual_drift_ratio_y_rad")
+        .value(r.final_ratio_y_rad)
+        .key("collapse_time_s");
+    if (r.collapse_time_s >= 0.0)
+      w.value(r.collapse_time_s);
+    else
+      w.null();
+    w.key("verdict").value(storey_verdict_name(monitor.verdict(i))).end_object();
+  }
+  w.end_array();
+  output.add_summary_field("storeys", w.str());
 }
 
 }  // namespace fq

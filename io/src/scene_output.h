@@ -4,6 +4,7 @@
 
 #include "contacts/contact_system.h"
 #include "io/run_output.h"
+#include "io/storey_drift.h"
 #include "joints/joint_system.h"
 
 namespace fq {
@@ -18,6 +19,16 @@ void attach_joint_output(RunOutput& output, const JointSystem& joints);
 // Summary fields: joint counts at the end and the time of the first joint
 // failure (first spring deletion or joint break; null when none).
 void add_joint_summary(RunOutput& output, const JointSystem& joints, const EventLog& events);
+
+// Time of the first spring deletion or joint break (NaN when none).
+double first_joint_failure_time_s(const EventLog& events);
+
+// History columns storeyK_drift_{x,y}_m and storeyK_drift_ratio_{x,y}_rad
+// per storey; each row samples the monitor first (it ignores repeats).
+void attach_storey_output(RunOutput& output, StoreyDriftMonitor& monitor);
+// Summary fields "storeys" (per storey: height, peaks, residual, collapse
+// time, verdict) and "assessment" (the limits and the criterion in words).
+void add_storey_summary(RunOutput& output, const StoreyDriftMonitor& monitor);
 
 // Contact points as VTK vertex cells with contact_force_N (force on body b,
 // 3 components), contact_normal (unit, a to b), contact_depth_m and

@@ -19,7 +19,7 @@
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLUnstructuredGridWriter.h>
 
-#include "atomic_file.h"
+#include "io/atomic_file.h"
 
 namespace fq {
 

@@ -645,7 +645,8 @@ TEST(CaseFile, ReadmeTablesMatchAllowedKeys) {
       "contact: {@contact@ground: {@contact_params@restitution: 0.5}, pairs: [{materials: [spruce, spruce]}]}\n"
       "ground: {@ground@level_m: 0}\n"
       "ground_motion: {@ground_motion@components: [{@components@file: rec.txt, format: two_column, axis: x}]}\n"
-      "output: {@output@folder: out/x}\n";
+      "output: {@output@folder: out/x}\n"
+      "assessment: {@assessment@collapse_drift_ratio_rad: 0.1}\n";
   // README heading -> placeholder of the mapping it documents.
   const std::vector<std::pair<std::string, std::string>> headings = {
       {"### Top level", "top"},
@@ -664,7 +665,8 @@ TEST(CaseFile, ReadmeTablesMatchAllowedKeys) {
       {"### `ground`", "ground"},
       {"### `ground_motion`", "ground_motion"},
       {"#### `ground_motion.components[i]`", "components"},
-      {"### `output`", "output"}};
+      {"### `output`", "output"},
+      {"### `assessment`", "assessment"}};
   std::ifstream readme(fs::path(FQ_SOURCE_DIR) / "cases/README.md");
   ASSERT_TRUE(readme.good());
   std::vector<std::string> lines;

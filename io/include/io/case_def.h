@@ -179,6 +179,11 @@ struct JointOverrideDef {
 // ground body.
 struct JointsDef {
   bool automatic = true;
+  // Automatic joints join every member ending at a node to the node's hub:
+  // the first member of this kind ending there (file order), else the first
+  // member. Column: posts are continuous and beams frame into them; beam:
+  // the floor beam is continuous and the posts above and below tenon into it.
+  MemberKind hub_kind = MemberKind::Column;
   std::string default_type;  // may be empty
   std::string support_type;  // default joint type of supports; may be empty
   std::vector<JointRuleDef> rules;
@@ -188,6 +193,22 @@ struct JointsDef {
 
 struct GroundDef {
   double level_m = 0.0;  // height (z) of the ground surface (m)
+};
+
+// How storeys are judged (io/storey_drift.h). A storey is a band between two
+// consecutive heights at which columns end; its drift is the mean horizontal
+// displacement of its columns' top ends relative to their bottom ends.
+struct AssessmentDef {
+  // Japanese practice for timber houses: 1/30 rad is the safety-limit storey
+  // drift of design (limit-strength calculation); beyond it a storey is
+  // damaged but still stands.
+  double safety_drift_ratio_rad = 1.0 / 30.0;
+  // 1/10 rad: by then the joints of a post-and-beam storey have passed their
+  // ultimate rotation (0.075-0.15 rad for tenons, cases/README.md) and the
+  // gravity (P-delta) moment keeps growing while their resistance falls; a
+  // storey that reaches it is counted as collapsed (cases/README.md,
+  // "Drift and verdicts").
+  double collapse_drift_ratio_rad = 0.1;
 };
 
 struct GroundMotionComponentDef {
@@ -243,6 +264,7 @@ struct CaseDef {
   std::optional<ContactDef> contact;  // unset: no contacts
   std::optional<GroundDef> ground;               // unset: no `ground` section
   std::optional<GroundMotionDef> ground_motion;  // unset: no shaking
+  AssessmentDef assessment;                      // storey verdict limits
   // folder default: out/<name>, relative to the working directory (filled by
   // load_case_file; build_model fills it when left empty).
   OutputDef output;

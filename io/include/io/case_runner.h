@@ -19,6 +19,7 @@
 #include "dem_core/simulation.h"
 #include "contacts/contact_system.h"
 #include "io/case_def.h"
+#include "io/storey_drift.h"
 #include "joints/joint_system.h"
 
 namespace fq {
@@ -48,16 +49,33 @@ struct Scene {
   ContactSystem* contacts = nullptr;  // owned by the simulation; null without a contact section
   std::vector<std::string> joint_labels;  // per joint id: where it is and its type
   StableTimeStep stable_time_step;
+  std::vector<Storey> storeys;  // from the columns; empty without columns (io/storey_drift.h)
 };
 
 // Builds bodies, ground motion and force providers; throws InputError for
 // problems the model builder finds.
 Scene build_scene(const CaseDef& def);
 
+// What a storey did in a run (also in summary.json under "storeys").
+struct StoreyOutcome {
+  int number = 0;
+  double height_m = 0.0;
+  StoreyDriftRecord drift;  // peaks, residual, collapse time
+  StoreyVerdict verdict = StoreyVerdict::Standing;
+};
+
 struct CaseRunReport {
   RunResult result;
   std::filesystem::path output_folder;
   StableTimeStep stable_time_step;
+  std::vector<StoreyOutcome> storeys;
+  AssessmentDef assessment;
+  JointCounts joints;                   // at the end (all zero without joints)
+  std::size_t joint_count = 0;
+  double first_joint_failure_time_s = std::numeric_limits<double>::quiet_NaN();  // NaN: none
+  double energy_balance_error_relative = 0.0;
+  double peak_ground_acceleration_mps2 = 0.0;  // horizontal PGA: larger of the x and y peaks of |a_g| (scaled)
+  double wall_s = 0.0;
 };
 
 // Runs the case and writes its output. Throws InputError (bad case values or

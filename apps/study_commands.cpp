@@ -1,0 +1,540 @@
+// `framequake compare` and `framequake sweep`: several runs side by side
+// (io/batch_runner.h), a table of what each storey did, and a figure drawn by
+// scripts/plot/fq_plot.py (matplotlib, Debian's python3).
+#include "study_commands.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+#include <vector>
+
+#include "fq_config.h"
+#include "io/accelerogram.h"
+#include "io/atomic_file.h"
+#include "io/batch_runner.h"
+#include "io/case_file.h"
+#include "io/input_error.h"
+
+namespace fq_app {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr int kExitOk = 0;
+constexpr int kExitBadInput = 2;
+constexpr int kExitOutputFailed = 3;
+
+const char* kCompareHelp =
+    "Usage: framequake compare CASE... [options]\n"
+    "\n"
+    "Runs the cases side by side (one core each) and compares their storeys:\n"
+    "  DIR/<case name>/            each run's full output (case.pvd, history.csv, ...)\n"
+    "  DIR/comparison.csv, .md     peak drift ratio and verdict per storey, first joint\n"
+    "                              failure, broken joints, energy balance error, wall time\n"
+    "  DIR/first_storey_drift.png  first-storey drift ratio (x) against time, all cases\n"
+    "\n"
+    "Options:\n"
+    "  --out DIR            output folder (default out/compare)\n"
+    "  --jobs N             runs at a time (default: number of cores)\n"
+    "  --window-length S    use only S record seconds of each case's ground-motion window\n"
+    "  --force              run even if dt_s exceeds the estimated stable time step\n"
+    "  --no-figure          write the tables only\n"
+    "  --help               this text\n"
+    "\n"
+    "Exit codes: 0 all runs completed and everything was written; 1 a run became\n"
+    "unstable; 2 bad input (nothing run); 3 output failed; 130 interrupted.\n";
+
+const char* kSweepHelp =
+    "Usage: framequake sweep CASE... [options]\n"
+    "\n"
+    "Runs every case at each amplitude scale (and with each record), one core per run,\n"
+    "and writes:\n"
+    "  DIR/<case>_<record>_x<scale>/   each run's full output\n"
+    "  DIR/sweep.csv                   one row per run: scale, PGA, peak drift ratio and\n"
+    "                                  verdict per storey, first failure, broken joints\n"
+    "  DIR/collapse_scales.csv, .md    per case and record: the smallest scale at which a\n"
+    "                                  storey collapsed, and the ordering of the cases\n"
+    "  DIR/sweep.png                   peak first-storey drift ratio against PGA\n"
+    "\n"
+    "Options:\n"
+    "  --scales LIST        comma-separated amplitude scales (default 0.5,0.75,1,1.25,1.5,2);\n"
+    "                       each multiplies every ground-motion component's amplitude_scale\n"
+    "  --record FILE        a PEER .AT2 record to use instead of the case's (repeatable; the\n"
+    "                       case must have one component; the window is kept, cut at the\n"
+    "                       record's end). Without --record the case's own record is used.\n"
+    "  --out DIR            output folder (default out/sweep)\n"
+    "  --jobs N             runs at a time (default: number of cores)\n"
+    "  --window-length S    use only S record seconds of the ground-motion window\n"
+    "  --force              run even if dt_s exceeds the estimated stable time step\n"
+    "  --no-figure          write the tables only\n"
+    "  --help               this text\n";
+
+[[noreturn]] void usage_error(const std::string& message, const char* help) {
+  std::cerr << "framequake: " << message << "\n\n" << help;
+  std::exit(kExitBadInput);
+}
+
+double parse_positive(const std::string& text, const std::string& option, const char* help) {
+  errno = 0;
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || end == text.c_str() || *end != '\0' || errno != 0 || !std::isfinite(v) || v <= 0.0)
+    usage_error(option + " expects a positive number, got '" + text + "'", help);
+  return v;
+}
+
+struct StudyArgs {
+  std::vector<std::string> cases;
+  fs::path out;
+  int jobs = 0;
+  std::optional<double> window_length_s;
+  bool force = false;
+  bool figure = true;
+  std::vector<double> scales{0.5, 0.75, 1.0, 1.25, 1.5, 2.0};
+  std::vector<std::string> records;
+};
+
+StudyArgs parse_study_args(int argc, char** argv, const char* help, bool sweep) {
+  StudyArgs a;
+  a.out = sweep ? "out/sweep" : "out/compare";
+  for (int i = 2; i < argc; ++i) {
+    const std::string arg = argv[i];
+    auto value = [&](const char* name) -> std::string {
+      if (i + 1 >= argc) usage_error(std::string(name) + " needs a value", help);
+      return argv[++i];
+    };
+    if (arg == "--help" || arg == "-h") {
+      std::cout << help;
+      std::exit(kExitOk);
+    } else if (arg == "--out") {
+      a.out = value("--out");
+    } else if (arg == "--jobs") {
+      const std::string v = value("--jobs");
+      char* end = nullptr;
+      const long n = std::strtol(v.c_str(), &end, 10);
+      if (end == v.c_str() || *end != '\0' || n < 1 || n > 256)
+        usage_error("--jobs expects a whole number from 1 to 256, got '" + v + "'", help);
+      a.jobs = int(n);
+    } else if (arg == "--window-length") {
+      a.window_length_s = parse_positive(value("--window-length"), "--window-length", help);
+    } else if (arg == "--force") {
+      a.force = true;
+    } else if (arg == "--no-figure") {
+      a.figure = false;
+    } else if (sweep && arg == "--scales") {
+      a.scales.clear();
+      std::stringstream list(value("--scales"));
+      for (std::string item; std::getline(list, item, ',');) a.scales.push_back(parse_positive(item, "--scales", help));
+      if (a.scales.empty()) usage_error("--scales needs at least one scale", help);
+      std::sort(a.scales.begin(), a.scales.end());
+      a.scales.erase(std::unique(a.scales.begin(), a.scales.end()), a.scales.end());
+    } else if (sweep && arg == "--record") {
+      a.records.push_back(value("--record"));
+    } else if (!arg.empty() && arg[0] == '-') {
+      usage_error("unknown option '" + arg + "'", help);
+    } else {
+      a.cases.push_back(arg);
+    }
+  }
+  if (a.cases.empty()) usage_error("missing CASE (one or more YAML case files)", help);
+  return a;
+}
+
+// Shortens the ground-motion window to `length_s` record seconds (never the
+// physics: same model, same record, same scales).
+void shorten_window(fq::CaseDef& def, double length_s) {
+  if (!def.ground_motion)
+    throw fq::InputError(def.source_file.string(), 0, "ground_motion",
+                         "--window-length given but the case has no ground motion");
+  def.ground_motion->window_length_s = std::min(def.ground_motion->window_length_s, length_s);
+}
+
+std::string fixed(double x, int digits) {
+  if (!std::isfinite(x)) return "-";
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(digits) << x;
+  return s.str();
+}
+
+std::string scientific(double x) {
+  if (!std::isfinite(x)) return "-";
+  std::ostringstream s;
+  s << std::scientific << std::setprecision(1) << x;
+  return s.str();
+}
+
+std::string csv_number(double x) {
+  if (!std::isfinite(x)) return "";
+  std::ostringstream s;
+  s << std::setprecision(9) << x;
+  return s.str();
+}
+
+// Loads every case; the first bad one ends the command (nothing is run).
+std::vector<fq::CaseDef> load_cases(const std::vector<std::string>& files) {
+  std::vector<fq::CaseDef> defs;
+  for (const std::string& f : files) defs.push_back(fq::load_case_file(f));
+  return defs;
+}
+
+int run_figure(const std::string& kind, const fs::path& folder) {
+  const char* python_env = std::getenv("FQ_PYTHON");
+  const std::string python = python_env && *python_env ? python_env : "/usr/bin/python3";
+  const fs::path script = fs::path(FQ_SOURCE_DIR) / "scripts/plot/fq_plot.py";
+  if (!fs::exists(script)) {
+    std::cerr << "framequake: error: plotting script not found: " << script.string() << "\n";
+    return kExitOutputFailed;
+  }
+  auto quoted = [](const std::string& s) {
+    std::string q = "'";
+    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return q + "'";
+  };
+  const std::string command =
+      quoted(python) + " " + quoted(script.string()) + " " + kind + " " + quoted(folder.string());
+  const int status = std::system(command.c_str());
+  if (status != 0) {
+    std::cerr << "framequake: error: the figure could not be drawn: " << command << " exited with status "
+              << (WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status))
+              << " (it needs Debian's python3 with python3-matplotlib: bash scripts/install_deps.sh; FQ_PYTHON "
+                 "selects another interpreter). The tables are written.\n";
+    return kExitOutputFailed;
+  }
+  return kExitOk;
+}
+
+int worst_exit(const std::vector<fq::BatchOutcome>& outcomes) {
+  int code = kExitOk;
+  auto rank = [](int c) { return c == 0 ? 0 : c == 130 ? 1 : c == 1 ? 2 : c == 3 ? 3 : c == 2 ? 4 : 5; };
+  for (const fq::BatchOutcome& o : outcomes)
+    if (rank(o.exit_code) > rank(code)) code = o.exit_code;
+  return code;
+}
+
+void print_done(std::size_t, const fq::BatchJob& job, const fq::BatchOutcome& out, std::size_t done,
+                std::size_t total) {
+  std::ostringstream line;
+  line << "[" << done << "/" << total << "] " << job.label << ": ";
+  if (!out.ok) {
+    line << "FAILED: " << out.error;
+  } else {
+    const fq::CaseRunReport& r = out.report;
+    line << fq::run_status_name(r.result.status) << ", t = " << fixed(r.result.simulated_s, 2) << " s in "
+         << fixed(r.wall_s, 1) << " s wall";
+    for (const fq::StoreyOutcome& s : r.storeys)
+      line << "; storey " << s.number << " " << fq::storey_verdict_name(s.verdict) << " (peak "
+           << fixed(s.drift.peak_ratio_rad, 3) << " rad)";
+  }
+  std::cerr << line.str() << "\n";
+}
+
+std::size_t max_storeys(const std::vector<fq::BatchOutcome>& outcomes) {
+  std::size_t n = 0;
+  for (const fq::BatchOutcome& o : outcomes)
+    if (o.ok) n = std::max(n, o.report.storeys.size());
+  return n;
+}
+
+bool write_text(const fs::path& file, const std::string& text) {
+  try {
+    fq::detail::write_file_atomically(file, text);
+    return true;
+  } catch (const std::exception& e) {
+    std::cerr << "framequake: error: " << e.what() << "\n";
+    return false;
+  }
+}
+
+bool prepare_folder(const fs::path& out) {
+  std::error_code ec;
+  fs::create_directories(out, ec);
+  if (ec) {
+    std::cerr << "framequake: error: cannot create the output folder " << out.string() << ": " << ec.message()
+              << "\n";
+    return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+int command_compare(int argc, char** argv, const std::atomic<bool>* stop_requested) {
+  const StudyArgs args = parse_study_args(argc, argv, kCompareHelp, false);
+  std::vector<fq::BatchJob> jobs;
+  try {
+    std::vector<fq::CaseDef> defs = load_cases(args.cases);
+    std::set<std::string> names;
+    for (fq::CaseDef& def : defs) {
+      if (!names.insert(def.name).second)
+        throw fq::InputError(def.source_file.string(), 0, "name",
+                             "two cases are named '" + def.name + "'; each case needs its own output folder");
+      if (args.window_length_s) shorten_window(def, *args.window_length_s);
+      fq::BatchJob job;
+      job.label = def.name;
+      job.output_folder = args.out / def.name;
+      job.def = std::move(def);
+      jobs.push_back(std::move(job));
+    }
+  } catch (const fq::InputError& e) {
+    std::cerr << "framequake: error: " << e.what() << "\n";
+    return kExitBadInput;
+  }
+  if (!prepare_folder(args.out)) return kExitOutputFailed;
+
+  fq::BatchOptions options;
+  options.parallel_runs = args.jobs;
+  options.allow_unstable_time_step = args.force;
+  options.stop_requested = stop_requested;
+  options.on_done = print_done;
+  std::cerr << "framequake: comparing " << jobs.size() << " case(s), output in " << args.out.string() << "\n";
+  const std::vector<fq::BatchOutcome> outcomes = fq::run_batch(jobs, options);
+
+  const std::size_t storeys = max_storeys(outcomes);
+  std::ostringstream csv, md;
+  csv << "case,status";
+  md << "| case | status";
+  for (std::size_t k = 1; k <= storeys; ++k) {
+    csv << ",storey" << k << "_peak_drift_ratio_rad,storey" << k << "_peak_drift_ratio_x_rad,storey" << k
+        << "_verdict";
+    md << " | storey " << k << " peak drift ratio (rad)";
+  }
+  for (std::size_t k = 1; k <= storeys; ++k) md << " | storey " << k;
+  csv << ",first_joint_failure_s,broken_joints,joints,energy_balance_error_relative,wall_s,output\n";
+  md << " | first joint failure (s) | broken joints | energy balance error | wall time (s) |\n|---|---";
+  for (std::size_t k = 0; k < 2 * storeys; ++k) md << "|---";
+  md << "|---|---|---|---|\n";
+  for (std::size_t i = 0; i < jobs.size(); ++i) {
+    const fq::BatchOutcome& o = outcomes[i];
+    const std::string status = o.ok ? fq::run_status_name(o.report.result.status) : "failed";
+    csv << jobs[i].label << "," << status;
+    md << "| " << jobs[i].label << " | " << status;
+    for (std::size_t k = 0; k < storeys; ++k) {
+      if (o.ok && k < o.report.storeys.size()) {
+        const fq::StoreyOutcome& s = o.report.storeys[k];
+        csv << "," << csv_number(s.drift.peak_ratio_rad) << "," << csv_number(s.drift.peak_ratio_x_rad) << ","
+            << fq::storey_verdict_name(s.verdict);
+        md << " | " << fixed(s.drift.peak_ratio_rad, 4);
+      } else {
+        csv << ",,,";
+        md << " | -";
+      }
+    }
+    for (std::size_t k = 0; k < storeys; ++k)
+      md << " | " << (o.ok && k < o.report.storeys.size() ? fq::storey_verdict_name(o.report.storeys[k].verdict) : "-");
+    if (o.ok) {
+      const fq::CaseRunReport& r = o.report;
+      csv << "," << csv_number(r.first_joint_failure_time_s) << "," << r.joints.broken << "," << r.joint_count << ","
+          << csv_number(r.energy_balance_error_relative) << "," << csv_number(r.wall_s) << ","
+          << r.output_folder.string() << "\n";
+      md << " | " << fixed(r.first_joint_failure_time_s, 3) << " | " << r.joints.broken << " / " << r.joint_count
+         << " | " << scientific(r.energy_balance_error_relative) << " | " << fixed(r.wall_s, 1) << " |\n";
+    } else {
+      csv << ",,,,,\n";
+      md << " | - | - | - | - |\n";
+    }
+  }
+  if (!outcomes.empty() && outcomes.front().ok) {
+    const fq::AssessmentDef& a = outcomes.front().report.assessment;
+    md << "\nVerdicts: collapsed = peak storey drift ratio >= " << a.collapse_drift_ratio_rad
+       << " rad; damaged = above " << fixed(a.safety_drift_ratio_rad, 4)
+       << " rad; standing otherwise (cases/README.md, `assessment`). Drift ratios are magnitudes of the x-y drift "
+          "vector over the storey height; times are simulated seconds.\n";
+  }
+  for (std::size_t i = 0; i < jobs.size(); ++i)
+    if (!outcomes[i].ok) md << "\n" << jobs[i].label << ": " << outcomes[i].error << "\n";
+
+  if (!write_text(args.out / "comparison.csv", csv.str()) || !write_text(args.out / "comparison.md", md.str()))
+    return kExitOutputFailed;
+  std::cout << md.str();
+  std::cout << "framequake: table in " << (args.out / "comparison.md").string() << " and comparison.csv\n";
+  int code = worst_exit(outcomes);
+  if (args.figure && std::any_of(outcomes.begin(), outcomes.end(), [](const auto& o) { return o.ok; })) {
+    const int fig = run_figure("compare", args.out);
+    if (fig == kExitOk)
+      std::cout << "framequake: figure in " << (args.out / "first_storey_drift.png").string() << "\n";
+    else if (code == kExitOk)
+      code = fig;
+  }
+  return code;
+}
+
+int command_sweep(int argc, char** argv, const std::atomic<bool>* stop_requested) {
+  const StudyArgs args = parse_study_args(argc, argv, kSweepHelp, true);
+  std::vector<fq::BatchJob> jobs;
+  struct JobKey {
+    std::string case_name, record;
+    double scale;
+  };
+  std::vector<JobKey> keys;
+  std::vector<std::string> case_order, record_order;
+  try {
+    std::vector<fq::CaseDef> defs = load_cases(args.cases);
+    std::vector<fq::AccelerationRecord> records;
+    for (const std::string& r : args.records) records.push_back(fq::read_peer_at2(r));
+    std::set<std::string> names;
+    for (fq::CaseDef& def : defs) {
+      if (!names.insert(def.name).second)
+        throw fq::InputError(def.source_file.string(), 0, "name", "two cases are named '" + def.name + "'");
+      if (!def.ground_motion)
+        throw fq::InputError(def.source_file.string(), 0, "ground_motion", "a sweep needs a case with a ground motion");
+      if (args.window_length_s) shorten_window(def, *args.window_length_s);
+      case_order.push_back(def.name);
+      // Variants of the motion: the case's own record, or each --record.
+      std::vector<std::pair<std::string, fq::CaseDef>> variants;
+      if (records.empty()) {
+        variants.emplace_back(fs::path(def.ground_motion->components.front().file).stem().string(), def);
+      } else {
+        if (def.ground_motion->components.size() != 1)
+          throw fq::InputError(def.source_file.string(), 0, "ground_motion.components",
+                               "--record replaces the record of a case with exactly one component; this case has " +
+                                   std::to_string(def.ground_motion->components.size()));
+        for (std::size_t r = 0; r < records.size(); ++r) {
+          fq::CaseDef v = def;
+          fq::GroundMotionDef& gm = *v.ground_motion;
+          fq::GroundMotionComponentDef& c = gm.components.front();
+          c.record = records[r];
+          c.file = args.records[r];
+          c.resolved_file = args.records[r];
+          c.format = fq::RecordFormat::PeerAt2;
+          if (gm.window_start_s >= c.record.duration_s())
+            throw fq::InputError(args.records[r], 0, "window_start_s",
+                                 "the case's window starts at " + std::to_string(gm.window_start_s) +
+                                     " s, after the end of this record (" + std::to_string(c.record.duration_s()) +
+                                     " s)");
+          gm.window_length_s = std::min(gm.window_length_s, c.record.duration_s() - gm.window_start_s);
+          variants.emplace_back(fs::path(args.records[r]).stem().string(), std::move(v));
+        }
+      }
+      for (auto& [record_name, variant] : variants) {
+        if (std::find(record_order.begin(), record_order.end(), record_name) == record_order.end())
+          record_order.push_back(record_name);
+        for (double scale : args.scales) {
+          fq::BatchJob job;
+          job.def = variant;
+          for (fq::GroundMotionComponentDef& c : job.def.ground_motion->components) c.amplitude_scale *= scale;
+          std::ostringstream label;
+          label << def.name << "_" << record_name << "_x" << scale;
+          job.label = label.str();
+          job.output_folder = args.out / job.label;
+          jobs.push_back(std::move(job));
+          keys.push_back({def.name, record_name, scale});
+        }
+      }
+    }
+  } catch (const fq::InputError& e) {
+    std::cerr << "framequake: error: " << e.what() << "\n";
+    return kExitBadInput;
+  }
+  if (!prepare_folder(args.out)) return kExitOutputFailed;
+
+  fq::BatchOptions options;
+  options.parallel_runs = args.jobs;
+  options.allow_unstable_time_step = args.force;
+  options.stop_requested = stop_requested;
+  options.on_done = print_done;
+  std::cerr << "framequake: sweep of " << jobs.size() << " run(s), output in " << args.out.string() << "\n";
+  const std::vector<fq::BatchOutcome> outcomes = fq::run_batch(jobs, options);
+
+  const std::size_t storeys = max_storeys(outcomes);
+  std::ostringstream csv;
+  csv << "case,record,scale,pga_mps2,pga_g,status";
+  for (std::size_t k = 1; k <= storeys; ++k)
+    csv << ",storey" << k << "_peak_drift_ratio_rad,storey" << k << "_verdict";
+  csv << ",collapsed,first_joint_failure_s,broken_joints,joints,energy_balance_error_relative,wall_s,output\n";
+  for (std::size_t i = 0; i < jobs.size(); ++i) {
+    const fq::BatchOutcome& o = outcomes[i];
+    csv << keys[i].case_name << "," << keys[i].record << "," << csv_number(keys[i].scale) << ",";
+    if (!o.ok) {
+      csv << ",,failed";
+      for (std::size_t k = 0; k < storeys; ++k) csv << ",,";
+      csv << ",,,,,,,\n";
+      continue;
+    }
+    const fq::CaseRunReport& r = o.report;
+    bool collapsed = false;
+    csv << csv_number(r.peak_ground_acceleration_mps2) << ","
+        << csv_number(r.peak_ground_acceleration_mps2 / fq::kStandardGravity_mps2) << ","
+        << fq::run_status_name(r.result.status);
+    for (std::size_t k = 0; k < storeys; ++k) {
+      if (k < r.storeys.size()) {
+        csv << "," << csv_number(r.storeys[k].drift.peak_ratio_rad) << ","
+            << fq::storey_verdict_name(r.storeys[k].verdict);
+        collapsed = collapsed || r.storeys[k].verdict == fq::StoreyVerdict::Collapsed;
+      } else {
+        csv << ",,";
+      }
+    }
+    csv << "," << (collapsed ? 1 : 0) << "," << csv_number(r.first_joint_failure_time_s) << "," << r.joints.broken
+        << "," << r.joint_count << "," << csv_number(r.energy_balance_error_relative) << "," << csv_number(r.wall_s)
+        << "," << r.output_folder.string() << "\n";
+  }
+
+  // Collapse scale per case and record: the smallest scale with a collapsed
+  // storey, and the largest scale below it that stood.
+  std::ostringstream cs, md;
+  cs << "case,record,largest_scale_without_collapse,smallest_scale_with_collapse,pga_at_collapse_mps2,"
+        "collapsed_storeys_at_that_scale\n";
+  md << "| case | record | largest scale without collapse | smallest scale with collapse | PGA there (m/s²) | "
+        "storeys collapsed there |\n|---|---|---|---|---|---|\n";
+  for (const std::string& record : record_order)
+    for (const std::string& name : case_order) {
+      double stood = NAN, fell = NAN, pga = NAN;
+      std::string which;
+      for (std::size_t i = 0; i < jobs.size(); ++i) {
+        if (keys[i].case_name != name || keys[i].record != record || !outcomes[i].ok) continue;
+        const fq::CaseRunReport& r = outcomes[i].report;
+        std::string collapsed_storeys;
+        for (const fq::StoreyOutcome& s : r.storeys)
+          if (s.verdict == fq::StoreyVerdict::Collapsed)
+            collapsed_storeys += (collapsed_storeys.empty() ? "" : " ") + std::to_string(s.number);
+        if (collapsed_storeys.empty()) {
+          if (std::isnan(fell)) stood = keys[i].scale;
+        } else if (std::isnan(fell)) {
+          fell = keys[i].scale;
+          pga = r.peak_ground_acceleration_mps2;
+          which = collapsed_storeys;
+        }
+      }
+      bool ran = false;
+      for (std::size_t i = 0; i < jobs.size(); ++i)
+        ran = ran || (keys[i].case_name == name && keys[i].record == record);
+      if (!ran) continue;
+      cs << name << "," << record << "," << csv_number(stood) << "," << csv_number(fell) << "," << csv_number(pga)
+         << "," << which << "\n";
+      md << "| " << name << " | " << record << " | " << (std::isnan(stood) ? "none" : fixed(stood, 2)) << " | "
+         << (std::isnan(fell) ? "none up to " + fixed(args.scales.back(), 2) : fixed(fell, 2)) << " | "
+         << fixed(pga, 2) << " | " << (which.empty() ? "-" : which) << " |\n";
+    }
+  if (!write_text(args.out / "sweep.csv", csv.str()) || !write_text(args.out / "collapse_scales.csv", cs.str()) ||
+      !write_text(args.out / "collapse_scales.md", md.str()))
+    return kExitOutputFailed;
+  std::cout << md.str();
+  std::cout << "framequake: tables in " << (args.out / "sweep.csv").string() << " and collapse_scales.md\n";
+  int code = worst_exit(outcomes);
+  if (args.figure && std::any_of(outcomes.begin(), outcomes.end(), [](const auto& o) { return o.ok; })) {
+    const int fig = run_figure("sweep", args.out);
+    if (fig == kExitOk)
+      std::cout << "framequake: figure in " << (args.out / "sweep.png").string() << "\n";
+    else if (code == kExitOk)
+      code = fig;
+  }
+  return code;
+}
+
+const char* compare_help() { return kCompareHelp; }
+const char* sweep_help() { return kSweepHelp; }
+
+}  // namespace fq_app

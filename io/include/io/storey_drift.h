@@ -1,0 +1,89 @@
+// Storeys of a framed structure, their inter-storey drift and the verdict on
+// each (cases/README.md, `assessment`).
+//
+// Storey levels are the distinct heights (z) at which columns end. Storey k
+// (1-based) is the band between level k-1 and level k; its columns are the
+// column members spanning that band. Each column contributes two material
+// points on its axis, at the band's bottom and top heights, fixed in the
+// column's body frame. The drift of the storey (m) is the mean over its
+// columns of the horizontal displacement of the top point relative to the
+// bottom point; the drift ratio (rad) is drift / height. While the joints
+// hold, these points coincide with the nodes and this is the usual relative
+// displacement of two floors (displacements are relative to the ground,
+// DESIGN.md). After the joints fail the points follow the columns that
+// carried the storey: a storey that drops upright onto a collapsed storey
+// below keeps a small drift.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "dem_core/body_store.h"
+#include "io/case_def.h"
+#include "io/model.h"
+
+namespace fq {
+
+struct StoreyColumn {
+  BodyId body = kNoBody;
+  Vec3 bottom_local_m = Vec3::Zero();  // point at the band's bottom, body frame (m)
+  Vec3 top_local_m = Vec3::Zero();     // point at the band's top, body frame (m)
+  Vec3 bottom_start_m = Vec3::Zero();  // its world position at t = 0 (m)
+  Vec3 top_start_m = Vec3::Zero();
+};
+
+struct Storey {
+  int number = 0;            // 1 = lowest
+  double bottom_z_m = 0.0;   // level heights (m)
+  double top_z_m = 0.0;
+  double height_m() const { return top_z_m - bottom_z_m; }
+  std::vector<StoreyColumn> columns;
+  std::vector<std::string> column_names;
+};
+
+// Storeys of a built model; empty when it has no (non-horizontal) columns.
+// Levels closer than 1 mm are merged.
+std::vector<Storey> find_storeys(const Model& model);
+
+// Current drift of a storey along world x and y (m).
+Eigen::Vector2d storey_drift_m(const Storey& storey, const BodyStore& bodies);
+
+enum class StoreyVerdict { Standing, Damaged, Collapsed };
+const char* storey_verdict_name(StoreyVerdict v);
+
+// Running peaks of one storey's drift ratio.
+struct StoreyDriftRecord {
+  double peak_ratio_x_rad = 0.0;  // max |drift ratio x|
+  double peak_ratio_y_rad = 0.0;  // max |drift ratio y|
+  double peak_ratio_rad = 0.0;    // max magnitude of the (x, y) drift ratio
+  double peak_time_s = 0.0;       // when peak_ratio_rad was reached
+  double final_ratio_x_rad = 0.0; // at the last sample (residual drift)
+  double final_ratio_y_rad = 0.0;
+  double collapse_time_s = -1.0;  // first sample at or beyond the collapse limit; < 0: never
+};
+
+// Follows every storey of a model through a run. sample() is called once per
+// history row (it ignores a repeated call at the same step).
+class StoreyDriftMonitor {
+ public:
+  StoreyDriftMonitor(std::vector<Storey> storeys, AssessmentDef limits);
+
+  void sample(const BodyStore& bodies, std::int64_t step, double time_s);
+
+  const std::vector<Storey>& storeys() const { return storeys_; }
+  const std::vector<StoreyDriftRecord>& records() const { return records_; }
+  const AssessmentDef& limits() const { return limits_; }
+  // Latest sampled drift (m) of storey index i (0-based).
+  const Eigen::Vector2d& drift_m(std::size_t i) const { return drift_m_[i]; }
+  Eigen::Vector2d drift_ratio_rad(std::size_t i) const { return drift_m_[i] / storeys_[i].height_m(); }
+  StoreyVerdict verdict(std::size_t i) const;
+
+ private:
+  std::vector<Storey> storeys_;
+  AssessmentDef limits_;
+  std::vector<StoreyDriftRecord> records_;
+  std::vector<Eigen::Vector2d> drift_m_;
+  std::int64_t last_step_ = -1;
+};
+
+}  // namespace fq

@@ -1,0 +1,119 @@
+#include "io/storey_drift.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace fq {
+
+namespace {
+constexpr double kLevelTolerance_m = 1e-3;  // levels closer than this are one level
+}
+
+const char* storey_verdict_name(StoreyVerdict v) {
+  switch (v) {
+    case StoreyVerdict::Standing: return "standing";
+    case StoreyVerdict::Damaged: return "damaged";
+    case StoreyVerdict::Collapsed: return "collapsed";
+  }
+  return "unknown";
+}
+
+std::vector<Storey> find_storeys(const Model& model) {
+  const CaseDef& def = model.def;
+  struct ColumnSpan {
+    std::size_t member;
+    Vec3 low_m, high_m;  // node positions, low end first
+  };
+  std::vector<ColumnSpan> columns;
+  std::vector<double> levels;
+  for (std::size_t i = 0; i < def.members.size(); ++i) {
+    const MemberDef& m = def.members[i];
+    if (m.kind != MemberKind::Column) continue;
+    Vec3 a = def.nodes[std::size_t(def.node_index(m.node_a))].xyz_m;
+    Vec3 b = def.nodes[std::size_t(def.node_index(m.node_b))].xyz_m;
+    if (std::abs(a.z() - b.z()) < kLevelTolerance_m) continue;  // a horizontal "column" spans no storey
+    if (a.z() > b.z()) std::swap(a, b);
+    columns.push_back({i, a, b});
+    levels.push_back(a.z());
+    levels.push_back(b.z());
+  }
+  std::sort(levels.begin(), levels.end());
+  std::vector<double> merged;
+  for (double z : levels)
+    if (merged.empty() || z - merged.back() > kLevelTolerance_m) merged.push_back(z);
+
+  std::vector<Storey> storeys;
+  for (std::size_t k = 1; k < merged.size(); ++k) {
+    Storey s;
+    s.number = int(k);
+    s.bottom_z_m = merged[k - 1];
+    s.top_z_m = merged[k];
+    for (const ColumnSpan& c : columns) {
+      if (c.low_m.z() > s.bottom_z_m + kLevelTolerance_m || c.high_m.z() < s.top_z_m - kLevelTolerance_m) continue;
+      const BodyId body = model.member_body[c.member];
+      auto point_at = [&](double z) {  // on the column axis at height z
+        const double f = (z - c.low_m.z()) / (c.high_m.z() - c.low_m.z());
+        return Vec3(c.low_m + f * (c.high_m - c.low_m));
+      };
+      StoreyColumn sc;
+      sc.body = body;
+      sc.bottom_start_m = point_at(s.bottom_z_m);
+      sc.top_start_m = point_at(s.top_z_m);
+      const Mat3& r = model.bodies.rotation[body];
+      const Vec3& x = model.bodies.position_m[body];
+      sc.bottom_local_m = r.transpose() * (sc.bottom_start_m - x);
+      sc.top_local_m = r.transpose() * (sc.top_start_m - x);
+      s.columns.push_back(sc);
+      s.column_names.push_back(def.members[c.member].id);
+    }
+    if (!s.columns.empty()) storeys.push_back(std::move(s));
+  }
+  for (std::size_t k = 0; k < storeys.size(); ++k) storeys[k].number = int(k) + 1;
+  return storeys;
+}
+
+Eigen::Vector2d storey_drift_m(const Storey& storey, const BodyStore& bodies) {
+  Vec3 sum = Vec3::Zero();
+  for (const StoreyColumn& c : storey.columns) {
+    const Vec3 top = bodies.to_world(c.body, c.top_local_m) - c.top_start_m;
+    const Vec3 bottom = bodies.to_world(c.body, c.bottom_local_m) - c.bottom_start_m;
+    sum += top - bottom;
+  }
+  sum /= double(storey.columns.size());
+  return {sum.x(), sum.y()};
+}
+
+StoreyDriftMonitor::StoreyDriftMonitor(std::vector<Storey> storeys, AssessmentDef limits)
+    : storeys_(std::move(storeys)),
+      limits_(limits),
+      records_(storeys_.size()),
+      drift_m_(storeys_.size(), Eigen::Vector2d::Zero()) {}
+
+void StoreyDriftMonitor::sample(const BodyStore& bodies, std::int64_t step, double time_s) {
+  if (step == last_step_) return;
+  last_step_ = step;
+  for (std::size_t i = 0; i < storeys_.size(); ++i) {
+    drift_m_[i] = storey_drift_m(storeys_[i], bodies);
+    const Eigen::Vector2d ratio = drift_ratio_rad(i);
+    StoreyDriftRecord& r = records_[i];
+    r.peak_ratio_x_rad = std::max(r.peak_ratio_x_rad, std::abs(ratio.x()));
+    r.peak_ratio_y_rad = std::max(r.peak_ratio_y_rad, std::abs(ratio.y()));
+    const double magnitude = ratio.norm();
+    if (magnitude > r.peak_ratio_rad) {
+      r.peak_ratio_rad = magnitude;
+      r.peak_time_s = time_s;
+    }
+    if (r.collapse_time_s < 0.0 && magnitude >= limits_.collapse_drift_ratio_rad) r.collapse_time_s = time_s;
+    r.final_ratio_x_rad = ratio.x();
+    r.final_ratio_y_rad = ratio.y();
+  }
+}
+
+StoreyVerdict StoreyDriftMonitor::verdict(std::size_t i) const {
+  const double peak = records_[i].peak_ratio_rad;
+  if (peak >= limits_.collapse_drift_ratio_rad) return StoreyVerdict::Collapsed;
+  if (peak > limits_.safety_drift_ratio_rad) return StoreyVerdict::Damaged;
+  return StoreyVerdict::Standing;
+}
+
+}  // namespace fq

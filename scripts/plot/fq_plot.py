@@ -1,0 +1,159 @@
+#!/usr/bin/env python3
+"""framequake's one plotting path: every figure the commands and validation
+programs produce is drawn here, with one style and units on every axis.
+
+    fq_plot.py compare DIR   DIR/comparison.csv + DIR/<case>/history.csv
+                             -> DIR/first_storey_drift.png
+    fq_plot.py sweep DIR     DIR/sweep.csv -> DIR/sweep.png
+
+Run with Debian's python3 (python3-matplotlib): /usr/bin/python3.
+"""
+import csv
+import math
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")  # files only, no display
+import matplotlib.pyplot as plt  # noqa: E402
+
+# One look for every figure.
+STYLE = {
+    "figure.figsize": (8.0, 4.5),
+    "figure.dpi": 120,
+    "axes.grid": True,
+    "grid.alpha": 0.3,
+    "axes.spines.top": False,
+    "axes.spines.right": False,
+    "font.size": 10,
+    "legend.frameon": False,
+}
+COLOURS = ["#c0392b", "#2471a3", "#1e8449", "#b9770e", "#6c3483", "#117a65", "#7b7d7d"]
+
+
+def fail(message):
+    print("fq_plot.py: error: " + message, file=sys.stderr)
+    sys.exit(1)
+
+
+def read_csv(path):
+    if not os.path.isfile(path):
+        fail("missing " + path)
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def number(text):
+    try:
+        return float(text)
+    except (TypeError, ValueError):
+        return math.nan
+
+
+def read_history_columns(path, names):
+    """Columns of a history.csv as lists of floats (header names with units)."""
+    if not os.path.isfile(path):
+        fail("missing " + path)
+    with open(path, newline="") as f:
+        reader = csv.reader(f)
+        header = next(reader)
+        missing = [n for n in names if n not in header]
+        if missing:
+            fail("%s has no column %s" % (path, ", ".join(missing)))
+        index = [header.index(n) for n in names]
+        columns = [[] for _ in names]
+        for row in reader:
+            if len(row) < len(header):
+                continue  # a row cut short by a crash
+            for k, i in enumerate(index):
+                columns[k].append(number(row[i]))
+    return columns
+
+
+def collapse_limit(summary_path):
+    import json
+
+    try:
+        with open(summary_path) as f:
+            return float(json.load(f)["assessment"]["collapse_drift_ratio_rad"])
+    except (OSError, KeyError, ValueError, TypeError):
+        return None
+
+
+def plot_compare(folder):
+    rows = read_csv(os.path.join(folder, "comparison.csv"))
+    fig, ax = plt.subplots()
+    limit = None
+    for k, row in enumerate(rows):
+        if row.get("status") == "failed" or not row.get("output"):
+            continue
+        out = row["output"]
+        if not row.get("storey1_verdict"):
+            continue  # a case without columns has no storeys to draw
+        t, drift = read_history_columns(os.path.join(out, "history.csv"),
+                                        ["time_s", "storey1_drift_ratio_x_rad"])
+        label = "%s (storey 1: %s)" % (row["case"], row.get("storey1_verdict", "?"))
+        ax.plot(t, drift, color=COLOURS[k % len(COLOURS)], lw=1.0, label=label)
+        limit = limit or collapse_limit(os.path.join(out, "summary.json"))
+    if limit:
+        for sign in (1, -1):
+            ax.axhline(sign * limit, color="0.4", ls="--", lw=0.8)
+        ax.text(ax.get_xlim()[0], limit, " collapse limit %.2f rad" % limit, va="bottom", fontsize=8, color="0.3")
+    peak = max([abs(number(r.get("storey1_peak_drift_ratio_x_rad"))) for r in rows] + [0.0])
+    if limit and peak > 3 * limit:
+        ax.set_ylim(-3 * limit, 3 * limit)  # a fallen storey would flatten the others' traces
+        ax.text(0.99, 0.02, "clipped at +/- %.2f rad" % (3 * limit), transform=ax.transAxes, ha="right",
+                fontsize=8, color="0.3")
+    ax.set_xlabel("simulated time t (s)")
+    ax.set_ylabel("first-storey drift ratio, x (rad)")
+    ax.set_title("First-storey drift ratio, main shaking direction (x)")
+    ax.legend(loc="upper left", fontsize=8)
+    fig.tight_layout()
+    target = os.path.join(folder, "first_storey_drift.png")
+    fig.savefig(target + ".tmp.png")
+    os.replace(target + ".tmp.png", target)
+
+
+def plot_sweep(folder):
+    rows = read_csv(os.path.join(folder, "sweep.csv"))
+    series = {}
+    for row in rows:
+        if row.get("status") in ("failed", None, ""):
+            continue
+        key = (row["case"], row["record"])
+        series.setdefault(key, []).append(
+            (number(row["pga_mps2"]), number(row["storey1_peak_drift_ratio_rad"]), row["collapsed"] == "1"))
+    if not series:
+        fail("no completed runs in sweep.csv")
+    fig, ax = plt.subplots()
+    for k, (key, points) in enumerate(sorted(series.items())):
+        points.sort()
+        colour = COLOURS[k % len(COLOURS)]
+        x = [p[0] / 9.80665 for p in points]
+        y = [max(p[1], 1e-5) for p in points]
+        ax.plot(x, y, color=colour, lw=1.0, label="%s, %s" % key)
+        ax.scatter([xi for xi, p in zip(x, points) if p[2]], [yi for yi, p in zip(y, points) if p[2]],
+                   color=colour, marker="x", s=40, zorder=3)
+        ax.scatter([xi for xi, p in zip(x, points) if not p[2]], [yi for yi, p in zip(y, points) if not p[2]],
+                   facecolors="none", edgecolors=colour, marker="o", s=30, zorder=3)
+    ax.set_yscale("log")
+    ax.set_xlabel("peak ground acceleration (g)")
+    ax.set_ylabel("peak first-storey drift ratio (rad)")
+    ax.set_title("Amplitude sweep: x = a storey collapsed, o = standing")
+    ax.legend(loc="lower right", fontsize=8)
+    fig.tight_layout()
+    target = os.path.join(folder, "sweep.png")
+    fig.savefig(target + ".tmp.png")
+    os.replace(target + ".tmp.png", target)
+
+
+def main(argv):
+    plt.rcParams.update(STYLE)
+    if len(argv) != 3 or argv[1] not in ("compare", "sweep"):
+        fail("usage: fq_plot.py compare|sweep DIR")
+    {"compare": plot_compare, "sweep": plot_sweep}[argv[1]](argv[2])
+
+
+if __name__ == "__main__":
+    main(sys.argv)

@@ -1,0 +1,243 @@
+// Storeys and inter-storey drift (io/storey_drift.h): which columns make a
+// storey, and the drift of known rigid motions against their closed forms
+// (a column turned by theta about its bottom point drifts h sin(theta); a
+// rigid translation of a whole storey does not drift), plus the verdict
+// thresholds and the drift columns and summary of a real run.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "io/case_file.h"
+#include "io/case_runner.h"
+#include "io/input_error.h"
+#include "io/model.h"
+#include "io/storey_drift.h"
+#include "io_test_util.h"
+
+namespace fq {
+namespace {
+
+using test::TempDir;
+
+// Two storeys of 0.29 m in the x-z plane (two columns each) plus a
+// through-column 0.58 m tall at x = 1; beams join the tops.
+const char* kFrame =
+    "framequake_case: 1\n"
+    "name: two_storeys\n"
+    "time: {dt_s: 1.0e-5, duration_s: 0.01}\n"
+    "materials: [{name: wood, density_kg_per_m3: 450}]\n"
+    "sections: [{name: col, width_m: 0.010, depth_m: 0.020}, {name: beam, width_m: 0.010, depth_m: 0.010}]\n"
+    "nodes:\n"
+    "  - {id: a0, xyz_m: [0, 0, 0]}\n"
+    "  - {id: a1, xyz_m: [0, 0, 0.29]}\n"
+    "  - {id: a2, xyz_m: [0, 0, 0.58]}\n"
+    "  - {id: b0, xyz_m: [0.5, 0, 0]}\n"
+    "  - {id: b1, xyz_m: [0.5, 0, 0.29]}\n"
+    "  - {id: b2, xyz_m: [0.5, 0, 0.58]}\n"
+    "  - {id: c0, xyz_m: [1.0, 0, 0]}\n"
+    "  - {id: c2, xyz_m: [1.0, 0, 0.58]}\n"
+    "members:\n"
+    "  - {id: col_a1, kind: column, nodes: [a0, a1], section: col, material: wood}\n"
+    "  - {id: col_a2, kind: column, nodes: [a2, a1], section: col, material: wood}\n"  // drawn downwards
+    "  - {id: col_b1, kind: column, nodes: [b0, b1], section: col, material: wood}\n"
+    "  - {id: col_b2, kind: column, nodes: [b1, b2], section: col, material: wood}\n"
+    "  - {id: col_c, kind: column, nodes: [c0, c2], section: col, material: wood}\n"
+    "  - {id: beam_1, kind: beam, nodes: [a1, b1], section: beam, material: wood}\n"
+    "  - {id: beam_2, kind: beam, nodes: [a2, b2], section: beam, material: wood}\n";
+
+Model frame_model() {
+  TempDir dir;
+  return build_model(load_case_file(dir.write("frame.yaml", kFrame)));
+}
+
+// Turns body `b` by `angle` about world y through world point `pivot`.
+void turn_about_y(BodyStore& bodies, BodyId b, const Vec3& pivot, double angle) {
+  const Quat q(Eigen::AngleAxisd(angle, Vec3::UnitY()));
+  bodies.position_m[b] = pivot + q * (bodies.position_m[b] - pivot);
+  bodies.orientation[b] = (q * bodies.orientation[b]).normalized();
+  bodies.update_rotations();
+}
+
+TEST(StoreyDrift, StoreysAreTheBandsBetweenColumnLevels) {
+  const Model model = frame_model();
+  const std::vector<Storey> storeys = find_storeys(model);
+  ASSERT_EQ(storeys.size(), 2u);
+  EXPECT_EQ(storeys[0].number, 1);
+  EXPECT_DOUBLE_EQ(storeys[0].bottom_z_m, 0.0);
+  EXPECT_DOUBLE_EQ(storeys[0].top_z_m, 0.29);
+  EXPECT_DOUBLE_EQ(storeys[1].height_m(), 0.29);
+  // Storey 1: col_a1, col_b1 and the through-column; storey 2: col_a2, col_b2 and it again.
+  EXPECT_EQ(storeys[0].column_names, (std::vector<std::string>{"col_a1", "col_b1", "col_c"}));
+  EXPECT_EQ(storeys[1].column_names, (std::vector<std::string>{"col_a2", "col_b2", "col_c"}));
+  // At rest nothing drifts.
+  for (const Storey& s : storeys) EXPECT_NEAR(storey_drift_m(s, model.bodies).norm(), 0.0, 1e-15);
+}
+
+TEST(StoreyDrift, TurnedColumnDriftsHeightTimesSine) {
+  Model model = frame_model();
+  const std::vector<Storey> storeys = find_storeys(model);
+  const double theta = 0.07;  // rad
+  // Every storey-1 column turned about its base: drift = h sin(theta) along x
+  // (a positive turn about y moves the top towards +x).
+  turn_about_y(model.bodies, model.member_body[0], Vec3(0, 0, 0), theta);
+  turn_about_y(model.bodies, model.member_body[2], Vec3(0.5, 0, 0), theta);
+  // The through-column turned about its base: its storey-1 band drifts
+  // h sin(theta) and so does its storey-2 band (both bands rotate alike).
+  turn_about_y(model.bodies, model.member_body[4], Vec3(1.0, 0, 0), theta);
+  const Eigen::Vector2d d1 = storey_drift_m(storeys[0], model.bodies);
+  EXPECT_NEAR(d1.x(), 0.29 * std::sin(theta), 1e-12);
+  EXPECT_NEAR(d1.y(), 0.0, 1e-12);
+  // Storey 2: two untouched columns and the through-column's upper band.
+  const Eigen::Vector2d d2 = storey_drift_m(storeys[1], model.bodies);
+  EXPECT_NEAR(d2.x(), 0.29 * std::sin(theta) / 3.0, 1e-12);
+}
+
+TEST(StoreyDrift, TranslatedStoreyDoesNotDrift) {
+  Model model = frame_model();
+  const std::vector<Storey> storeys = find_storeys(model);
+  // The upper storey's columns slide 0.2 m sideways and drop 0.29 m,
+  // upright: a storey that fell without leaning has no drift.
+  for (int m : {1, 3}) model.bodies.position_m[model.member_body[std::size_t(m)]] += Vec3(0.2, 0.1, -0.29);
+  EXPECT_NEAR(storey_drift_m(storeys[1], model.bodies).norm(), 0.0, 1e-12);
+}
+
+TEST(StoreyDrift, MonitorKeepsPeaksAndJudgesByTheLimits) {
+  Model model = frame_model();
+  AssessmentDef limits;  // 1/30 and 1/10 rad
+  StoreyDriftMonitor monitor(find_storeys(model), limits);
+  const BodyId col_a1 = model.member_body[0], col_b1 = model.member_body[2], col_c = model.member_body[4];
+  auto lean_storey1 = [&](double angle) {  // sets storey 1 to lean by `angle` (absolute)
+    Model fresh = frame_model();
+    for (BodyId b : {col_a1, col_b1, col_c}) {
+      model.bodies.position_m[b] = fresh.bodies.position_m[b];
+      model.bodies.orientation[b] = fresh.bodies.orientation[b];
+    }
+    model.bodies.update_rotations();
+    turn_about_y(model.bodies, col_a1, Vec3(0, 0, 0), angle);
+    turn_about_y(model.bodies, col_b1, Vec3(0.5, 0, 0), angle);
+    turn_about_y(model.bodies, col_c, Vec3(1.0, 0, 0), angle);
+  };
+  monitor.sample(model.bodies, 0, 0.0);
+  EXPECT_EQ(monitor.verdict(0), StoreyVerdict::Standing);
+  lean_storey1(-0.05);  // sin(0.05) = 0.04998 > 1/30: damaged
+  monitor.sample(model.bodies, 1, 0.5);
+  monitor.sample(model.bodies, 1, 0.5);  // a repeated step is ignored
+  EXPECT_EQ(monitor.verdict(0), StoreyVerdict::Damaged);
+  EXPECT_NEAR(monitor.records()[0].peak_ratio_x_rad, std::sin(0.05), 1e-12);
+  lean_storey1(0.02);  // back below: the peak and the verdict stay
+  monitor.sample(model.bodies, 2, 1.0);
+  EXPECT_EQ(monitor.verdict(0), StoreyVerdict::Damaged);
+  EXPECT_NEAR(monitor.records()[0].final_ratio_x_rad, std::sin(0.02), 1e-12);
+  EXPECT_LT(monitor.records()[0].collapse_time_s, 0.0);
+  lean_storey1(0.2);  // sin(0.2) = 0.199 >= 0.1: collapsed, at t = 1.5 s
+  monitor.sample(model.bodies, 3, 1.5);
+  EXPECT_EQ(monitor.verdict(0), StoreyVerdict::Collapsed);
+  EXPECT_DOUBLE_EQ(monitor.records()[0].collapse_time_s, 1.5);
+  EXPECT_DOUBLE_EQ(monitor.records()[0].peak_time_s, 1.5);
+  // Storey 2 holds two unmoved columns and the through-column's upper band
+  // (which leans with it): a third of the lean.
+  EXPECT_NEAR(monitor.records()[1].peak_ratio_rad, std::sin(0.2) / 3.0, 1e-12);
+}
+
+TEST(StoreyDrift, AssessmentLimitsAreReadAndChecked) {
+  TempDir dir;
+  const CaseDef def = load_case_file(
+      dir.write("a.yaml", std::string(kFrame) + "assessment: {safety_drift_ratio_rad: 0.02, collapse_drift_ratio_rad: 0.2}\n"));
+  EXPECT_DOUBLE_EQ(def.assessment.safety_drift_ratio_rad, 0.02);
+  EXPECT_DOUBLE_EQ(def.assessment.collapse_drift_ratio_rad, 0.2);
+  try {
+    load_case_file(dir.write("b.yaml", std::string(kFrame) + "assessment: {collapse_drift_ratio_rad: 0.01}\n"));
+    FAIL() << "a collapse limit below the safety limit was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "assessment");
+    EXPECT_NE(std::string(e.what()).find("must be larger than safety_drift_ratio_rad"), std::string::npos) << e.what();
+  }
+}
+
+// A column pinned at its foot (a single-point joint: no moment) and tipped
+// by 0.3 rad topples under gravity. Its storey (the band between its two
+// ends, h = L cos 0.3) drifts L (sin(phi) - sin 0.3), which passes 0.1 h at
+// phi = asin(sin 0.3 + 0.1 cos 0.3) = 0.40 rad: the run's verdict is
+// collapsed, and history.csv's drift ratio is its drift over h.
+TEST(StoreyDrift, RunWritesDriftColumnsAndVerdicts) {
+  TempDir dir;
+  const std::string text =
+      "framequake_case: 1\n"
+      "name: leaning\n"
+      "time: {dt_s: 1.0e-4, duration_s: 0.6}\n"
+      "materials: [{name: wood, density_kg_per_m3: 450}]\n"
+      "sections: [{name: col, width_m: 0.010, depth_m: 0.020}]\n"
+      "nodes: [{id: a, xyz_m: [0, 0, 0]}, {id: b, xyz_m: [0.0886560, 0, 0.2866009]}]\n"  // 0.3 rad lean, L = 0.3 m
+      "members: [{id: c, kind: column, nodes: [a, b], section: col, material: wood}]\n"
+      "joint_types: [{name: pin, layout: single_point, normal: {law: linear, stiffness_N_per_m: 1.0e5},\n"
+      "               shear: {law: linear, stiffness_N_per_m: 1.0e5}, fracture: {criterion: never}}]\n"
+      "supports: [{node: a, joint_type: pin}]\n"
+      "output: {folder: " + (dir.path() / "out").string() + ", frame_interval_s: 0.1, history_interval_s: 0.01}\n";
+  const CaseRunReport report = run_case(load_case_file(dir.write("lean.yaml", text)), {});
+  ASSERT_EQ(report.storeys.size(), 1u);
+  // The column is its own storey and starts leaning: drift is measured from
+  // the start, and free fall of a tipped rod adds lean every step.
+  EXPECT_EQ(report.storeys[0].verdict, StoreyVerdict::Collapsed);
+  EXPECT_GT(report.storeys[0].drift.collapse_time_s, 0.0);
+  EXPECT_NEAR(report.storeys[0].height_m, 0.3 * std::cos(0.3), 1e-6);
+  std::ifstream history(dir.path() / "out/history.csv");
+  std::string line;
+  std::getline(history, line);
+  std::vector<std::string> header;
+  {
+    std::stringstream h(line);
+    for (std::string cell; std::getline(h, cell, ',');) header.push_back(cell);
+  }
+  const auto column = [&](const std::string& name) {
+    const auto it = std::find(header.begin(), header.end(), name);
+    EXPECT_NE(it, header.end()) << name;
+    return std::size_t(it - header.begin());
+  };
+  const std::size_t dx = column("storey1_drift_x_m"), rx = column("storey1_drift_ratio_x_rad");
+  column("storey1_drift_y_m");
+  column("storey1_drift_ratio_y_rad");
+  int rows = 0;
+  double last_ratio = 0.0;
+  while (std::getline(history, line)) {
+    std::vector<double> v;
+    std::stringstream r(line);
+    for (std::string cell; std::getline(r, cell, ',');) v.push_back(std::stod(cell));
+    EXPECT_NEAR(v[rx], v[dx] / report.storeys[0].height_m, 1e-9);
+    last_ratio = v[rx];
+    ++rows;
+  }
+  EXPECT_EQ(rows, 61);
+  (void)last_ratio;
+  // When: a rigid rod (length L, depth d in the plane of fall) pinned at its
+  // end falls from theta0 with theta'^2 = a (cos theta0 - cos theta),
+  // a = g L / (L^2/3 + d^2/12) (energy; moment of inertia about the pin).
+  // t(theta_c) = integral of dtheta / theta', with theta = theta0 + u^2 to
+  // remove the start's singularity. The pin's springs (1e5 N/m) sag by
+  // m g / k = 3 micrometres, far below what the 10 ms sampling resolves.
+  const double L = 0.3, d = 0.02, g = 9.80665, theta0 = 0.3;
+  const double a = g * L / (L * L / 3.0 + d * d / 12.0);
+  const double theta_c = std::asin(std::sin(theta0) + 0.1 * std::cos(theta0));
+  const double u_max = std::sqrt(theta_c - theta0);
+  const int n = 20000;
+  double t_c = 0.0;
+  for (int k = 0; k < n; ++k) {  // midpoint rule in u
+    const double u = (k + 0.5) * u_max / n;
+    t_c += 2.0 * u / std::sqrt(a * (std::cos(theta0) - std::cos(theta0 + u * u))) * (u_max / n);
+  }
+  // The monitor samples every 10 ms: the first sample at or past t_c.
+  EXPECT_GE(report.storeys[0].drift.collapse_time_s, t_c - 1e-3);
+  EXPECT_LE(report.storeys[0].drift.collapse_time_s, t_c + 0.01 + 1e-3);
+  std::ifstream summary(dir.path() / "out/summary.json");
+  std::stringstream s;
+  s << summary.rdbuf();
+  EXPECT_NE(s.str().find("\"storeys\""), std::string::npos);
+  EXPECT_NE(s.str().find("\"collapsed\""), std::string::npos) << s.str();
+  EXPECT_NE(s.str().find("\"collapse_drift_ratio_rad\""), std::string::npos);
+}
+
+}  // namespace
+}  // namespace fq
