@@ -1,15 +1,13 @@
 #!/usr/bin/env bash
-# The main job: install what is missing, build, and run the demonstration.
-# Usage: bash scripts/main.sh        (output in out/)
+# The main job: install what is missing, build, and run seed 001's frames
+# A, B and C side by side under the JMA Kobe record, with the comparison
+# table and figure (framequake compare).
+# Usage: bash scripts/main.sh        (output in out/compare/)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install_deps.sh
 BUILD_DIR=build BUILD_TYPE=Release bash scripts/build.sh
-# Until the frames A/B/C comparison exists, the main job runs the two
-# demonstration cases: a jointed portal frame on the Kobe record and free
-# blocks sliding, rocking and landing on shaking ground.
-for case in demo_portal_frame demo_falling_block; do
-  echo "[framequake] running cases/$case.yaml"
-  ./build/apps/framequake run "cases/$case.yaml" --out "out/$case"
-done
-echo "[framequake] done: open out/demo_portal_frame/case.pvd or out/demo_falling_block/case.pvd in ParaView"
+echo "[framequake] running frames A, B and C (cases/frame_*.yaml) side by side"
+./build/apps/framequake compare cases/frame_A.yaml cases/frame_B.yaml cases/frame_C.yaml --out out/compare
+echo "[framequake] done: table out/compare/comparison.md, figure out/compare/first_storey_drift.png;"
+echo "[framequake] open out/compare/frame_A/case.pvd (and frame_B, frame_C) in ParaView"

@@ -1,0 +1,69 @@
+#!/usr/bin/env bash
+# How the verdicts of frames A, B and C depend on the two values the seed
+# does not give and that matter most: the load each level carries (kN/m^2 of
+# the full-size plan, which sets the beams' density) and the strength of the
+# new-house joints of B and C relative to A's.
+#
+# Each variant is the shipped case file with one value changed (sed on a
+# copy); everything else, the window included, as shipped unless
+# FQ_WINDOW="start length" (record seconds) is given for a quicker look.
+# Writes validation/results/frames_sensitivity.md (one table per variant
+# family, the rows of `framequake compare`).
+#
+# Usage: bash validation/frames_sensitivity.sh            (about 12 runs)
+#        FQ_WINDOW="5 8" bash validation/frames_sensitivity.sh
+set -euo pipefail
+cd "$(dirname "$0")/.."
+app=./build/apps/framequake
+[[ -x $app ]] || { echo "build first: bash scripts/build.sh" >&2; exit 2; }
+work=$(mktemp -d /tmp/fq_sensitivity_XXXXXX)
+trap 'rm -rf "$work"' EXIT
+mkdir -p validation/results
+out=validation/results/frames_sensitivity.md
+cp -r cases/ground_motions "$work/"
+
+variant() {  # variant NAME CASE SED_SCRIPT -> path of the changed copy
+  local name=$1 case=$2 script=$3
+  sed -e "$script" -e "s/^name: .*/name: $name/" "cases/$case.yaml" > "$work/$name.yaml"
+  if [[ -n ${FQ_WINDOW:-} ]]; then
+    read -r start length <<< "$FQ_WINDOW"
+    sed -i -e "s/window_start_s: .*/window_start_s: $start/" -e "s/window_length_s: .*/window_length_s: $length/" \
+      "$work/$name.yaml"
+  fi
+  echo "$work/$name.yaml"
+}
+
+{
+  echo "# Sensitivity of the frame verdicts"
+  echo
+  echo "Produced by \`bash validation/frames_sensitivity.sh\` on $(date -u +%Y-%m-%d)"
+  echo "(window: ${FQ_WINDOW:-as shipped, record 0-20 s})."
+  echo
+} > "$out"
+
+# 1. Load per level: beam density rho = 13000 kg/m^3 per kN/m^2 (cases/README.md, "Mass").
+echo "## Load per level (shipped: 0.4 kN/m^2)" >> "$out"
+for load in 0.3 0.5 1.0; do
+  rho=$(awk -v q="$load" 'BEGIN { printf "%d", 13000 * q }')
+  files=()
+  for f in A B C; do
+    files+=("$(variant "frame_${f}_load${load}" "frame_$f" "s/density_kg_per_m3: 5200}/density_kg_per_m3: $rho}/")")
+  done
+  echo >> "$out"; echo "### $load kN/m^2 per level (beam density $rho kg/m^3)" >> "$out"; echo >> "$out"
+  "$app" compare "${files[@]}" --out "$work/load$load" --no-figure > "$work/log" 2>&1 || true
+  grep '^|' "$work/load$load/comparison.md" >> "$out"
+done
+
+# 2. Strength of B's (and C's) joints: 2x and 4x A's instead of 3x, same stiffness.
+echo >> "$out"; echo "## New-house joint strength (shipped: 3x frame A's)" >> "$out"
+for factor in 2 4; do
+  fy=$(awk -v k="$factor" 'BEGIN { print 5.0 * k }')
+  fu=$(awk -v k="$factor" 'BEGIN { print 7.5 * k }')
+  ey=$(awk -v f="$fy" 'BEGIN { print f / 8.0e4 / 0.010 }')
+  script="s/yield_strain_tension: 0.01875/yield_strain_tension: $ey/;s/yield_strain_compression: 0.01875/yield_strain_compression: $ey/;s/_force_tension_N: 15.0/_force_tension_N: $fy/;s/_force_compression_N: 15.0/_force_compression_N: $fy/;s/_force_tension_N: 22.5/_force_tension_N: $fu/;s/_force_compression_N: 22.5/_force_compression_N: $fu/"
+  files=("$(variant "frame_B_strength${factor}x" frame_B "$script")" "$(variant "frame_C_strength${factor}x" frame_C "$script")")
+  echo >> "$out"; echo "### ${factor}x (yield $fy N, ultimate $fu N per spring)" >> "$out"; echo >> "$out"
+  "$app" compare "${files[@]}" --out "$work/strength$factor" --no-figure > "$work/log" 2>&1 || true
+  grep '^|' "$work/strength$factor/comparison.md" >> "$out"
+done
+echo "[frames_sensitivity] wrote $out"
