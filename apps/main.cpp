@@ -1,6 +1,6 @@
 // framequake command line.
 //
-//   framequake run CASE [--out DIR] [--quiet] [--force] [--threads N]
+//   framequake run CASE [--out DIR] [--quiet] [--force] [--threads N] [--integrator NAME]
 //   framequake info CASE
 //   framequake compare CASE... [--out DIR] [--jobs N] [--window-length S]
 //   framequake sweep CASE... [--scales LIST] [--record FILE]... [--out DIR]
@@ -73,6 +73,8 @@ const char* kRunHelp =
     "  --quiet        no progress display\n"
     "  --force        run even if dt_s exceeds the estimated stable time step\n"
     "  --threads N    OpenMP threads (default: OMP_NUM_THREADS or all cores)\n"
+    "  --integrator NAME  time integrator, overrides time.integrator: central_difference (default),\n"
+    "                 velocity_verlet, symplectic_euler, rk4, forward_euler, gsl_rk8pd\n"
     "  --help         this text\n"
     "\n"
     "Exit codes: 0 completed, 1 unstable, 2 bad input, 3 output failed, 130 interrupted.\n";
@@ -89,6 +91,7 @@ struct RunArgs {
   bool quiet = false;
   bool force = false;
   int threads = 0;
+  std::optional<fq::Integrator> integrator;
 };
 
 [[noreturn]] void usage_error(const std::string& message, const char* help) {
@@ -120,6 +123,12 @@ RunArgs parse_run_args(int argc, char** argv, int first, const char* help, bool 
       if (end == v.c_str() || *end != '\0' || n < 1 || n > 1024)
         usage_error("--threads expects a whole number from 1 to 1024, got '" + v + "'", help);
       a.threads = int(n);
+    } else if (run_options && arg == "--integrator") {
+      const std::string v = need_value("--integrator");
+      fq::Integrator m;
+      if (!fq::parse_integrator(v, m))
+        usage_error("--integrator expects one of " + fq::integrator_names_list() + ", got '" + v + "'", help);
+      a.integrator = m;
     } else if (!arg.empty() && arg[0] == '-') {
       usage_error("unknown option '" + arg + "'", help);
     } else if (a.case_file.empty()) {
@@ -149,6 +158,7 @@ int command_run(int argc, char** argv) {
   fq::CaseRunOptions options;
   options.output_folder = args.out;
   options.allow_unstable_time_step = args.force;
+  options.integrator = args.integrator;
   options.stop_requested = &g_stop_requested;
   std::optional<fq::ProgressDisplay> progress;
   if (!args.quiet && isatty(fileno(stderr))) {

@@ -7,6 +7,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include <Eigen/Eigenvalues>
+
 #include "contacts/collide_box_box.h"
 #include "contacts/collide_box_ground.h"
 #include "contacts/linear_contact_law.h"
@@ -396,41 +398,225 @@ double ContactSystem::ground_normal_force_N() const {
   return sum;
 }
 
-StiffestMode ContactSystem::stiffest_mode(const BodyStore& bodies) const {
-  // Envelope of the fastest contact mode, in units of k/m: a thin plate on
-  // its four corner springs rocks at w^2 = 12 k/m (the highest mode of a box
-  // on a face contact; the bounce is 4 k/m), and two free bodies of equal
-  // mass halve the reduced mass -> w^2 = 24 k/m with the lightest mass. A
-  // body squeezed in a stack of face contacts stays below this (chain bound
-  // 4 * 4k/m = 16 k/m). The dashpot lowers the central-difference limit to
-  // dt = (2/w)(sqrt(1 + zeta^2) - zeta); it is folded into the w reported.
-  StiffestMode mode;
-  double m_min = HUGE_VAL;
-  BodyId lightest = kNoBody;
-  for (std::size_t i = 0; i < bodies.size(); ++i) {
-    if (bodies.is_fixed[i] || bodies.info[i].kind == MemberKind::Ground) continue;
-    if (bodies.mass_kg[i] < m_min) {
-      m_min = bodies.mass_kg[i];
-      lightest = BodyId(i);
+namespace {
+
+using Vec6 = Eigen::Matrix<double, 6, 1>;
+
+// Mass-scaled gradient of a point displacement along unit e at arm r from
+// the centre of body i: (e / sqrt(m), I^-1/2 (r x e)) with the world inverse
+// inertia (zero for a fixed body).
+Vec6 scaled_gradient(const BodyStore& bodies, BodyId i, const Vec3& arm, const Vec3& e) {
+  Vec6 g;
+  g.head<3>() = e * std::sqrt(bodies.inverse_mass_per_kg[i]);
+  const Mat3& r = bodies.rotation[i];
+  g.tail<3>() = r * bodies.inverse_inertia_per_kgm2[i].cwiseSqrt().cwiseProduct(r.transpose() * arm.cross(e));
+  return g;
+}
+
+// Largest eigenvalue of M^-1/2 K M^-1/2 (1/s^2) for one box resting on a
+// face against a fixed surface, worst over its three face orientations:
+// four corner points of the face, each a normal spring k_n along the face
+// normal and two tangential springs k_t in the face plane.
+double one_sided_contact_eigenvalue(const Vec3& half_extents_m, double mass_kg, const Vec3& inertia_kgm2, double kn,
+                                    double kt) {
+  double worst = 0.0;
+  for (int axis = 0; axis < 3; ++axis) {
+    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    Eigen::Matrix<double, 6, 6> k = Eigen::Matrix<double, 6, 6>::Zero();
+    for (int corner = 0; corner < 4; ++corner) {
+      Vec3 arm = Vec3::Zero();
+      arm[axis] = -half_extents_m[axis];
+      arm[u] = (corner & 1 ? 1.0 : -1.0) * half_extents_m[u];
+      arm[v] = (corner & 2 ? 1.0 : -1.0) * half_extents_m[v];
+      for (int d = 0; d < 3; ++d) {
+        const Vec3 e = Vec3::Unit(d);
+        Vec6 g;
+        g.head<3>() = e / std::sqrt(mass_kg);
+        g.tail<3>() = arm.cross(e).cwiseQuotient(inertia_kgm2.cwiseSqrt());
+        k += (d == axis ? kn : kt) * g * g.transpose();
+      }
     }
+    worst = std::max(worst, Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>>(k).eigenvalues().maxCoeff());
   }
-  if (lightest == kNoBody) return mode;
+  return worst;
+}
+
+}  // namespace
+
+StiffestMode ContactSystem::stiffest_mode(const BodyStore& bodies) const {
+  // Critical time step of the contact springs (derivation in contacts/README.md).
+  // omega^2 is the largest eigenvalue of M^-1/2 K M^-1/2 of the linearised
+  // contact springs (K = sum k c c^T over normal and tangential springs of
+  // every point, c the point's relative-displacement gradient; M masses and
+  // world inertia tensors), the same measure JointSystem uses. Two parts:
+  //  (1) contacts present now: every box within kTouchMargin_m of the ground
+  //      or of another (unbonded) box gets the points the narrow phase would
+  //      give, and the top eigenvalue of the whole contact graph is found by
+  //      power iteration (a box on the ground, a stack, a pile at rest);
+  //  (2) contacts that may form later (falling debris): the worst single
+  //      new contact. One box on a fixed surface: lambda_1(i), the largest
+  //      eigenvalue of its four-corner face contact, worst face. A face
+  //      contact is the worst a box can rest in: an edge or corner contact
+  //      has a subset of its points, a face on a smaller face has shorter
+  //      arms. Two free boxes a, b: for unit x = (x_a, x_b) in mass-scaled
+  //      coordinates the Rayleigh quotient is |G_b x_b - G_a x_a|^2 <=
+  //      (|G_a| |x_a| + |G_b| |x_b|)^2 <= lambda_1(a) + lambda_1(b)
+  //      (Cauchy-Schwarz), with equality for two equal boxes in their
+  //      antisymmetric mode; the bound uses the two largest lambda_1.
+  // Stiffnesses: the largest k_n and k_t of any material pair (and the
+  // ground). The dashpot lowers the central-difference limit to
+  // dt = (2/w)(sqrt(1 + zeta^2) - zeta); it is folded into the w reported
+  // with the largest damping ratio of any pair.
+  StiffestMode mode;
+  // Before prepare: the pairs set so far and the ground (the defaults only
+  // when nothing is set); after: every coefficient set in use.
   std::vector<ContactCoefficients> all = coeffs_;
-  if (all.empty()) all.push_back(make_contact_coefficients(ContactParams{}, "the default pair"));
   if (!prepared_) {
     for (const auto& [key, params] : pair_params_) all.push_back(make_contact_coefficients(params, "a pair"));
     if (ground_enabled_) all.push_back(make_contact_coefficients(ground_params_, "the ground"));
   }
-  double k_max = 0.0, zeta_max = 0.0;
+  if (all.empty()) all.push_back(make_contact_coefficients(ContactParams{}, "the default pair"));
+  double kn = 0.0, kt = 0.0, zeta_max = 0.0;
   for (const ContactCoefficients& c : all) {
-    k_max = std::max({k_max, c.normal_stiffness_N_per_m, c.tangential_stiffness_N_per_m});
+    kn = std::max(kn, c.normal_stiffness_N_per_m);
+    kt = std::max(kt, c.tangential_stiffness_N_per_m);
     zeta_max = std::max(zeta_max, c.damping_ratio);
   }
-  const double w = std::sqrt(24.0 * k_max / m_min);
+  const std::size_t nb = bodies.size();
+  auto is_free = [&](std::size_t i) { return !bodies.is_fixed[i] && bodies.info[i].kind != MemberKind::Ground; };
+
+  // (2) new contacts.
+  double lambda_new = 0.0, top1 = 0.0, top2 = 0.0;
+  BodyId top1_body = kNoBody;
+  std::size_t free_count = 0;
+  for (std::size_t i = 0; i < nb; ++i) {
+    if (!is_free(i)) continue;
+    ++free_count;
+    const double l = one_sided_contact_eigenvalue(bodies.half_extents_m[i], bodies.mass_kg[i],
+                                                  bodies.principal_inertia_kgm2[i], kn, kt);
+    if (l > top1) {
+      top2 = top1;
+      top1 = l;
+      top1_body = BodyId(i);
+    } else if (l > top2) {
+      top2 = l;
+    }
+  }
+  if (top1_body == kNoBody) return mode;
+  std::string where_new;
+  if (ground_enabled_ || free_count < 2) {
+    lambda_new = top1;
+    where_new = "a face contact of '" + bodies.info[top1_body].name + "'";
+  }
+  if (free_count >= 2 && top1 + top2 > lambda_new) {
+    lambda_new = top1 + top2;
+    where_new = "a face contact of '" + bodies.info[top1_body].name + "' on another free box";
+  }
+
+  // (1) contacts present now.
+  struct Row {
+    BodyId a, b;
+    double k;
+    Vec6 ca, cb;
+  };
+  std::vector<Row> rows;
+  auto box_of = [&](std::size_t i, double inflate_m) {
+    OrientedBox box;
+    box.center_m = bodies.position_m[i];
+    box.rotation = bodies.rotation[i];
+    box.half_extents_m = bodies.half_extents_m[i] + Vec3::Constant(inflate_m);
+    return box;
+  };
+  auto add_point = [&](BodyId a, BodyId b, const ContactPointGeometry& p) {
+    const Vec3 n = p.normal;
+    const Vec3 t1 = (std::abs(n.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY()).cross(n).normalized();
+    const Vec3 t2 = n.cross(t1);
+    const Vec3* dirs[3] = {&n, &t1, &t2};
+    for (int d = 0; d < 3; ++d) {
+      Row r{a, b, p.weight * (d == 0 ? kn : kt), Vec6::Zero(), Vec6::Zero()};
+      if (a != kNoBody) r.ca = -scaled_gradient(bodies, a, p.position_m - bodies.position_m[a], *dirs[d]);
+      r.cb = scaled_gradient(bodies, b, p.position_m - bodies.position_m[b], *dirs[d]);
+      rows.push_back(r);
+    }
+  };
+  ContactManifold manifold;
+  if (ground_enabled_) {
+    for (std::size_t i = 0; i < nb; ++i) {
+      if (!is_free(i)) continue;
+      const OrientedBox box = box_of(i, 0.0);
+      if (box_lowest_z_m(box) > ground_level_m_ + kTouchMargin_m) continue;
+      collide_box_ground(box, ground_level_m_ + kTouchMargin_m, manifold);
+      for (int k = 0; k < manifold.count; ++k) add_point(kNoBody, BodyId(i), manifold.points[std::size_t(k)]);
+    }
+  }
+  // Box pairs: sweep along x over bounding spheres (O(n log n + pairs)).
+  std::vector<std::pair<double, std::size_t>> order;
+  for (std::size_t i = 0; i < nb; ++i)
+    if (bodies.info[i].kind != MemberKind::Ground)
+      order.push_back({bodies.position_m[i].x() - bodies.half_extents_m[i].norm(), i});
+  std::sort(order.begin(), order.end());
+  for (std::size_t p = 0; p < order.size(); ++p) {
+    const std::size_t i = order[p].second;
+    const double ri = bodies.half_extents_m[i].norm();
+    const double x_end = bodies.position_m[i].x() + ri + kTouchMargin_m;
+    for (std::size_t q = p + 1; q < order.size() && order[q].first <= x_end; ++q) {
+      const std::size_t j = order[q].second;
+      if (!is_free(i) && !is_free(j)) continue;
+      const double reach = ri + bodies.half_extents_m[j].norm() + kTouchMargin_m;
+      if ((bodies.position_m[i] - bodies.position_m[j]).squaredNorm() > reach * reach) continue;
+      const BodyId a = BodyId(std::min(i, j)), b = BodyId(std::max(i, j));
+      if (bonded_ && bonded_->bonded(a, b)) continue;
+      if (collide_box_box(box_of(std::size_t(a), 0.5 * kTouchMargin_m), box_of(std::size_t(b), 0.5 * kTouchMargin_m),
+                          manifold) == 0)
+        continue;
+      for (int k = 0; k < manifold.count; ++k) add_point(a, b, manifold.points[std::size_t(k)]);
+    }
+  }
+  double lambda_now = 0.0;
+  BodyId now_body = kNoBody;
+  if (!rows.empty()) {
+    std::vector<Vec6> x(nb, Vec6::Zero()), y(nb, Vec6::Zero());
+    for (std::size_t i = 0; i < nb; ++i)
+      for (int d = 0; d < 6; ++d) x[i][d] = 1.0 + 0.1 * std::sin(double(7 * i + d + 1));
+    auto slot = [&](BodyId id) -> Vec6* { return id == kNoBody ? nullptr : &y[std::size_t(id)]; };
+    for (int it = 0; it < 400; ++it) {
+      for (Vec6& v : y) v.setZero();
+      for (const Row& r : rows) {
+        const double proj = (r.a == kNoBody ? 0.0 : r.ca.dot(x[std::size_t(r.a)])) + r.cb.dot(x[std::size_t(r.b)]);
+        if (Vec6* ya = slot(r.a)) *ya += (r.k * proj) * r.ca;
+        *slot(r.b) += (r.k * proj) * r.cb;
+      }
+      double xy = 0.0, yy = 0.0, xx = 0.0;
+      for (std::size_t i = 0; i < nb; ++i) {
+        xy += x[i].dot(y[i]);
+        yy += y[i].squaredNorm();
+        xx += x[i].squaredNorm();
+      }
+      if (!(yy > 0.0)) break;
+      lambda_now = xy / xx;
+      const double scale = 1.0 / std::sqrt(yy);
+      for (std::size_t i = 0; i < nb; ++i) x[i] = y[i] * scale;
+    }
+    double best = -1.0;
+    for (std::size_t i = 0; i < nb; ++i)
+      if (x[i].squaredNorm() > best) {
+        best = x[i].squaredNorm();
+        now_body = BodyId(i);
+      }
+  }
+
+  const bool now_wins = lambda_now > lambda_new;
+  const double lambda = std::max(lambda_now, lambda_new);
+  if (!(lambda > 0.0)) return mode;
+  const double w = std::sqrt(lambda);
   mode.omega_radps = w / (std::sqrt(1.0 + zeta_max * zeta_max) - zeta_max);
   std::ostringstream where;
-  where << "contact spring k = " << k_max << " N/m on the lightest body '" << bodies.info[lightest].name
-        << "' (m = " << m_min << " kg, damping ratio " << zeta_max << ")";
+  where << "contact springs (k_n = " << kn << " N/m, k_t = " << kt << " N/m per point, damping ratio " << zeta_max
+        << ") of ";
+  if (now_wins)
+    where << "the contacts present at the start, largest motion in '" << bodies.info[std::size_t(now_body)].name << "'";
+  else
+    where << where_new;
   mode.where = where.str();
   return mode;
 }

@@ -2,8 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
+
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_odeiv2.h>
 
 #include "dem_core/rotation.h"
 
@@ -64,6 +68,22 @@ constexpr double kFloorSpeed_mps = 1.0;
 
 }  // namespace
 
+// gsl_rk8pd: the GSL system and driver, allocated in initialize().
+struct Simulation::GslWorkspace {
+  gsl_odeiv2_system system{};
+  gsl_odeiv2_driver* driver = nullptr;
+  GslWorkspace() = default;
+  GslWorkspace(const GslWorkspace&) = delete;
+  GslWorkspace& operator=(const GslWorkspace&) = delete;
+  ~GslWorkspace() {
+    if (driver) gsl_odeiv2_driver_free(driver);
+  }
+};
+
+Simulation::~Simulation() = default;
+Simulation::Simulation(Simulation&&) noexcept = default;
+Simulation& Simulation::operator=(Simulation&&) noexcept = default;
+
 Simulation::Simulation(BodyStore bodies, SimulationSettings settings, GroundMotion ground_motion)
     : bodies_(std::move(bodies)), settings_(settings), ground_motion_(std::move(ground_motion)) {
   if (!(settings_.dt_s > 0.0) || !std::isfinite(settings_.dt_s))
@@ -71,6 +91,24 @@ Simulation::Simulation(BodyStore bodies, SimulationSettings settings, GroundMoti
   if (!(settings_.duration_s >= 0.0) || !std::isfinite(settings_.duration_s))
     throw std::invalid_argument("duration_s must be a non-negative number of seconds");
   if (settings_.profile_every_steps < 1) settings_.profile_every_steps = 1;
+  if (settings_.integrator == Integrator::GslRk8pd &&
+      (!(settings_.reference_tolerance > 0.0) || !std::isfinite(settings_.reference_tolerance)))
+    throw std::invalid_argument("reference_tolerance must be a positive number");
+}
+
+std::string Simulation::integrator_refusal() const {
+  if (!integrator_is_multistage(settings_.integrator)) return "";
+  for (const auto& p : providers_) {
+    if (!p->supports_trial_states()) {
+      std::ostringstream m;
+      m << "integrator " << integrator_name(settings_.integrator)
+        << " evaluates forces at trial states within a step, but force provider '" << p->name()
+        << "' keeps history between evaluations (plastic or fracturing joint laws, joint strain limits, "
+           "contacts); use central_difference, velocity_verlet or symplectic_euler for this scene";
+      return m.str();
+    }
+  }
+  return "";
 }
 
 void Simulation::add_force_provider(std::unique_ptr<ForceProvider> provider) {
@@ -141,6 +179,7 @@ void Simulation::compute_forces() {
 
 void Simulation::initialize() {
   if (initialized_) return;
+  if (const std::string why = integrator_refusal(); !why.empty()) throw std::invalid_argument(why);
   initialized_ = true;
   if (!wall_started_) {
     wall_start_ = Clock::now();
@@ -148,6 +187,10 @@ void Simulation::initialize() {
   }
   bodies_.update_rotations();
   for (auto& p : providers_) p->prepare(bodies_);
+  if (settings_.integrator != Integrator::CentralDifference) {
+    initialize_synchronised();
+    return;
+  }
   compute_forces();
 
   // Ledger at t = 0, with the same definitions as at every later step
@@ -339,6 +382,7 @@ void Simulation::observe_undue() {
 }
 
 bool Simulation::step() {
+  if (settings_.integrator != Integrator::CentralDifference) return step_synchronised();
   initialize();
   if (!forces_current_) compute_forces();
   const bool timed = (step_ % settings_.profile_every_steps) == 0;
@@ -409,6 +453,300 @@ RunResult Simulation::run(const std::atomic<bool>* stop_requested) {
   result.wall_s = wall_seconds();
   for (const ObserverSlot& o : observers_) o.observer->on_finish(*this);
   return result;
+}
+
+
+// ---- integrators other than central difference -------------------------------
+//
+// Common frame (integrator.h): the body store holds the state at integer
+// step n -- x_n, q_n, v_n, L_n and the instantaneous w_n = R I^-1 R^T L_n --
+// with the forces F_n, T_n already evaluated. One step: the method's update
+// to n+1 (integrate stage), FinishStep, then the forces at n+1 (which the
+// next step reuses: velocity Verlet's second half kick needs them, and they
+// are RK4's first stage), then the ledger at n+1. Observers therefore see
+// poses, velocities, forces and ledger all at the same time t_{n+1}.
+//
+// Ledger (energy_ledger.h) for these integrators: kinetic energy of the
+// state at n; gravity potential -g . sum m (x_n - x_0) (exact for uniform
+// gravity, so the balance error shows the method's own energy error);
+// ground-motion work by the trapezoid rule over each step, O(dt^2). Joint
+// and contact dashpot/friction books assume the leapfrog (one evaluation
+// per step, v at half steps) and are approximate, O(dt), here.
+
+void Simulation::evaluate_forces_at(const StepInfo& info) {
+  ground_acceleration_ = ground_motion_.acceleration(info.time_s);
+  const Vec3 specific_force = settings_.gravity_mps2 - ground_acceleration_;
+  const std::size_t n = bodies_.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    bodies_.force_N[i] = bodies_.is_fixed[i] ? Vec3::Zero() : Vec3(bodies_.mass_kg[i] * specific_force);
+    bodies_.torque_Nm[i].setZero();
+  }
+  for (auto& p : providers_) p->accumulate_forces(bodies_, info);
+}
+
+namespace {
+
+constexpr std::size_t kOdeDofPerBody = 13;  // x(3), q(4: w, x, y, z), v(3), L(3)
+
+// Instantaneous world angular velocity from L at the pose of the store.
+void refresh_angular_velocity(BodyStore& b, std::size_t i) {
+  b.angular_velocity_radps[i] = b.angular_velocity_from_momentum(BodyId(i), b.rotation[i], b.angular_momentum_Nms[i]);
+}
+
+// q' = (1/2) (0, w) q for q body -> world and w in the world frame.
+Quat quaternion_rate(const Vec3& w_world, const Quat& q) {
+  const Quat wq(0.0, w_world.x(), w_world.y(), w_world.z());
+  Quat r = wq * q;
+  r.coeffs() *= 0.5;
+  return r;
+}
+
+}  // namespace
+
+int simulation_gsl_rhs(double t, const double y[], double dydt[], void* params) {
+  auto* sim = static_cast<Simulation*>(params);
+  sim->ode_derivative(t, y, dydt);
+  for (std::size_t k = 0; k < sim->ode_y_.size(); ++k)
+    if (!std::isfinite(dydt[k])) return GSL_EBADFUNC;
+  return GSL_SUCCESS;
+}
+
+void Simulation::initialize_synchronised() {
+  free_bodies_.clear();
+  mass_moment0_m_kg_.setZero();
+  double free_mass_kg = 0.0;
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    if (bodies_.is_fixed[i]) continue;
+    free_bodies_.push_back(BodyId(i));
+    refresh_angular_velocity(bodies_, i);  // L is the state; w follows from it
+    mass_moment0_m_kg_ += bodies_.mass_kg[i] * bodies_.position_m[i];
+    free_mass_kg += bodies_.mass_kg[i];
+  }
+  if (integrator_is_multistage(settings_.integrator)) {
+    const std::size_t dim = kOdeDofPerBody * free_bodies_.size();
+    ode_y_.assign(dim, 0.0);
+    ode_tmp_.assign(dim, 0.0);
+    for (auto& k : ode_k_) k.assign(dim, 0.0);
+  }
+  if (settings_.integrator == Integrator::GslRk8pd && !free_bodies_.empty()) {
+    gsl_ = std::make_unique<GslWorkspace>();
+    gsl_->system = gsl_odeiv2_system{simulation_gsl_rhs, nullptr, ode_y_.size(), this};
+    gsl_->driver = gsl_odeiv2_driver_alloc_y_new(&gsl_->system, gsl_odeiv2_step_rk8pd, settings_.dt_s,
+                                                 settings_.reference_tolerance, settings_.reference_tolerance);
+    if (!gsl_->driver) throw std::runtime_error("gsl_rk8pd: GSL could not allocate its ODE driver");
+  }
+  compute_forces();
+  ledger_ = EnergyLedger{};
+  update_ledger_synchronised(true);
+  for (auto& p : providers_) p->report_energy(ledger_);
+  ledger_.initial_stored_J = ledger_.stored_J();
+  ledger_.update_scale();
+  energy_floor_J_ = 0.5 * free_mass_kg * kFloorSpeed_mps * kFloorSpeed_mps;
+}
+
+void Simulation::update_ledger_synchronised(bool first) {
+  Vec3 momentum = Vec3::Zero(), mass_moment = Vec3::Zero();
+  double kinetic = 0.0, rotational = 0.0;
+  for (const BodyId b : free_bodies_) {
+    const auto i = std::size_t(b);
+    const double m = bodies_.mass_kg[i];
+    momentum += m * bodies_.velocity_mps[i];
+    mass_moment += m * bodies_.position_m[i];
+    kinetic += 0.5 * m * bodies_.velocity_mps[i].squaredNorm();
+    rotational += 0.5 * bodies_.angular_momentum_Nms[i].dot(bodies_.angular_velocity_radps[i]);
+  }
+  ledger_.kinetic_J = kinetic + rotational;
+  ledger_.kinetic_rotational_J = rotational;
+  ledger_.gravity_potential_J = -settings_.gravity_mps2.dot(mass_moment - mass_moment0_m_kg_);
+  if (first) {
+    ledger_.work_ground_motion_J = 0.0;
+  } else {
+    // Power of the inertia force -m a_g is -a_g . P; trapezoid over the step.
+    ledger_.work_ground_motion_J -=
+        0.5 * settings_.dt_s * (ground_acceleration_prev_.dot(momentum_prev_) + ground_acceleration_.dot(momentum));
+  }
+  momentum_prev_ = momentum;
+  ground_acceleration_prev_ = ground_acceleration_;
+}
+
+bool Simulation::record_non_finite() {
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    if (bodies_.position_m[i].allFinite() && bodies_.velocity_mps[i].allFinite() &&
+        bodies_.orientation[i].coeffs().allFinite() && bodies_.angular_momentum_Nms[i].allFinite())
+      continue;
+    Event e;
+    e.time_s = time_s();
+    e.step = step_;
+    e.kind = EventKind::Instability;
+    e.body_a = BodyId(i);
+    e.mode = "non_finite_state";
+    e.position_m = bodies_.position_m[i];
+    events_.add(e);
+    return true;
+  }
+  return false;
+}
+
+bool Simulation::step_synchronised() {
+  initialize();
+  if (!forces_current_) compute_forces();
+  const bool timed = (step_ % settings_.profile_every_steps) == 0;
+  const double scale = double(settings_.profile_every_steps);
+  auto t0 = timed ? Clock::now() : Clock::time_point{};
+  switch (settings_.integrator) {
+    case Integrator::RungeKutta4: integrate_runge_kutta4(); break;
+    case Integrator::GslRk8pd: integrate_gsl(); break;
+    default: integrate_synchronised(); break;
+  }
+  forces_current_ = false;
+  if (record_non_finite()) return false;
+  if (timed) {
+    const auto t1 = Clock::now();
+    profile_.seconds[int(Stage::Integrate)] += scale * seconds_between(t0, t1);
+    t0 = t1;
+  }
+  finish_step();
+  if (timed) profile_.seconds[int(Stage::FinishStep)] += scale * seconds_between(t0, Clock::now());
+  ++step_;
+  compute_forces();
+  after_forces_synchronised();
+  return true;
+}
+
+void Simulation::integrate_synchronised() {
+  const double dt = settings_.dt_s;
+  const Integrator method = settings_.integrator;
+  for (const BodyId b : free_bodies_) {
+    const auto i = std::size_t(b);
+    const Vec3 accel = bodies_.inverse_mass_per_kg[i] * bodies_.force_N[i];
+    if (method == Integrator::ForwardEuler) {
+      // Everything from the state at n.
+      bodies_.position_m[i] += dt * bodies_.velocity_mps[i];
+      bodies_.velocity_mps[i] += dt * accel;
+      const Vec3 w = bodies_.angular_velocity_radps[i];
+      const double angle = w.norm() * dt;
+      if (angle > 0.0)
+        bodies_.orientation[i] = (Quat(Eigen::AngleAxisd(angle, w.normalized())) * bodies_.orientation[i]).normalized();
+      bodies_.angular_momentum_Nms[i] += dt * bodies_.torque_Nm[i];
+      continue;
+    }
+    // Kick (full: symplectic Euler; half: velocity Verlet), then drift.
+    const double kick = method == Integrator::VelocityVerlet ? 0.5 * dt : dt;
+    bodies_.velocity_mps[i] += kick * accel;
+    bodies_.position_m[i] += dt * bodies_.velocity_mps[i];
+    bodies_.angular_momentum_Nms[i] += kick * bodies_.torque_Nm[i];
+    const FreeRotorDrift drift =
+        free_rotor_drift(bodies_.orientation[i], bodies_.angular_momentum_Nms[i], bodies_.inverse_inertia_per_kgm2[i], dt);
+    bodies_.orientation[i] = drift.orientation_end;
+    // Velocity Verlet evaluates the next forces with mid-step velocities
+    // (v(n+1/2), w(n+1/2)), as central difference does.
+    bodies_.angular_velocity_radps[i] = drift.angular_velocity_mid_world;
+  }
+  bodies_.update_rotations();
+  if (method != Integrator::VelocityVerlet)
+    for (const BodyId b : free_bodies_) refresh_angular_velocity(bodies_, std::size_t(b));
+}
+
+void Simulation::after_forces_synchronised() {
+  if (settings_.integrator == Integrator::VelocityVerlet) {
+    const double half_dt = 0.5 * settings_.dt_s;
+    for (const BodyId b : free_bodies_) {
+      const auto i = std::size_t(b);
+      bodies_.velocity_mps[i] += (half_dt * bodies_.inverse_mass_per_kg[i]) * bodies_.force_N[i];
+      bodies_.angular_momentum_Nms[i] += half_dt * bodies_.torque_Nm[i];
+      refresh_angular_velocity(bodies_, i);
+    }
+  }
+  update_ledger_synchronised(false);
+}
+
+void Simulation::ode_store(double* y) const {
+  for (const BodyId b : free_bodies_) {
+    const auto i = std::size_t(b);
+    const Quat& q = bodies_.orientation[i];
+    const double v[kOdeDofPerBody] = {bodies_.position_m[i].x(), bodies_.position_m[i].y(), bodies_.position_m[i].z(),
+                                      q.w(), q.x(), q.y(), q.z(),
+                                      bodies_.velocity_mps[i].x(), bodies_.velocity_mps[i].y(), bodies_.velocity_mps[i].z(),
+                                      bodies_.angular_momentum_Nms[i].x(), bodies_.angular_momentum_Nms[i].y(),
+                                      bodies_.angular_momentum_Nms[i].z()};
+    std::copy(v, v + kOdeDofPerBody, y);
+    y += kOdeDofPerBody;
+  }
+}
+
+void Simulation::ode_load(const double* y) {
+  for (const BodyId b : free_bodies_) {
+    const auto i = std::size_t(b);
+    bodies_.position_m[i] = Vec3(y[0], y[1], y[2]);
+    // The quaternion drifts off the unit sphere by the truncation error of
+    // the method; the pose uses its normalised value.
+    bodies_.orientation[i] = Quat(y[3], y[4], y[5], y[6]).normalized();
+    bodies_.rotation[i] = bodies_.orientation[i].toRotationMatrix();
+    bodies_.velocity_mps[i] = Vec3(y[7], y[8], y[9]);
+    bodies_.angular_momentum_Nms[i] = Vec3(y[10], y[11], y[12]);
+    refresh_angular_velocity(bodies_, i);
+    y += kOdeDofPerBody;
+  }
+}
+
+namespace {
+
+// dy/dt of the ODE state from the store (poses, velocities, forces of one state).
+void ode_rate_from_store(const BodyStore& bodies, const std::vector<BodyId>& free_bodies, double* dydt) {
+  for (const BodyId b : free_bodies) {
+    const auto i = std::size_t(b);
+    const Quat qd = quaternion_rate(bodies.angular_velocity_radps[i], bodies.orientation[i]);
+    const Vec3 a = bodies.inverse_mass_per_kg[i] * bodies.force_N[i];
+    const Vec3& v = bodies.velocity_mps[i];
+    const Vec3& t = bodies.torque_Nm[i];
+    const double r[kOdeDofPerBody] = {v.x(), v.y(), v.z(), qd.w(), qd.x(), qd.y(), qd.z(),
+                                      a.x(), a.y(), a.z(), t.x(), t.y(), t.z()};
+    std::copy(r, r + kOdeDofPerBody, dydt);
+    dydt += kOdeDofPerBody;
+  }
+}
+
+}  // namespace
+
+void Simulation::ode_derivative(double t_s, const double* y, double* dydt) {
+  ode_load(y);
+  evaluate_forces_at(StepInfo{step_, t_s, settings_.dt_s});
+  ode_rate_from_store(bodies_, free_bodies_, dydt);
+}
+
+void Simulation::integrate_runge_kutta4() {
+  const double dt = settings_.dt_s, t = time_s();
+  const std::size_t dim = ode_y_.size();
+  double* y = ode_y_.data();
+  double* tmp = ode_tmp_.data();
+  ode_store(y);
+  ode_rate_from_store(bodies_, free_bodies_, ode_k_[0].data());  // forces at n are current
+  const double stage_c[3] = {0.5, 0.5, 1.0};
+  for (int s = 1; s < 4; ++s) {
+    const double* k_prev = ode_k_[s - 1].data();
+    for (std::size_t k = 0; k < dim; ++k) tmp[k] = y[k] + stage_c[s - 1] * dt * k_prev[k];
+    ode_derivative(t + stage_c[s - 1] * dt, tmp, ode_k_[s].data());
+  }
+  const double* k1 = ode_k_[0].data();
+  const double* k2 = ode_k_[1].data();
+  const double* k3 = ode_k_[2].data();
+  const double* k4 = ode_k_[3].data();
+  for (std::size_t k = 0; k < dim; ++k) y[k] += dt / 6.0 * (k1[k] + 2.0 * k2[k] + 2.0 * k3[k] + k4[k]);
+  ode_load(y);
+}
+
+void Simulation::integrate_gsl() {
+  if (!gsl_) return;  // nothing free to move
+  double* y = ode_y_.data();
+  ode_store(y);
+  double t = time_s();
+  const int status = gsl_odeiv2_driver_apply(gsl_->driver, &t, time_s() + settings_.dt_s, y);
+  if (status != GSL_SUCCESS)
+    for (std::size_t k = 0; k < ode_y_.size(); ++k) y[k] = std::numeric_limits<double>::quiet_NaN();
+  ode_load(y);
+  // The quaternion in y is renormalised by ode_load; keep the driver's
+  // state on the unit sphere too (it is restarted from y each step).
+  gsl_odeiv2_driver_reset(gsl_->driver);
 }
 
 }  // namespace fq

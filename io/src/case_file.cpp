@@ -306,12 +306,16 @@ void parse_name(const Reader& r, const Field& f, CaseDef& def) { def.name = r.to
 void parse_description(const Reader& r, const Field& f, CaseDef& def) { def.description = r.to_text(f); }
 
 void parse_time(const Reader& r, const Field& f, CaseDef& def) {
-  r.expect_map(f.value, f.line, f.path, "dt_s, duration_s, gravity_mps2");
-  r.expect_keys(f.value, {"dt_s", "duration_s", "gravity_mps2"}, f.path);
+  r.expect_map(f.value, f.line, f.path, "dt_s, duration_s, gravity_mps2, integrator");
+  r.expect_keys(f.value, {"dt_s", "duration_s", "gravity_mps2", "integrator"}, f.path);
   def.time.dt_s = r.required_positive(f.value, "dt_s", f.path, "the time step in s");
   if (const auto d = r.get(f.value, "duration_s", f.path)) def.time.duration_s = r.to_positive(*d);
   def.time.gravity_mps2 =
       r.optional_vec3(f.value, "gravity_mps2", f.path, def.time.gravity_mps2, "gx, gy, gz in m/s^2");
+  if (const auto m = r.get(f.value, "integrator", f.path)) {
+    if (!parse_integrator(r.to_text(*m), def.time.integrator))
+      r.fail(*m, "expected one of " + integrator_names_list() + ", got " + describe(m->value));
+  }
   if (def.time.duration_s && def.time.dt_s >= *def.time.duration_s) {
     const auto d = r.get(f.value, "dt_s", f.path);
     r.fail(*d, "the time step must be smaller than duration_s");

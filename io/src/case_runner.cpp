@@ -31,7 +31,9 @@ StableTimeStep estimate_stable_time_step(const Simulation& sim) {
       s.stiffest_element = mode.where;
     }
   }
-  if (omega_max > 0.0) s.dt_crit_s = 2.0 / omega_max;
+  s.omega_max_radps = omega_max;
+  const double factor = integrator_stability_factor(sim.settings().integrator);
+  if (omega_max > 0.0 && std::isfinite(factor)) s.dt_crit_s = factor / omega_max;
   return s;
 }
 
@@ -78,15 +80,35 @@ Scene build_scene(const CaseDef& def) {
   return scene;
 }
 
-CaseRunReport run_case(const CaseDef& def, const CaseRunOptions& options) {
+CaseRunReport run_case(const CaseDef& case_def, const CaseRunOptions& options) {
+  CaseDef def_copy;
+  const bool override_integrator = options.integrator.has_value();
+  if (override_integrator) {
+    def_copy = case_def;
+    def_copy.time.integrator = *options.integrator;
+  }
+  const CaseDef& def = override_integrator ? def_copy : case_def;
   Scene scene = build_scene(def);
   Simulation& sim = *scene.simulation;
   const double dt = sim.settings().dt_s;
+  const Integrator method = sim.settings().integrator;
+  // Where the choice came from, for messages.
+  const std::string integrator_field = override_integrator ? "--integrator" : "time.integrator";
+  if (const std::string why = sim.integrator_refusal(); !why.empty())
+    throw InputError(def.source_file.string(), line_of(def, "time"), integrator_field, why);
   if (dt > scene.stable_time_step.dt_crit_s && !options.allow_unstable_time_step) {
     std::ostringstream msg;
-    msg << "dt_s = " << dt << " s exceeds the stable time step of central difference, 2/omega_max = "
-        << scene.stable_time_step.dt_crit_s << " s, set by " << scene.stable_time_step.stiffest_element
-        << "; lower dt_s below it (or run with --force to override)";
+    if (method == Integrator::ForwardEuler) {
+      msg << "forward_euler is unstable at every dt_s on an undamped mode (|1 + i omega dt| > 1), and the "
+             "stiffest mode here, "
+          << scene.stable_time_step.omega_max_radps << " rad/s, is " << scene.stable_time_step.stiffest_element
+          << "; choose another integrator (or run with --force to override)";
+    } else {
+      msg << "dt_s = " << dt << " s exceeds the stable time step of " << integrator_name(method) << ", "
+          << integrator_stability_factor(method) << "/omega_max = " << scene.stable_time_step.dt_crit_s
+          << " s, set by " << scene.stable_time_step.stiffest_element
+          << "; lower dt_s below it (or run with --force to override)";
+    }
     throw InputError(def.source_file.string(), line_of(def, "time"), "time.dt_s", msg.str());
   }
 
@@ -113,6 +135,7 @@ CaseRunReport run_case(const CaseDef& def, const CaseRunOptions& options) {
     std::ostringstream v;
     v << std::setprecision(17) << scene.stable_time_step.dt_crit_s;
     writer->add_summary_field("stable_dt_s", std::isfinite(scene.stable_time_step.dt_crit_s) ? v.str() : "null");
+    writer->add_summary_field("integrator", std::string("\"") + integrator_name(method) + "\"");
   }
 
   CaseRunReport report;
@@ -164,7 +187,7 @@ void describe_case(const CaseDef& def, std::ostream& out) {
   out << "bodies      " << bodies.size() << " (" << free_bodies << " free, " << bodies.size() - free_bodies
       << " fixed)\n";
   out << "total mass  " << total_mass << " kg (free bodies)\n";
-  out << "time step   " << s.dt_s << " s";
+  out << "time step   " << s.dt_s << " s (" << integrator_name(s.integrator) << ")";
   if (std::isfinite(scene.stable_time_step.dt_crit_s))
     out << "  (stable limit " << scene.stable_time_step.dt_crit_s << " s, set by "
         << scene.stable_time_step.stiffest_element << ")";

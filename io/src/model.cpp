@@ -257,6 +257,7 @@ Model build_model(const CaseDef& def_in) {
 
   model.settings.dt_s = def.time.dt_s;
   model.settings.gravity_mps2 = def.time.gravity_mps2;
+  model.settings.integrator = def.time.integrator;
   if (def.time.duration_s) {
     model.settings.duration_s = *def.time.duration_s;
   } else if (!model.ground_motion.empty()) {

@@ -582,6 +582,13 @@ StiffestMode JointSystem::stiffest_mode(const BodyStore& bodies) const {
   return mode;
 }
 
+bool JointSystem::supports_trial_states() const {
+  if (!trilinear_.ids.empty() || !curee_.ids.empty()) return false;
+  for (const JointBreakDef& b : joint_break_)
+    if (b.criterion == BreakCriterion::StrainLimit) return false;
+  return true;
+}
+
 SpringStatus JointSystem::spring_status(std::size_t s) const {
   if (alive_.empty()) return SpringStatus::Elastic;
   if (!alive_[s]) return SpringStatus::Deleted;

@@ -327,6 +327,13 @@ std::vector<BadCase> bad_cases() {
        5,
        "time.dt",
        {"unknown key 'dt'", "allowed keys here: dt_s, duration_s, gravity_mps2", "did you mean 'dt_s'"}},
+      {"UnknownIntegrator",
+       "framequake_case: 1\ntime:\n  dt_s: 1.0e-5\n  duration_s: 1.0\n  integrator: rk45\n"
+       "materials: [{name: spruce, density_kg_per_m3: 450}]\n" +
+           kBlock,
+       5,
+       "time.integrator",
+       {"expected one of central_difference, velocity_verlet, symplectic_euler, rk4", "rk45"}},
       {"UnknownTopLevelKey",
        kHead + kBlock + "member: []\n",
        5,

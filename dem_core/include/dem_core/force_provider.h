@@ -45,6 +45,14 @@ class ForceProvider {
   virtual void finish_step(const BodyStore& /*bodies*/, const StepInfo& /*step*/, EventLog& /*events*/) {}
   virtual void report_energy(EnergyLedger& /*ledger*/) const {}
   virtual StiffestMode stiffest_mode(const BodyStore& /*bodies*/) const { return {}; }
+  // True when accumulate_forces may be called several times per step at
+  // trial states (multi-stage integrators: rk4, gsl_rk8pd, integrator.h):
+  // the forces must depend only on the poses, velocities and time passed in,
+  // never on history committed by an earlier call (plastic laws, contact
+  // tangential springs, events found on the way). The last call of a step
+  // is always at the step's final state. Energy books that integrate
+  // dashpot power assume one call per step and become approximate.
+  virtual bool supports_trial_states() const { return false; }
 };
 
 }  // namespace fq

@@ -27,6 +27,7 @@
 #include "dem_core/events.h"
 #include "dem_core/force_provider.h"
 #include "dem_core/ground_motion.h"
+#include "dem_core/integrator.h"
 
 namespace fq {
 
@@ -38,6 +39,11 @@ struct SimulationSettings {
   // up. Reading a clock every stage of every step would cost more than a
   // small frame's whole step.
   int profile_every_steps = 64;
+  // Time integrator (integrator.h). Central difference is the default and
+  // the only one the comments above describe step by step.
+  Integrator integrator = Integrator::CentralDifference;
+  // gsl_rk8pd: absolute and relative error tolerance per internal step.
+  double reference_tolerance = 1e-12;
 };
 
 enum class Stage : int { ExternalForces = 0, Providers, Integrate, FinishStep, Observe, Count };
@@ -75,6 +81,14 @@ struct StageProfile {
 class Simulation {
  public:
   Simulation(BodyStore bodies, SimulationSettings settings, GroundMotion ground_motion = {});
+  ~Simulation();
+  Simulation(Simulation&&) noexcept;
+  Simulation& operator=(Simulation&&) noexcept;
+
+  // Why the chosen integrator cannot run with the providers added ("" when
+  // it can): multi-stage methods need every provider to support trial
+  // states. initialize() throws std::invalid_argument with this text.
+  std::string integrator_refusal() const;
 
   // Providers run in the order added (joints before contacts).
   void add_force_provider(std::unique_ptr<ForceProvider> provider);
@@ -117,7 +131,25 @@ class Simulation {
 
  private:
   void compute_forces();
+  void evaluate_forces_at(const StepInfo& info);  // external + providers, no timing
   void integrate();
+  // Other integrators (integrator.h): velocities at integer steps, forces
+  // evaluated at the end of each step (reused by the next), the ledger
+  // describing the current poses. See simulation.cpp.
+  void initialize_synchronised();
+  bool step_synchronised();
+  void integrate_synchronised();
+  void integrate_runge_kutta4();
+  void integrate_gsl();
+  void after_forces_synchronised();  // second half kick (velocity Verlet), ledger
+  void update_ledger_synchronised(bool first);
+  bool record_non_finite();  // Instability event for the first non-finite body; false if all finite
+  // ODE form for rk4 / gsl_rk8pd: per free body x(3), q(4), v(3), L(3).
+  void ode_load(const double* y);  // writes poses and velocities into the body store
+  void ode_store(double* y) const;
+  void ode_derivative(double t_s, const double* y, double* dydt);
+  friend int simulation_gsl_rhs(double t, const double y[], double dydt[], void* params);
+
   void finish_step();
   void observe(bool force_all);
   void observe_undue();
@@ -162,6 +194,15 @@ class Simulation {
   std::chrono::steady_clock::time_point wall_start_;
   bool wall_started_ = false;
   double energy_floor_J_ = 0.0;  // kinetic energy of all free mass at 1 m/s (blow-up guard)
+
+  // Integrators other than central difference.
+  std::vector<BodyId> free_bodies_;      // ODE order
+  std::vector<double> ode_y_, ode_k_[4], ode_tmp_;
+  Vec3 mass_moment0_m_kg_ = Vec3::Zero();  // sum m x at t = 0 (gravity potential)
+  Vec3 momentum_prev_ = Vec3::Zero();      // sum m v at the previous step (ground-motion work)
+  Vec3 ground_acceleration_prev_ = Vec3::Zero();
+  struct GslWorkspace;
+  std::unique_ptr<GslWorkspace> gsl_;
 };
 
 }  // namespace fq

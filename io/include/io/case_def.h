@@ -39,6 +39,7 @@
 
 #include "dem_core/body_store.h"
 #include "dem_core/ground_motion.h"
+#include "dem_core/integrator.h"
 #include "dem_core/types.h"
 #include "contacts/contact_params.h"
 #include "io/accelerogram.h"
@@ -64,6 +65,9 @@ struct TimeDef {
   // ground motion.
   std::optional<double> duration_s;
   Vec3 gravity_mps2 = Vec3(0.0, 0.0, -kStandardGravity_mps2);  // (m/s^2), world frame
+  // Time integrator (dem_core/integrator.h); `framequake run --integrator`
+  // overrides it.
+  Integrator integrator = Integrator::CentralDifference;
 };
 
 struct MaterialDef {

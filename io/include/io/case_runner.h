@@ -35,10 +35,15 @@ struct CaseRunOptions {
   bool allow_unstable_time_step = false;  // run even if dt exceeds the stable estimate (--force)
   StepObserver* progress = nullptr;       // e.g. the terminal progress display
   const std::atomic<bool>* stop_requested = nullptr;  // set (e.g. by SIGINT) to stop after the current step
+  std::optional<Integrator> integrator;   // overrides the case's time.integrator (--integrator)
 };
 
 struct StableTimeStep {
-  double dt_crit_s = std::numeric_limits<double>::infinity();  // 2 / omega_max (central difference)
+  // factor / omega_max with the integrator's stability factor (integrator.h:
+  // 2 for central difference, velocity Verlet, symplectic Euler; 2 sqrt 2 for
+  // RK4; 0 for forward Euler, unstable at any dt; infinite for gsl_rk8pd).
+  double dt_crit_s = std::numeric_limits<double>::infinity();
+  double omega_max_radps = 0.0;  // stiffest mode over all providers (rad/s)
   std::string stiffest_element;  // where omega_max was found ("" when nothing is stiff)
 };
 

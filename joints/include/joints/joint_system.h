@@ -99,6 +99,10 @@ class JointSystem final : public ForceProvider {
   void finish_step(const BodyStore& bodies, const StepInfo& step, EventLog& events) override;
   void report_energy(EnergyLedger& ledger) const override;
   StiffestMode stiffest_mode(const BodyStore& bodies) const override;
+  // Trial states (rk4, gsl_rk8pd) are supported when every spring is linear
+  // elastic (no history, never fails) and no joint has a strain limit (which
+  // could break it at a trial state). Dashpot books are then approximate.
+  bool supports_trial_states() const override;
 
   // Read-only view for output (valid after a force evaluation).
   std::size_t joint_count() const { return joint_body_a_.size(); }
