@@ -11,6 +11,14 @@
 //     changes in ascending id and append their events to the log.
 //   report_energy: add stored elastic energy at n and cumulative dissipated
 //     energies to the ledger.
+//   save_state / load_state (checkpoints, state_io.h): everything the
+//     provider carries from one step to the next (laws' history, broken
+//     flags, energy books, contact histories, caches whose content can
+//     change results or outputs). load_state is called on a provider built
+//     from the same definition, after Simulation::initialize(), and must
+//     leave it exactly as the saving provider was, so that a resumed run is
+//     bitwise identical to an uninterrupted one. The defaults refuse:
+//     a provider that cannot be checkpointed says so.
 #pragma once
 
 #include <limits>
@@ -21,6 +29,9 @@
 #include "dem_core/events.h"
 
 namespace fq {
+
+class StateWriter;  // dem_core/state_io.h
+class StateReader;
 
 struct StepInfo {
   std::int64_t step = 0;  // n
@@ -45,6 +56,8 @@ class ForceProvider {
   virtual void finish_step(const BodyStore& /*bodies*/, const StepInfo& /*step*/, EventLog& /*events*/) {}
   virtual void report_energy(EnergyLedger& /*ledger*/) const {}
   virtual StiffestMode stiffest_mode(const BodyStore& /*bodies*/) const { return {}; }
+  virtual void save_state(StateWriter& /*out*/) const;
+  virtual void load_state(StateReader& /*in*/);
 };
 
 }  // namespace fq

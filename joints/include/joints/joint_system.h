@@ -99,6 +99,12 @@ class JointSystem final : public ForceProvider {
   void finish_step(const BodyStore& bodies, const StepInfo& step, EventLog& events) override;
   void report_energy(EnergyLedger& ledger) const override;
   StiffestMode stiffest_mode(const BodyStore& bodies) const override;
+  // Checkpoints (force_provider.h; joint_system_state.cpp): broken and
+  // pending flags, every spring's per-step values, history (law states,
+  // previous deformation and force, alive/yielded, failure force and mode)
+  // and energy books, and the force slots.
+  void save_state(StateWriter& out) const override;
+  void load_state(StateReader& in) override;
 
   // Read-only view for output (valid after a force evaluation).
   std::size_t joint_count() const { return joint_body_a_.size(); }
