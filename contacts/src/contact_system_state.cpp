@@ -62,6 +62,11 @@ ContactPoint load_point(StateReader& in, std::size_t body_count, std::size_t coe
   c.reference_depth_m = in.f64(what);
   c.sliding = in.boolean(what);
   c.pair_key = in.u64(what);
+  // Ground contacts carry the key 0xFFFFFFFF'b (contact_system.cpp); any
+  // other contact is between two bodies and is keyed by them.
+  const bool ground = (c.pair_key >> 32) == 0xFFFFFFFFull;
+  if (!ground && (c.body_a < 0 || c.pair_key != ((std::uint64_t(std::uint32_t(c.body_a)) << 32) | std::uint32_t(c.body_b))))
+    in.fail("contact point whose key does not match its bodies");
   c.coeff_index = in.pod<std::int32_t>(what);
   if (c.coeff_index < 0 || std::size_t(c.coeff_index) >= coeff_count)
     in.fail("contact point refers to a contact coefficient this scene does not have");

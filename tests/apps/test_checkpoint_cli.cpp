@@ -117,4 +117,18 @@ TEST(CheckpointCli, BadCheckpointOrChangedCaseIsRefusedWithExitCode2) {
   EXPECT_EQ(run_app({"resume", out.string(), "--quiet"}, f.dir.path()).code, 0);
 }
 
+TEST(CheckpointCli, BadIntervalOrMissingFolderIsAUsageError) {
+  Fixture f;
+  const fs::path out = f.dir.path() / "out";
+  for (const char* bad : {"0", "-1", "abc", "nan"}) {
+    const auto r = run_app({"run", f.case_file.string(), "--out", out.string(), "--checkpoint-every", bad}, f.dir.path());
+    EXPECT_EQ(r.code, 2) << bad;
+    EXPECT_NE(r.err.find("--checkpoint-every"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(out)) << "nothing may be written on a usage error";
+  }
+  const auto missing = run_app({"resume"}, f.dir.path());
+  EXPECT_EQ(missing.code, 2);
+  EXPECT_NE(missing.err.find("missing DIR"), std::string::npos) << missing.err;
+}
+
 }  // namespace
