@@ -18,6 +18,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <memory>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -99,11 +100,14 @@ void expect_identical(const Scene& a, const Scene& b) {
     EXPECT_EQ(a.joints->spring_plastic_J(s), b.joints->spring_plastic_J(s)) << "spring " << s;
 }
 
-// Runs to `checkpoint_step`, saves, loads into a fresh scene, continues to
-// the end; compares with `reference` (the uninterrupted run).
-void resume_and_compare(const CaseDef& def, const Scene& reference, std::int64_t checkpoint_step) {
+// Runs to `checkpoint_step`, checks the scenario with `at_checkpoint`,
+// saves, loads into a fresh scene, continues to the end; compares with
+// `reference` (the uninterrupted run).
+template <class Check>
+void resume_and_compare(const CaseDef& def, const Scene& reference, std::int64_t checkpoint_step, Check at_checkpoint) {
   Scene first = build_scene(def);
   step_to(*first.simulation, checkpoint_step);
+  at_checkpoint(first);
   StateWriter saved;
   first.simulation->save_state(saved);
 
@@ -121,65 +125,64 @@ void resume_and_compare(const CaseDef& def, const Scene& reference, std::int64_t
 }
 
 struct Reference {
+  test::TempDir dir;
+  CaseDef def;
   Scene scene;
   std::int64_t break_step = -1;          // step of the JointBroken event
   std::int64_t first_arm_contact = -1;   // first step after the break with a contact of the arm
 };
 
-Reference run_reference(const CaseDef& def) {
-  Reference r{build_scene(def)};
-  Simulation& sim = *r.scene.simulation;
-  const std::int64_t end = sim.total_steps();
-  const BodyId arm = 2;  // ground body 0, column 1, arm 2 (model.h body order)
-  while (sim.steps_done() < end) {
-    EXPECT_TRUE(sim.step());
-    if (r.break_step < 0 && sim.events().count(EventKind::JointBroken) > 0) {
-      for (const Event& e : sim.events().all())
-        if (e.kind == EventKind::JointBroken) r.break_step = e.step;
+constexpr BodyId kArm = 2;  // ground body 0, column 1, arm 2 (model.h body order)
+
+bool arm_touching(const Scene& s) {
+  for (const ContactPoint& c : s.contacts->contacts())
+    if (c.body_a == kArm || c.body_b == kArm) return true;
+  return false;
+}
+
+// The uninterrupted run, made once for all tests of this file (it is the
+// expensive part under the sanitizers).
+const Reference& reference() {
+  static const std::unique_ptr<Reference> ref = [] {
+    auto r = std::make_unique<Reference>();
+    r->def = arm_case(r->dir);
+    r->scene = build_scene(r->def);
+    Simulation& sim = *r->scene.simulation;
+    const std::int64_t end = sim.total_steps();
+    while (sim.steps_done() < end) {
+      EXPECT_TRUE(sim.step());
+      if (r->break_step < 0)
+        for (const Event& e : sim.events().all())
+          if (e.kind == EventKind::JointBroken) r->break_step = e.step;
+      if (r->break_step >= 0 && r->first_arm_contact < 0 && arm_touching(r->scene))
+        r->first_arm_contact = sim.steps_done();
     }
-    if (r.break_step >= 0 && r.first_arm_contact < 0)
-      for (const ContactPoint& c : r.scene.contacts->contacts())
-        if (c.body_a == arm || c.body_b == arm) r.first_arm_contact = sim.steps_done();
-  }
-  return r;
+    return r;
+  }();
+  return *ref;
 }
 
 TEST(Checkpoint, ResumedRunIsBitwiseIdenticalAcrossAJointBreak) {
-  test::TempDir dir;
-  const CaseDef def = arm_case(dir);
-  const Reference ref = run_reference(def);
-  ASSERT_GT(ref.break_step, 0) << "the arm's joint must break in this scene";
+  const Reference& ref = reference();
+  ASSERT_GT(ref.break_step, 1000) << "the arm's joint must break in this scene";
   ASSERT_GT(ref.first_arm_contact, ref.break_step) << "the falling arm must touch something";
-
   // Checkpoint before the break, once springs have yielded (plastic and
   // hysteretic state live), so the break happens after the resume.
-  const std::int64_t before = ref.break_step - 1000;
-  {
-    Scene probe = build_scene(def);
-    step_to(*probe.simulation, before);
-    ASSERT_GT(probe.simulation->events().count(EventKind::SpringYielded), 0u);
-    ASSERT_EQ(probe.simulation->events().count(EventKind::JointBroken), 0u);
-  }
-  resume_and_compare(def, ref.scene, before);
+  resume_and_compare(ref.def, ref.scene, ref.break_step - 1000, [](const Scene& at) {
+    EXPECT_GT(at.simulation->events().count(EventKind::SpringYielded), 0u);
+    EXPECT_EQ(at.simulation->events().count(EventKind::JointBroken), 0u);
+  });
 }
 
 TEST(Checkpoint, ResumedRunIsBitwiseIdenticalAfterABreakWithContactsActive) {
-  test::TempDir dir;
-  const CaseDef def = arm_case(dir);
-  const Reference ref = run_reference(def);
+  const Reference& ref = reference();
   ASSERT_GT(ref.first_arm_contact, ref.break_step);
   // A few hundred steps into the arm's first contact: tangential springs
   // and the released pair's reference depths are live.
-  const std::int64_t after = ref.first_arm_contact + 300;
-  {
-    Scene probe = build_scene(def);
-    step_to(*probe.simulation, after);
-    ASSERT_EQ(probe.simulation->events().count(EventKind::JointBroken), 1u);
-    bool arm_touching = false;
-    for (const ContactPoint& c : probe.contacts->contacts()) arm_touching = arm_touching || c.body_b == 2 || c.body_a == 2;
-    ASSERT_TRUE(arm_touching) << "the checkpoint must lie while the arm is in contact";
-  }
-  resume_and_compare(def, ref.scene, after);
+  resume_and_compare(ref.def, ref.scene, ref.first_arm_contact + 300, [](const Scene& at) {
+    EXPECT_EQ(at.simulation->events().count(EventKind::JointBroken), 1u);
+    EXPECT_TRUE(arm_touching(at)) << "the checkpoint must lie while the arm is in contact";
+  });
 }
 
 TEST(Checkpoint, StateForAnotherSceneIsRefusedWithAReason) {
