@@ -1,6 +1,8 @@
 // framequake command line.
 //
 //   framequake run CASE [--out DIR] [--quiet] [--force] [--threads N] [--integrator NAME]
+//                       [--checkpoint-every S]
+//   framequake resume DIR [--quiet] [--threads N]
 //   framequake info CASE
 //   framequake compare CASE... [--out DIR] [--jobs N] [--window-length S]
 //   framequake sweep CASE... [--scales LIST] [--record FILE]... [--out DIR]
@@ -13,6 +15,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
@@ -25,6 +28,7 @@
 
 #include "fq_config.h"
 #include "io/case_file.h"
+#include "io/checkpoint.h"
 #include "io/case_runner.h"
 #include "io/input_error.h"
 #include "progress_display.h"
@@ -51,6 +55,7 @@ const char* kMainHelp =
     "\n"
     "Usage:\n"
     "  framequake run CASE [options]   run a case file, write VTK frames, history and summary\n"
+    "  framequake resume DIR           continue a run from DIR/checkpoint.bin (run --checkpoint-every)\n"
     "  framequake info CASE            describe a case: bodies, total mass, time step, output plan\n"
     "  framequake compare CASE...      run cases side by side; table of storey drifts and verdicts, figure\n"
     "  framequake sweep CASE...        run cases over amplitude scales (and records); collapse scales, figure\n"
@@ -75,9 +80,32 @@ const char* kRunHelp =
     "  --threads N    OpenMP threads (default: OMP_NUM_THREADS or all cores)\n"
     "  --integrator NAME  time integrator, overrides time.integrator: central_difference (default),\n"
     "                 velocity_verlet, symplectic_euler, rk4, forward_euler, gsl_rk8pd\n"
+    "  --checkpoint-every S\n"
+    "                 write DIR/checkpoint.bin every S simulated seconds and when\n"
+    "                 stopped, so `framequake resume DIR` can continue the run\n"
     "  --help         this text\n"
     "\n"
     "Exit codes: 0 completed, 1 unstable, 2 bad input, 3 output failed, 130 interrupted.\n";
+
+const char* kResumeHelp =
+    "Usage: framequake resume DIR [options]\n"
+    "\n"
+    "Continues the run whose output folder DIR holds checkpoint.bin (written by\n"
+    "`framequake run CASE --checkpoint-every S`, e.g. after the run was killed or\n"
+    "stopped). The case file named in the checkpoint is loaded again and must be\n"
+    "unchanged (as must its ground-motion records). The run continues exactly as\n"
+    "it would have without the interruption (bitwise the same state): history.csv\n"
+    "and events.csv are cut back to the checkpoint and continued, frames after\n"
+    "it are written again, summary.json is written at the end, and checkpoints\n"
+    "continue at the same interval.\n"
+    "\n"
+    "Options:\n"
+    "  --quiet        no progress display\n"
+    "  --threads N    OpenMP threads (results do not depend on it)\n"
+    "  --help         this text\n"
+    "\n"
+    "Exit codes as for run; 2 also when the checkpoint is missing, damaged,\n"
+    "truncated, of another format version, or the case changed since.\n";
 
 const char* kInfoHelp =
     "Usage: framequake info CASE\n"
@@ -92,6 +120,7 @@ struct RunArgs {
   bool force = false;
   int threads = 0;
   std::optional<fq::Integrator> integrator;
+  std::optional<double> checkpoint_every_s;
 };
 
 [[noreturn]] void usage_error(const std::string& message, const char* help) {
@@ -129,6 +158,13 @@ RunArgs parse_run_args(int argc, char** argv, int first, const char* help, bool 
       if (!fq::parse_integrator(v, m))
         usage_error("--integrator expects one of " + fq::integrator_names_list() + ", got '" + v + "'", help);
       a.integrator = m;
+    } else if (run_options && arg == "--checkpoint-every") {
+      const std::string v = need_value("--checkpoint-every");
+      char* end = nullptr;
+      const double s = std::strtod(v.c_str(), &end);
+      if (end == v.c_str() || *end != '\0' || !(s > 0.0) || !std::isfinite(s))
+        usage_error("--checkpoint-every expects a positive number of simulated seconds, got '" + v + "'", help);
+      a.checkpoint_every_s = s;
     } else if (!arg.empty() && arg[0] == '-') {
       usage_error("unknown option '" + arg + "'", help);
     } else if (a.case_file.empty()) {
@@ -160,6 +196,7 @@ int command_run(int argc, char** argv) {
   options.allow_unstable_time_step = args.force;
   options.integrator = args.integrator;
   options.stop_requested = &g_stop_requested;
+  options.checkpoint_every_s = args.checkpoint_every_s;
   std::optional<fq::ProgressDisplay> progress;
   if (!args.quiet && isatty(fileno(stderr))) {
     progress.emplace(def.name, stderr);
@@ -179,6 +216,72 @@ int command_run(int argc, char** argv) {
   std::cout << "framequake: " << def.name << ": " << fq::run_status_name(r.status) << " after " << r.steps
             << " steps, t = " << r.simulated_s << " s, wall " << r.wall_s << " s\n"
             << "framequake: output in " << report.output_folder.string() << " (open case.pvd in ParaView)\n";
+  switch (r.status) {
+    case fq::RunStatus::Completed: return kExitOk;
+    case fq::RunStatus::Stopped: return kExitInterrupted;
+    case fq::RunStatus::Unstable:
+      std::cerr << "framequake: error: the run became unstable: " << r.message << "\n";
+      return kExitUnstable;
+  }
+  return kExitOk;
+}
+
+// framequake resume DIR: its own small parser, so that the run options
+// (case file, --out, --force) are not offered where they mean nothing.
+int command_resume(int argc, char** argv) {
+  std::string folder;
+  bool quiet = false;
+  for (int i = 2; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--help" || arg == "-h") {
+      std::cout << kResumeHelp;
+      return kExitOk;
+    } else if (arg == "--quiet") {
+      quiet = true;
+    } else if (arg == "--threads") {
+      if (i + 1 >= argc) usage_error("--threads needs a value", kResumeHelp);
+      const std::string v = argv[++i];
+      char* end = nullptr;
+      const long n = std::strtol(v.c_str(), &end, 10);
+      if (end == v.c_str() || *end != '\0' || n < 1 || n > 1024)
+        usage_error("--threads expects a whole number from 1 to 1024, got '" + v + "'", kResumeHelp);
+#if defined(_OPENMP)
+      omp_set_num_threads(int(n));
+#endif
+    } else if (!arg.empty() && arg[0] == '-') {
+      usage_error("unknown option '" + arg + "'", kResumeHelp);
+    } else if (folder.empty()) {
+      folder = arg;
+    } else {
+      usage_error("unexpected argument '" + arg + "' (one output folder)", kResumeHelp);
+    }
+  }
+  if (folder.empty()) usage_error("missing DIR (the output folder of a run with --checkpoint-every)", kResumeHelp);
+
+  std::signal(SIGINT, on_sigint);
+  fq::CaseRunOptions options;
+  options.stop_requested = &g_stop_requested;
+  std::optional<fq::ProgressDisplay> progress;
+  if (!quiet && isatty(fileno(stderr))) {
+    progress.emplace(std::filesystem::path(folder).filename().string(), stderr);
+    options.progress = &*progress;
+  }
+  fq::CaseRunReport report;
+  try {
+    report = fq::resume_case(folder, options);
+  } catch (const fq::CheckpointError& e) {
+    std::cerr << "framequake: error: " << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const fq::InputError& e) {
+    std::cerr << "framequake: error: " << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const fq::OutputError& e) {
+    std::cerr << "framequake: error: " << e.what() << "\n";
+    return kExitOutputFailed;
+  }
+  const fq::RunResult& r = report.result;
+  std::cout << "framequake: resumed " << folder << ": " << fq::run_status_name(r.status) << " after " << r.steps
+            << " steps, t = " << r.simulated_s << " s, wall " << r.wall_s << " s\n";
   switch (r.status) {
     case fq::RunStatus::Completed: return kExitOk;
     case fq::RunStatus::Stopped: return kExitInterrupted;
@@ -222,6 +325,7 @@ int main(int argc, char** argv) {
       return command == "compare" ? fq_app::command_compare(argc, argv, &g_stop_requested)
                                   : fq_app::command_sweep(argc, argv, &g_stop_requested);
     }
+    if (command == "resume") return command_resume(argc, argv);
   } catch (const std::exception& e) {
     // Anything not foreseen above still ends in a message and a non-zero code.
     std::cerr << "framequake: internal error: " << e.what() << "\n";

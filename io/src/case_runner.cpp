@@ -3,9 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <iomanip>
 #include <sstream>
 
+#include "dem_core/state_io.h"
+#include "io/checkpoint.h"
 #include "io/input_error.h"
 #include "io/joint_builder.h"
 #include "io/model.h"
@@ -35,6 +38,124 @@ StableTimeStep estimate_stable_time_step(const Simulation& sim) {
   const double factor = integrator_stability_factor(sim.settings().integrator);
   if (omega_max > 0.0 && std::isfinite(factor)) s.dt_crit_s = factor / omega_max;
   return s;
+}
+
+// What a checkpoint needs besides the state to rebuild and continue a run
+// (section "run" of io/checkpoint.h).
+struct RunMeta {
+  std::filesystem::path case_file;  // absolute
+  std::uint64_t case_hash = 0;
+  double checkpoint_every_s = 0.0;
+  bool allow_unstable_time_step = false;
+  std::string case_name;
+};
+
+void write_run_meta(StateWriter& out, const RunMeta& m, const Simulation& sim) {
+  out.section("run");
+  out.str(m.case_file.string());
+  out.u64(m.case_hash);
+  out.f64(m.checkpoint_every_s);
+  out.boolean(m.allow_unstable_time_step);
+  out.str(m.case_name);
+  out.i64(sim.steps_done());
+  out.f64(sim.time_s());
+}
+
+RunMeta read_run_meta(StateReader& in) {
+  RunMeta m;
+  in.section("run");
+  m.case_file = in.str("case file");
+  m.case_hash = in.u64("case fingerprint");
+  m.checkpoint_every_s = in.f64("checkpoint interval");
+  m.allow_unstable_time_step = in.boolean("force flag");
+  m.case_name = in.str("case name");
+  (void)in.i64("step");
+  (void)in.f64("time");
+  if (!(m.checkpoint_every_s > 0.0)) in.fail("checkpoint interval is not positive");
+  return m;
+}
+
+// Writes the checkpoint after the history and frame observers of the same
+// step (it is registered after them), so the files it describes hold that
+// step's rows and frame.
+class CheckpointObserver final : public StepObserver {
+ public:
+  CheckpointObserver(std::filesystem::path file, RunMeta meta, RunOutput* output)
+      : file_(std::move(file)), meta_(std::move(meta)), output_(output) {}
+  void on_sample(const Simulation& sim) override {
+    // Step 0 needs no checkpoint; a state already saved is not saved twice.
+    if (sim.steps_done() == 0 || sim.steps_done() == last_step_) return;
+    last_step_ = sim.steps_done();
+    try {
+      StateWriter w;
+      write_run_meta(w, meta_, sim);
+      output_->save_state(sim, w);
+      sim.save_state(w);
+      write_checkpoint_file(file_, w.bytes());
+    } catch (const std::exception& e) {
+      throw OutputError(std::string("cannot write the checkpoint: ") + e.what());
+    }
+  }
+
+ private:
+  std::filesystem::path file_;
+  RunMeta meta_;
+  RunOutput* output_;
+  std::int64_t last_step_ = -1;
+};
+
+// The part of a run shared by run_case and resume_case: observers, the
+// step loop and the summary.
+CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& options, const RunMeta* checkpoints,
+                      const CaseDef& def, const StoreyDriftMonitor& storeys) {
+  Simulation& sim = *scene.simulation;
+  if (options.progress) {
+    // Progress is redrawn on wall time; asking every ~1000 steps is cheap.
+    sim.add_observer(options.progress, 1000);
+  }
+  std::optional<CheckpointObserver> checkpoint;
+  if (checkpoints) {
+    checkpoint.emplace(writer.folder() / kCheckpointFileName, *checkpoints, &writer);
+    sim.add_observer(&*checkpoint,
+                     std::max<std::int64_t>(1, std::llround(checkpoints->checkpoint_every_s / sim.settings().dt_s)));
+  }
+  {
+    std::ostringstream v;
+    v << std::setprecision(17) << scene.stable_time_step.dt_crit_s;
+    writer.add_summary_field("stable_dt_s", std::isfinite(scene.stable_time_step.dt_crit_s) ? v.str() : "null");
+    writer.add_summary_field("integrator", std::string("\"") + integrator_name(sim.settings().integrator) + "\"");
+  }
+
+  CaseRunReport report;
+  report.result = sim.run(options.stop_requested);
+  try {
+    if (scene.joints) add_joint_summary(writer, *scene.joints, sim.events());
+    if (!scene.storeys.empty()) add_storey_summary(writer, storeys);
+    char hash[19];
+    std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(sim.state_hash()));
+    writer.add_summary_field("state_hash", std::string("\"") + hash + "\"");
+    writer.finish(sim, report.result);
+  } catch (const std::exception& e) {
+    throw OutputError(e.what());
+  }
+  report.output_folder = writer.folder();
+  report.stable_time_step = scene.stable_time_step;
+  report.assessment = def.assessment;
+  for (std::size_t i = 0; i < storeys.storeys().size(); ++i)
+    report.storeys.push_back({storeys.storeys()[i].number, storeys.storeys()[i].height_m(), storeys.records()[i],
+                              storeys.verdict(i)});
+  if (scene.joints) {
+    report.joints = scene.joints->counts();
+    report.joint_count = scene.joints->joint_count();
+  }
+  report.first_joint_failure_time_s = first_joint_failure_time_s(sim.events());
+  report.energy_balance_error_relative = sim.ledger().balance_error_relative();
+  {
+    const Vec3 peak = sim.ground_motion().peak_abs_mps2();
+    report.peak_ground_acceleration_mps2 = std::max(peak.x(), peak.y());
+  }
+  report.wall_s = report.result.wall_s;
+  return report;
 }
 
 }  // namespace
@@ -116,6 +237,28 @@ CaseRunReport run_case(const CaseDef& case_def, const CaseRunOptions& options) {
   if (options.output_folder) output.folder = *options.output_folder;
   if (output.folder.empty()) output.folder = default_output_folder(def.name);
 
+  std::optional<RunMeta> meta;
+  if (options.checkpoint_every_s) {
+    if (!(*options.checkpoint_every_s > 0.0) || !std::isfinite(*options.checkpoint_every_s))
+      throw InputError("", 0, "--checkpoint-every", "expected a positive number of simulated seconds");
+    if (def.source_file.empty())
+      throw InputError("", 0, "--checkpoint-every", "checkpoints need a case read from a file (resume reloads it)");
+    if (method != Integrator::CentralDifference)
+      throw InputError(def.source_file.string(), line_of(def, "time"), "--checkpoint-every",
+                       std::string("checkpoints save the state of the central-difference scheme only; this run uses ") +
+                           integrator_name(method) + " (run it without --checkpoint-every, or with central_difference)");
+    meta.emplace();
+    meta->case_file = std::filesystem::absolute(def.source_file);
+    try {
+      meta->case_hash = case_fingerprint(def);
+    } catch (const CheckpointError& e) {
+      throw InputError(def.source_file.string(), 0, "", e.what());
+    }
+    meta->checkpoint_every_s = *options.checkpoint_every_s;
+    meta->allow_unstable_time_step = options.allow_unstable_time_step;
+    meta->case_name = def.name;
+  }
+
   std::unique_ptr<RunOutput> writer;
   StoreyDriftMonitor storeys(scene.storeys, def.assessment);
   try {
@@ -127,47 +270,61 @@ CaseRunReport run_case(const CaseDef& case_def, const CaseRunOptions& options) {
   } catch (const std::exception& e) {
     throw OutputError(e.what());
   }
-  if (options.progress) {
-    // Progress is redrawn on wall time; asking every ~1000 steps is cheap.
-    sim.add_observer(options.progress, 1000);
-  }
-  {
-    std::ostringstream v;
-    v << std::setprecision(17) << scene.stable_time_step.dt_crit_s;
-    writer->add_summary_field("stable_dt_s", std::isfinite(scene.stable_time_step.dt_crit_s) ? v.str() : "null");
-    writer->add_summary_field("integrator", std::string("\"") + integrator_name(method) + "\"");
-  }
+  return execute(scene, *writer, options, meta ? &*meta : nullptr, def, storeys);
+}
 
-  CaseRunReport report;
-  report.result = sim.run(options.stop_requested);
+CaseRunReport resume_case(const std::filesystem::path& folder, const CaseRunOptions& options) {
+  const std::filesystem::path file = folder / kCheckpointFileName;
+  const std::string payload = read_checkpoint_file(file);
+  const std::string damaged = "checkpoint file '" + file.string() + "' is damaged or does not fit this case: ";
+  StateReader in(payload);
+  RunMeta meta;
   try {
-    if (scene.joints) add_joint_summary(*writer, *scene.joints, sim.events());
-    if (!scene.storeys.empty()) add_storey_summary(*writer, storeys);
-    char hash[19];
-    std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(sim.state_hash()));
-    writer->add_summary_field("state_hash", std::string("\"") + hash + "\"");
-    writer->finish(sim, report.result);
+    meta = read_run_meta(in);
+  } catch (const StateFormatError& e) {
+    throw CheckpointError(damaged + e.what());
+  }
+  CaseDef def = load_case_file(meta.case_file);
+  std::uint64_t hash = 0;
+  try {
+    hash = case_fingerprint(def);
+  } catch (const CheckpointError& e) {
+    throw CheckpointError("checkpoint file '" + file.string() + "': " + e.what());
+  }
+  if (hash != meta.case_hash)
+    throw CheckpointError("checkpoint file '" + file.string() + "' was written for case file '" +
+                          meta.case_file.string() +
+                          "' as it was then; that file or one of its ground-motion records has changed since, so the "
+                          "run cannot be resumed (start it again with framequake run)");
+  def.output.folder = folder;
+  Scene scene = build_scene(def);
+  Simulation& sim = *scene.simulation;
+  const std::vector<Vec3> initial_position_m = sim.bodies().position_m;
+
+  std::unique_ptr<RunOutput> writer;
+  StoreyDriftMonitor storeys(scene.storeys, def.assessment);
+  try {
+    writer = std::make_unique<RunOutput>(RunOutput::resume(def.output, def.name, in));
+    sim.load_state(in);
+    if (in.remaining() != 0) in.fail(std::to_string(in.remaining()) + " bytes left over after the state");
+  } catch (const StateFormatError& e) {
+    throw CheckpointError(damaged + e.what());
+  } catch (const std::logic_error& e) {
+    throw CheckpointError(damaged + e.what());
+  }
+  try {
+    if (scene.joints) attach_joint_output(*writer, *scene.joints);
+    if (scene.contacts) attach_contact_output(*writer, *scene.contacts);
+    if (!scene.storeys.empty()) {
+      attach_storey_output(*writer, storeys);
+      // The peaks so far are in the rows kept from before the checkpoint.
+      storeys.replay_history(writer->folder() / "history.csv");
+    }
+    writer->attach(sim, &initial_position_m);
   } catch (const std::exception& e) {
     throw OutputError(e.what());
   }
-  report.output_folder = writer->folder();
-  report.stable_time_step = scene.stable_time_step;
-  report.assessment = def.assessment;
-  for (std::size_t i = 0; i < storeys.storeys().size(); ++i)
-    report.storeys.push_back({storeys.storeys()[i].number, storeys.storeys()[i].height_m(), storeys.records()[i],
-                              storeys.verdict(i)});
-  if (scene.joints) {
-    report.joints = scene.joints->counts();
-    report.joint_count = scene.joints->joint_count();
-  }
-  report.first_joint_failure_time_s = first_joint_failure_time_s(sim.events());
-  report.energy_balance_error_relative = sim.ledger().balance_error_relative();
-  {
-    const Vec3 peak = sim.ground_motion().peak_abs_mps2();
-    report.peak_ground_acceleration_mps2 = std::max(peak.x(), peak.y());
-  }
-  report.wall_s = report.result.wall_s;
-  return report;
+  return execute(scene, *writer, options, &meta, def, storeys);
 }
 
 void describe_case(const CaseDef& def, std::ostream& out) {

@@ -37,6 +37,31 @@ void EventCsvWriter::open(const std::filesystem::path& file) {
   rows_ = 0;
 }
 
+void EventCsvWriter::reopen(const std::filesystem::path& file, std::uint64_t bytes, std::size_t written,
+                            std::int64_t rows) {
+  std::error_code ec;
+  const std::uintmax_t size = std::filesystem::file_size(file, ec);
+  if (ec || size < bytes)
+    throw std::runtime_error("'" + file.string() + "' is missing or shorter than at the checkpoint (" +
+                             std::to_string(bytes) + " bytes expected); the output folder was changed since");
+  std::filesystem::resize_file(file, bytes, ec);
+  if (ec) throw std::runtime_error("cannot cut '" + file.string() + "' back to the checkpoint: " + ec.message());
+  auto out = std::make_unique<std::ofstream>(file, std::ios::binary | std::ios::app);
+  if (!*out) throw std::runtime_error("cannot open '" + file.string() + "' to append");
+  out_ = std::move(out);
+  file_ = file;
+  written_ = written;
+  rows_ = rows;
+}
+
+std::uint64_t EventCsvWriter::bytes_written() const {
+  if (!out_) return 0;
+  std::error_code ec;
+  const std::uintmax_t size = std::filesystem::file_size(file_, ec);
+  if (ec) throw std::runtime_error("cannot read the size of '" + file_.string() + "': " + ec.message());
+  return size;
+}
+
 void EventCsvWriter::write_new(const EventLog& log) {
   if (!out_) return;
   const auto& all = log.all();

@@ -18,6 +18,12 @@ namespace fq::detail {
 class EventCsvWriter {
  public:
   void open(const std::filesystem::path& file);
+  // Continues `file` (checkpoint resume): cut back to `bytes`, appended from
+  // there; the first `written` entries of the log are in it, as `rows` rows.
+  void reopen(const std::filesystem::path& file, std::uint64_t bytes, std::size_t written, std::int64_t rows);
+  std::size_t written() const { return written_; }
+  // Bytes in the file after a flush().
+  std::uint64_t bytes_written() const;
   // Writes the events of `log` not written yet.
   void write_new(const EventLog& log);
   void flush();

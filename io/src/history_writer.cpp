@@ -69,6 +69,32 @@ void HistoryWriter::open(const std::filesystem::path& file, const Simulation& si
   rows_ = 0;
 }
 
+void HistoryWriter::reopen(const std::filesystem::path& file, const std::vector<Vec3>& reference_position_m,
+                           std::uint64_t bytes, std::int64_t rows) {
+  if (out_) throw std::logic_error("history.csv opened twice");
+  std::error_code ec;
+  const std::uintmax_t size = std::filesystem::file_size(file, ec);
+  if (ec || size < bytes)
+    throw std::runtime_error("'" + file.string() + "' is missing or shorter than at the checkpoint (" +
+                             std::to_string(bytes) + " bytes expected); the output folder was changed since");
+  std::filesystem::resize_file(file, bytes, ec);
+  if (ec) throw std::runtime_error("cannot cut '" + file.string() + "' back to the checkpoint: " + ec.message());
+  *reference_position_m_ = reference_position_m;
+  auto out = std::make_unique<std::ofstream>(file, std::ios::binary | std::ios::app);
+  if (!*out) throw std::runtime_error("cannot open '" + file.string() + "' to append");
+  out_ = std::move(out);
+  file_ = file;
+  rows_ = rows;
+}
+
+std::uint64_t HistoryWriter::bytes_written() const {
+  if (!out_) return 0;
+  std::error_code ec;
+  const std::uintmax_t size = std::filesystem::file_size(file_, ec);
+  if (ec) throw std::runtime_error("cannot read the size of '" + file_.string() + "': " + ec.message());
+  return size;
+}
+
 void HistoryWriter::write_row(const Simulation& sim) {
   if (!out_) throw std::logic_error("history row written before history.csv was opened");
   line_.clear();

@@ -25,6 +25,13 @@ class PvdCollection {
   void write() const;
 
   std::size_t size() const { return count_; }
+  // The <DataSet .../> lines so far, and setting them back (checkpoint
+  // resume; `count` data sets).
+  const std::string& entries() const { return entries_; }
+  void restore(std::string entries, std::size_t count) {
+    entries_ = std::move(entries);
+    count_ = count;
+  }
   const std::filesystem::path& file() const { return file_; }
 
  private:

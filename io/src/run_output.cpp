@@ -3,12 +3,15 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <stdexcept>
 #include <system_error>
 #include <utility>
 #include <vector>
 
 #include "io/atomic_file.h"
+#include "dem_core/state_io.h"
+#include "io/checkpoint.h"
 #include "event_csv_writer.h"
 #include "fq_config.h"
 #include "io/json_writer.h"
@@ -80,7 +83,7 @@ void prepare_folder(const fs::path& folder) {
         throw std::runtime_error("output folder '" + folder.string() +
                                  "' is not empty and holds no previous framequake run (no case.pvd or "
                                  "summary.json); refusing to write into it: choose another folder or empty it");
-      for (const char* name : {kPvdName, kSummaryName, kHistoryName, kEventsName}) {
+      for (const char* name : {kPvdName, kSummaryName, kHistoryName, kEventsName, kCheckpointFileName}) {
         remove_file_if_present(folder / name);
         remove_file_if_present(detail::temporary_path_for(folder / name));
       }
@@ -157,6 +160,19 @@ struct RunOutput::Impl {
   std::int64_t last_history_step = -1;
   bool attached = false;
   bool finished = false;
+  // Set by resume(): where the folder stood at the checkpoint.
+  struct Resume {
+    std::string pvd_entries;
+    std::uint64_t pvd_count = 0;
+    std::uint64_t history_bytes = 0;
+    std::int64_t history_rows = 0;
+    std::uint64_t event_bytes = 0;
+    std::uint64_t events_written = 0;
+    std::int64_t event_rows = 0;
+    std::int64_t frame_every = 0;
+    std::int64_t history_every = 0;
+  };
+  std::optional<Resume> resume;
 };
 
 RunOutput::RunOutput(const OutputDef& def, std::string case_name) {
@@ -172,23 +188,100 @@ RunOutput::RunOutput(const OutputDef& def, std::string case_name) {
   impl_->pvd.write();
 }
 
+RunOutput::RunOutput(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+
 RunOutput::~RunOutput() = default;
 RunOutput::RunOutput(RunOutput&&) noexcept = default;
 RunOutput& RunOutput::operator=(RunOutput&&) noexcept = default;
 
-void RunOutput::attach(Simulation& sim) {
+void RunOutput::attach(Simulation& sim, const std::vector<Vec3>* initial_position_m) {
   Impl& o = *impl_;
   if (o.attached) throw std::logic_error("RunOutput::attach called twice");
   const double dt = sim.settings().dt_s;
   o.history_every = steps_per_interval(o.def.history_interval_s, dt);
   o.frame_every = steps_per_interval(o.def.frame_interval_s, dt);
-  o.history.open(o.def.folder / kHistoryName, sim);
-  o.events.open(o.def.folder / kEventsName);
+  if (o.resume) {
+    const Impl::Resume& r = *o.resume;
+    if (r.frame_every != o.frame_every || r.history_every != o.history_every)
+      throw std::runtime_error("the output intervals differ from those of the checkpointed run");
+    // Frames written after the checkpoint go: the resumed run writes them again.
+    const fs::path frames = o.def.folder / kFramesDir;
+    std::error_code ec;
+    std::vector<fs::path> later;
+    for (const fs::directory_entry& e : fs::directory_iterator(frames, ec)) {
+      const std::string name = e.path().filename().string();
+      if (!is_frame_file_name(name)) continue;
+      if (name.starts_with(".") || std::stoull(name.substr(6, name.size() - 10)) >= r.pvd_count) later.push_back(e.path());
+    }
+    if (ec) throw std::runtime_error("cannot read '" + frames.string() + "': " + ec.message());
+    for (const fs::path& p : later) remove_file_if_present(p);
+    remove_file_if_present(o.def.folder / kSummaryName);
+    o.pvd.restore(r.pvd_entries, std::size_t(r.pvd_count));
+    o.pvd.write();
+    o.history.reopen(o.def.folder / kHistoryName, initial_position_m ? *initial_position_m : sim.bodies().position_m,
+                     r.history_bytes, r.history_rows);
+    o.events.reopen(o.def.folder / kEventsName, r.event_bytes, std::size_t(r.events_written), r.event_rows);
+    // The checkpoint was written after the samples of its step.
+    o.last_history_step = sim.steps_done();
+    o.last_frame_step = sim.steps_done();
+  } else {
+    o.history.open(o.def.folder / kHistoryName, sim);
+    o.events.open(o.def.folder / kEventsName);
+  }
   // History first: at a step where both are due the row is written before
   // the frame flushes the file.
   sim.add_observer(&o.history_observer, o.history_every);
   sim.add_observer(&o.frame_observer, o.frame_every);
   o.attached = true;
+}
+
+void RunOutput::save_state(const Simulation& sim, StateWriter& out) {
+  Impl& o = *impl_;
+  if (!o.attached) throw std::logic_error("RunOutput::save_state before attach");
+  o.history.flush();
+  o.events.write_new(sim.events());
+  o.events.flush();
+  out.section("output");
+  out.str(o.pvd.entries());
+  out.u64(o.pvd.size());
+  out.u64(o.history.bytes_written());
+  out.i64(o.history.rows());
+  out.u64(o.events.bytes_written());
+  out.u64(o.events.written());
+  out.i64(o.events.rows());
+  out.i64(o.frame_every);
+  out.i64(o.history_every);
+}
+
+RunOutput RunOutput::resume(const OutputDef& def, std::string case_name, StateReader& in) {
+  auto impl = std::make_unique<Impl>(def, std::move(case_name));
+  Impl::Resume r;
+  in.section("output");
+  r.pvd_entries = in.str("case.pvd entries");
+  r.pvd_count = in.u64("frame count");
+  r.history_bytes = in.u64("history.csv length");
+  r.history_rows = in.i64("history.csv rows");
+  r.event_bytes = in.u64("events.csv length");
+  r.events_written = in.u64("events written");
+  r.event_rows = in.i64("events.csv rows");
+  r.frame_every = in.i64("frame interval");
+  r.history_every = in.i64("history interval");
+  // The folder must still hold what the checkpoint describes.
+  std::error_code ec;
+  for (const auto& [name, bytes] : {std::pair{kHistoryName, r.history_bytes}, std::pair{kEventsName, r.event_bytes}}) {
+    const fs::path p = def.folder / name;
+    const std::uintmax_t size = fs::file_size(p, ec);
+    if (ec || size < bytes)
+      throw CheckpointError("'" + p.string() + "' is missing or shorter than when the checkpoint was written (" +
+                            std::to_string(bytes) + " bytes); the output folder was changed since, cannot resume");
+  }
+  for (std::uint64_t k = 0; k < r.pvd_count; ++k) {
+    const fs::path p = def.folder / kFramesDir / frame_file_name(std::size_t(k));
+    if (!fs::is_regular_file(p, ec))
+      throw CheckpointError("frame '" + p.string() + "', listed at the checkpoint, is missing; cannot resume");
+  }
+  impl->resume = std::move(r);
+  return RunOutput(std::move(impl));
 }
 
 void RunOutput::add_cell_block(std::string name, VtkCellBlock block) {

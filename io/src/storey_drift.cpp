@@ -1,7 +1,10 @@
 #include "io/storey_drift.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
+#include <fstream>
+#include <stdexcept>
 
 namespace fq {
 
@@ -92,8 +95,53 @@ StoreyDriftMonitor::StoreyDriftMonitor(std::vector<Storey> storeys, AssessmentDe
 void StoreyDriftMonitor::sample(const BodyStore& bodies, std::int64_t step, double time_s) {
   if (step == last_step_) return;
   last_step_ = step;
-  for (std::size_t i = 0; i < storeys_.size(); ++i) {
-    drift_m_[i] = storey_drift_m(storeys_[i], bodies);
+  for (std::size_t i = 0; i < storeys_.size(); ++i) record(i, storey_drift_m(storeys_[i], bodies), time_s);
+}
+
+void StoreyDriftMonitor::replay_history(const std::filesystem::path& history_csv) {
+  std::ifstream in(history_csv, std::ios::binary);
+  if (!in) throw std::runtime_error("cannot read " + history_csv.string());
+  auto split = [](const std::string& line) {
+    std::vector<std::string> cells;
+    std::size_t from = 0;
+    for (std::size_t comma; (comma = line.find(',', from)) != std::string::npos; from = comma + 1)
+      cells.push_back(line.substr(from, comma - from));
+    cells.push_back(line.substr(from));
+    return cells;
+  };
+  std::string line;
+  if (!std::getline(in, line)) return;  // empty file: nothing sampled yet
+  const std::vector<std::string> header = split(line);
+  auto column = [&](const std::string& name) {
+    const auto it = std::find(header.begin(), header.end(), name);
+    if (it == header.end()) throw std::runtime_error(history_csv.string() + " has no column " + name);
+    return std::size_t(it - header.begin());
+  };
+  const std::size_t time_col = column("time_s");
+  std::vector<std::pair<std::size_t, std::size_t>> cols;
+  for (const Storey& s : storeys_) {
+    const std::string prefix = "storey" + std::to_string(s.number) + "_drift";
+    cols.emplace_back(column(prefix + "_x_m"), column(prefix + "_y_m"));
+  }
+  auto number = [&](const std::string& text) {
+    double v = 0.0;
+    const auto res = std::from_chars(text.data(), text.data() + text.size(), v);
+    if (res.ec != std::errc() || res.ptr != text.data() + text.size())
+      throw std::runtime_error(history_csv.string() + ": '" + text + "' is not a number");
+    return v;
+  };
+  while (std::getline(in, line)) {
+    const std::vector<std::string> cells = split(line);
+    if (cells.size() != header.size()) throw std::runtime_error(history_csv.string() + ": a row has the wrong length");
+    const double t = number(cells[time_col]);
+    for (std::size_t i = 0; i < storeys_.size(); ++i)
+      record(i, Eigen::Vector2d(number(cells[cols[i].first]), number(cells[cols[i].second])), t);
+  }
+}
+
+void StoreyDriftMonitor::record(std::size_t i, const Eigen::Vector2d& drift_m, double time_s) {
+  {
+    drift_m_[i] = drift_m;
     const Eigen::Vector2d ratio = drift_ratio_rad(i);
     StoreyDriftRecord& r = records_[i];
     r.peak_ratio_x_rad = std::max(r.peak_ratio_x_rad, std::abs(ratio.x()));

@@ -30,6 +30,9 @@
 
 namespace fq {
 
+class StateWriter;  // dem_core/state_io.h
+class StateReader;
+
 struct BodyPair {
   BodyId a = kNoBody;  // a < b
   BodyId b = kNoBody;
@@ -45,6 +48,11 @@ class BroadPhase {
   std::int64_t rebuild_count() const { return rebuilds_; }
   double skin_m() const { return skin_m_; }
   double cell_size_m() const { return cell_m_; }
+  // Checkpoints (dem_core/state_io.h): the candidate pairs and the poses
+  // saved at the last rebuild, so a resumed run rebuilds at the same steps
+  // as an uninterrupted one. load_state expects configure() done as before.
+  void save_state(StateWriter& out) const;
+  void load_state(StateReader& in);
 
  private:
   bool needs_rebuild(const BodyStore& bodies, const BondedPairs* bonded) const;

@@ -180,6 +180,12 @@ class ContactSystem : public ForceProvider {
   void finish_step(const BodyStore& bodies, const StepInfo& step, EventLog& events) override;
   void report_energy(EnergyLedger& ledger) const override;
   StiffestMode stiffest_mode(const BodyStore& bodies) const override;
+  // Checkpoints (force_provider.h; contact_system_state.cpp): the contact
+  // list of the last step (tangential springs, reference depths, energies
+  // of each point), the pairs still starting from their overlap, the energy
+  // books and the broad phase.
+  void save_state(StateWriter& out) const override;
+  void load_state(StateReader& in) override;
 
   // Current contact points (forces of the last evaluation).
   std::span<const ContactPoint> contacts() const { return contacts_; }

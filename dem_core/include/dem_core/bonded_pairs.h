@@ -14,6 +14,9 @@
 
 namespace fq {
 
+class StateWriter;  // dem_core/state_io.h
+class StateReader;
+
 class BondedPairs {
  public:
   void add(BodyId a, BodyId b) { ++count_[key(a, b)]; }
@@ -31,6 +34,10 @@ class BondedPairs {
   const std::vector<std::pair<BodyId, BodyId>>& released() const { return released_; }
   bool bonded(BodyId a, BodyId b) const { return count_.count(key(a, b)) != 0; }
   std::size_t size() const { return count_.size(); }
+  // Checkpoints (state_io.h): the held pairs with their joint counts, and
+  // the release log. Defined in simulation.cpp (the simulation owns the set).
+  void save_state(StateWriter& out) const;
+  void load_state(StateReader& in);
 
  private:
   static std::uint64_t key(BodyId a, BodyId b) {

@@ -5,11 +5,15 @@
 #pragma once
 
 #include <cstdint>
+#include <string_view>
 #include <vector>
 
 #include "dem_core/types.h"
 
 namespace fq {
+
+class StateWriter;  // dem_core/state_io.h
+class StateReader;
 
 enum class EventKind : std::uint8_t {
   SpringYielded = 0,   // a spring left its elastic branch for the first time
@@ -32,6 +36,11 @@ struct Event {
   Vec3 position_m = Vec3::Zero();  // where (world frame, m)
 };
 
+// A pointer to a static copy of `mode` that lives as long as the program:
+// Event::mode must stay a plain static string, so a mode read back from a
+// checkpoint is interned here (thread-safe; one copy per distinct text).
+const char* intern_event_mode(std::string_view mode);
+
 // Append-only log; observers read new entries since their last visit.
 class EventLog {
  public:
@@ -40,6 +49,9 @@ class EventLog {
   std::size_t size() const { return events_.size(); }
   std::size_t count(EventKind kind) const;
   void clear() { events_.clear(); }
+  // Checkpoints (state_io.h): every event, bit for bit; load replaces the log.
+  void save_state(StateWriter& out) const;
+  void load_state(StateReader& in);
 
  private:
   std::vector<Event> events_;

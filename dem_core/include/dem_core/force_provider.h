@@ -11,6 +11,14 @@
 //     changes in ascending id and append their events to the log.
 //   report_energy: add stored elastic energy at n and cumulative dissipated
 //     energies to the ledger.
+//   save_state / load_state (checkpoints, state_io.h): everything the
+//     provider carries from one step to the next (laws' history, broken
+//     flags, energy books, contact histories, caches whose content can
+//     change results or outputs). load_state is called on a provider built
+//     from the same definition, after Simulation::initialize(), and must
+//     leave it exactly as the saving provider was, so that a resumed run is
+//     bitwise identical to an uninterrupted one. The defaults refuse:
+//     a provider that cannot be checkpointed says so.
 #pragma once
 
 #include <limits>
@@ -21,6 +29,9 @@
 #include "dem_core/events.h"
 
 namespace fq {
+
+class StateWriter;  // dem_core/state_io.h
+class StateReader;
 
 struct StepInfo {
   std::int64_t step = 0;  // n
@@ -53,6 +64,8 @@ class ForceProvider {
   // is always at the step's final state. Energy books that integrate
   // dashpot power assume one call per step and become approximate.
   virtual bool supports_trial_states() const { return false; }
+  virtual void save_state(StateWriter& /*out*/) const;
+  virtual void load_state(StateReader& /*in*/);
 };
 
 }  // namespace fq

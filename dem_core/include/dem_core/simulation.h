@@ -50,6 +50,8 @@ enum class Stage : int { ExternalForces = 0, Providers, Integrate, FinishStep, O
 const char* stage_name(Stage s);
 
 class Simulation;
+class StateWriter;  // dem_core/state_io.h
+class StateReader;
 
 // Something that looks at the state every so many steps (history writer,
 // frame writer, progress display). Called after FinishStep of step n, with
@@ -128,6 +130,20 @@ class Simulation {
   // velocity and angular momentum: equal hashes mean bitwise-equal states
   // (determinism checks across thread counts and runs).
   std::uint64_t state_hash() const;
+
+  // Checkpoints (dem_core/state_io.h, simulation_state.cpp). save_state
+  // writes everything the step loop carries from one step to the next:
+  // step counter, flags, ledger and the work sums behind it, ground
+  // acceleration, every body's pose, velocities, angular momentum, forces,
+  // the event log, the bonded pairs, then each provider's own state (in
+  // provider order, under its name). load_state expects a simulation built
+  // from the same definition (same bodies and providers, same dt; checked:
+  // throws StateFormatError saying what differs) and leaves it exactly in
+  // the saved state, so that step()/run() continue bitwise as the saving
+  // run would have. Call load_state before the first step (it initializes
+  // first); observers are not part of the state.
+  void save_state(StateWriter& out) const;
+  void load_state(StateReader& in);
 
  private:
   void compute_forces();

@@ -36,6 +36,11 @@ struct CaseRunOptions {
   StepObserver* progress = nullptr;       // e.g. the terminal progress display
   const std::atomic<bool>* stop_requested = nullptr;  // set (e.g. by SIGINT) to stop after the current step
   std::optional<Integrator> integrator;   // overrides the case's time.integrator (--integrator)
+  // Write OUT/checkpoint.bin (io/checkpoint.h) every so many simulated
+  // seconds (> 0, rounded to whole steps), and at the last state of a run
+  // that stops; unset = no checkpoints. resume_case keeps the interval of
+  // the checkpointed run.
+  std::optional<double> checkpoint_every_s;
 };
 
 struct StableTimeStep {
@@ -86,6 +91,19 @@ struct CaseRunReport {
 // Runs the case and writes its output. Throws InputError (bad case values or
 // a time step above the stable limit, nothing written) or OutputError.
 CaseRunReport run_case(const CaseDef& def, const CaseRunOptions& options);
+
+// Continues the run whose checkpoint is `folder`/checkpoint.bin: rebuilds
+// the scene from the case file named in the checkpoint, refuses a case (or
+// ground-motion record) that changed since, loads the state, and carries on
+// writing into `folder` as the uninterrupted run would have (history.csv
+// and events.csv cut back to the checkpoint and appended, frames after it
+// rewritten, summary.json at the end). The result is bitwise identical to
+// the uninterrupted run's. output_folder and allow_unstable_time_step of
+// `options` are ignored (the folder is `folder`; the check was made when
+// the run started). Throws CheckpointError (file missing, damaged,
+// truncated, foreign, other version, other case; nothing written),
+// InputError (the case file no longer loads) or OutputError.
+CaseRunReport resume_case(const std::filesystem::path& folder, const CaseRunOptions& options);
 
 // Human-readable description: bodies, total mass, time step and its stable
 // limit, duration, ground motion, output plan.

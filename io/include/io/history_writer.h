@@ -54,6 +54,15 @@ class HistoryWriter {
   // Creates `file`, writes the header line and takes the bodies' current
   // positions as the reference for max_displacement_m.
   void open(const std::filesystem::path& file, const Simulation& sim);
+  // Continues `file` as written by an earlier part of the same run
+  // (checkpoint resume): cuts it back to its first `bytes` bytes, appends
+  // from there, counts rows from `rows`; `reference_position_m` are the
+  // bodies' positions at t = 0 (for max_displacement_m). Throws
+  // std::runtime_error naming the file when it is shorter than `bytes`.
+  void reopen(const std::filesystem::path& file, const std::vector<Vec3>& reference_position_m, std::uint64_t bytes,
+              std::int64_t rows);
+  // Bytes in the file after a flush().
+  std::uint64_t bytes_written() const;
   void write_row(const Simulation& sim);
   void flush();
   void close();

@@ -34,6 +34,9 @@
 
 namespace fq {
 
+class StateWriter;  // dem_core/state_io.h
+class StateReader;
+
 class RunOutput {
  public:
   // Prepares `def.folder` (creates it and frames/). If the folder exists and
@@ -52,7 +55,24 @@ class RunOutput {
   // max(1, round(history_interval_s / dt)) steps, frames every
   // max(1, round(frame_interval_s / dt)) steps, both at the start and at the
   // last state of the run. Opens history.csv and events.csv. Call once.
-  void attach(Simulation& sim);
+  //
+  // A RunOutput made by resume() instead cuts history.csv and events.csv
+  // back to their length at the checkpoint and appends to them, deletes
+  // frames written after the checkpoint and summary.json, and rewrites
+  // case.pvd with the frames up to the checkpoint. `initial_position_m`
+  // (used only then) are the bodies' positions at t = 0, the reference of
+  // max_displacement_m (default: the current positions).
+  void attach(Simulation& sim, const std::vector<Vec3>* initial_position_m = nullptr);
+
+  // Checkpoints (io/checkpoint.h): writes the events not yet written,
+  // flushes history.csv and events.csv, and saves what the folder holds:
+  // the frames listed in case.pvd, the files' byte lengths and row counts.
+  void save_state(const Simulation& sim, StateWriter& out);
+  // An output continuing a run from its checkpoint in `def.folder`. Reads
+  // the "output" section of `in` and checks that history.csv, events.csv
+  // and the listed frames are still there; touches nothing (attach() does).
+  // Throws CheckpointError (io/checkpoint.h) naming what is wrong.
+  static RunOutput resume(const OutputDef& def, std::string case_name, StateReader& in);
 
   void add_cell_block(std::string name, VtkCellBlock block);
   void add_history_column(std::string header, HistoryColumn value);
@@ -74,6 +94,7 @@ class RunOutput {
 
  private:
   struct Impl;
+  explicit RunOutput(std::unique_ptr<Impl> impl);
   std::unique_ptr<Impl> impl_;
 };
 

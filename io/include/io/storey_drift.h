@@ -15,6 +15,7 @@
 // below keeps a small drift.
 #pragma once
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -69,6 +70,11 @@ class StoreyDriftMonitor {
   StoreyDriftMonitor(std::vector<Storey> storeys, AssessmentDef limits);
 
   void sample(const BodyStore& bodies, std::int64_t step, double time_s);
+  // Replays the drift columns of an existing history.csv (a resumed run's
+  // rows from before its checkpoint), so the peaks match the run that was
+  // never interrupted: the file holds every sample bit for bit. Throws
+  // std::runtime_error naming the file when a column is missing.
+  void replay_history(const std::filesystem::path& history_csv);
 
   const std::vector<Storey>& storeys() const { return storeys_; }
   const std::vector<StoreyDriftRecord>& records() const { return records_; }
@@ -79,6 +85,8 @@ class StoreyDriftMonitor {
   StoreyVerdict verdict(std::size_t i) const;
 
  private:
+  void record(std::size_t i, const Eigen::Vector2d& drift_m, double time_s);
+
   std::vector<Storey> storeys_;
   AssessmentDef limits_;
   std::vector<StoreyDriftRecord> records_;

@@ -103,6 +103,12 @@ class JointSystem final : public ForceProvider {
   // elastic (no history, never fails) and no joint has a strain limit (which
   // could break it at a trial state). Dashpot books are then approximate.
   bool supports_trial_states() const override;
+  // Checkpoints (force_provider.h; joint_system_state.cpp): broken and
+  // pending flags, every spring's per-step values, history (law states,
+  // previous deformation and force, alive/yielded, failure force and mode)
+  // and energy books, and the force slots.
+  void save_state(StateWriter& out) const override;
+  void load_state(StateReader& in) override;
 
   // Read-only view for output (valid after a force evaluation).
   std::size_t joint_count() const { return joint_body_a_.size(); }

@@ -1,0 +1,57 @@
+// Checkpoint files: DIR/checkpoint.bin, the full state of a run, from which
+// `framequake resume DIR` continues bitwise as the run would have.
+//
+// File layout (version 1; all integers in the writing machine's byte order,
+// which the marker field pins down):
+//   offset 0   8 bytes  magic "FQCKPT\r\n" (the CR LF catches text-mode copies)
+//   offset 8   u32      format version (kCheckpointFormatVersion)
+//   offset 12  u32      byte-order marker 0x01020304
+//   offset 16  u64      payload length in bytes
+//   offset 24  payload  (below)
+//   end - 8    u64      FNV-1a 64 of the payload (damage check)
+// Payload, written with dem_core/state_io.h, sections in this order:
+//   "run"      case file (absolute path), case fingerprint (case_fingerprint),
+//              checkpoint interval (s), --force flag, case name, step, time (s)
+//   "output"   what the output folder held at the checkpoint (RunOutput::save_state:
+//              frames listed in case.pvd, byte lengths and row counts of
+//              history.csv and events.csv)
+//   simulation state (Simulation::save_state: bodies, ledger, events,
+//              bonded pairs, then each force provider's own state)
+// The file is written under a temporary name and renamed (atomic_file.h), so
+// a run killed while writing leaves the previous checkpoint intact.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+
+#include "io/case_def.h"
+
+namespace fq {
+
+inline constexpr std::uint32_t kCheckpointFormatVersion = 1;
+inline constexpr const char* kCheckpointFileName = "checkpoint.bin";
+
+// A checkpoint file that cannot be used: missing, damaged, truncated,
+// foreign, of another format version, or written for another case. The
+// message names the file and what is wrong.
+class CheckpointError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Frames `payload` (header, checksum) and writes it atomically to `file`.
+// Throws std::runtime_error when the file cannot be written.
+void write_checkpoint_file(const std::filesystem::path& file, const std::string& payload);
+
+// Reads `file` and checks magic, version, byte order, length and checksum;
+// returns the payload. Throws CheckpointError naming the file otherwise.
+std::string read_checkpoint_file(const std::filesystem::path& file);
+
+// FNV-1a 64 over the bytes of the case file and of every ground-motion
+// record it reads: a resumed run refuses a case that changed in any byte.
+// Throws CheckpointError when one of the files cannot be read.
+std::uint64_t case_fingerprint(const CaseDef& def);
+
+}  // namespace fq

@@ -1,0 +1,111 @@
+#include "io/checkpoint.h"
+
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "io/atomic_file.h"
+
+namespace fq {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr char kMagic[8] = {'F', 'Q', 'C', 'K', 'P', 'T', '\r', '\n'};
+constexpr std::uint32_t kByteOrderMarker = 0x01020304u;
+constexpr std::size_t kHeaderBytes = 24;
+constexpr std::size_t kTrailerBytes = 8;
+
+std::uint64_t fnv1a(std::uint64_t h, const char* data, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k) {
+    h ^= static_cast<unsigned char>(data[k]);
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+constexpr std::uint64_t kFnvBasis = 1469598103934665603ull;
+
+template <class T>
+void append_pod(std::string& out, const T& v) {
+  out.append(reinterpret_cast<const char*>(&v), sizeof(T));
+}
+
+template <class T>
+T read_pod(const std::string& bytes, std::size_t offset) {
+  T v;
+  std::memcpy(&v, bytes.data() + offset, sizeof(T));
+  return v;
+}
+
+bool read_whole_file(const fs::path& file, std::string& out) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) return false;
+  std::ostringstream s;
+  s << in.rdbuf();
+  if (in.bad()) return false;
+  out = s.str();
+  return true;
+}
+
+}  // namespace
+
+void write_checkpoint_file(const fs::path& file, const std::string& payload) {
+  std::string doc;
+  doc.reserve(kHeaderBytes + payload.size() + kTrailerBytes);
+  doc.append(kMagic, sizeof kMagic);
+  append_pod(doc, kCheckpointFormatVersion);
+  append_pod(doc, kByteOrderMarker);
+  append_pod(doc, std::uint64_t(payload.size()));
+  doc += payload;
+  append_pod(doc, fnv1a(kFnvBasis, payload.data(), payload.size()));
+  detail::write_file_atomically(file, doc);
+}
+
+std::string read_checkpoint_file(const fs::path& file) {
+  const std::string name = "checkpoint file '" + file.string() + "'";
+  std::error_code ec;
+  if (!fs::exists(file, ec)) throw CheckpointError(name + " does not exist (was the run started with --checkpoint-every?)");
+  std::string bytes;
+  if (!read_whole_file(file, bytes)) throw CheckpointError(name + " cannot be read");
+  if (bytes.size() < sizeof kMagic || std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0)
+    throw CheckpointError(name + " is not a framequake checkpoint (wrong magic bytes)");
+  if (bytes.size() < kHeaderBytes + kTrailerBytes)
+    throw CheckpointError(name + " is truncated (" + std::to_string(bytes.size()) + " bytes, shorter than its header)");
+  const auto version = read_pod<std::uint32_t>(bytes, 8);
+  const auto marker = read_pod<std::uint32_t>(bytes, 12);
+  if (marker != kByteOrderMarker)
+    throw CheckpointError(name + " was written on a machine of another byte order (or is damaged)");
+  if (version != kCheckpointFormatVersion)
+    throw CheckpointError(name + " has format version " + std::to_string(version) + "; this framequake reads version " +
+                          std::to_string(kCheckpointFormatVersion));
+  const auto length = read_pod<std::uint64_t>(bytes, 16);
+  const std::uint64_t expected_size = std::uint64_t(kHeaderBytes) + length + kTrailerBytes;
+  if (length > bytes.size() || bytes.size() != expected_size)
+    throw CheckpointError(name + " is " + (bytes.size() < expected_size ? "truncated" : "damaged") + ": " +
+                          std::to_string(bytes.size()) + " bytes where its header announces " +
+                          std::to_string(expected_size));
+  std::string payload = bytes.substr(kHeaderBytes, std::size_t(length));
+  const auto checksum = read_pod<std::uint64_t>(bytes, kHeaderBytes + std::size_t(length));
+  if (checksum != fnv1a(kFnvBasis, payload.data(), payload.size()))
+    throw CheckpointError(name + " is damaged (checksum mismatch)");
+  return payload;
+}
+
+std::uint64_t case_fingerprint(const CaseDef& def) {
+  std::uint64_t h = kFnvBasis;
+  auto add_file = [&h](const fs::path& p, const char* what) {
+    std::string bytes;
+    if (!read_whole_file(p, bytes))
+      throw CheckpointError(std::string("cannot read ") + what + " '" + p.string() + "' to check it against the checkpoint");
+    const std::uint64_t n = bytes.size();
+    h = fnv1a(h, reinterpret_cast<const char*>(&n), sizeof n);
+    h = fnv1a(h, bytes.data(), bytes.size());
+  };
+  if (!def.source_file.empty()) add_file(def.source_file, "case file");
+  if (def.ground_motion)
+    for (const GroundMotionComponentDef& c : def.ground_motion->components) add_file(c.resolved_file, "ground-motion record");
+  return h;
+}
+
+}  // namespace fq

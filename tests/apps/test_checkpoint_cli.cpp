@@ -1,0 +1,134 @@
+// Checkpoint and restart through the command line: `framequake run CASE
+// --checkpoint-every S` killed with SIGKILL after a checkpoint exists, then
+// `framequake resume DIR`, ends with exactly the output of a run that was
+// never interrupted: the same summary.json state_hash (bitwise-equal final
+// state), and byte-identical history.csv, events.csv and case.pvd (rows and
+// frames cut back to the checkpoint and written again). The reference is
+// the same binary run without interruption; the claim is equality.
+// A damaged, truncated or foreign checkpoint, or a case changed since,
+// ends in exit code 2 with a message naming checkpoint.bin and the fault,
+// and leaves the folder as it was.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <string>
+#include <thread>
+
+#include "../io/checkpoint_case.h"
+#include "app_process.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using fq_test::AppProcess;
+using fq_test::read_text;
+using fq_test::run_app;
+using fq_test::TempDir;
+
+void write_text(const fs::path& p, const std::string& text) { std::ofstream(p, std::ios::binary) << text; }
+
+std::string state_hash(const fs::path& summary) {
+  std::smatch m;
+  const std::string s = read_text(summary);
+  if (!std::regex_search(s, m, std::regex("\"state_hash\": \"([0-9a-f]{16})\""))) return "";
+  return m[1];
+}
+
+struct Fixture {
+  TempDir dir;
+  fs::path case_file;
+  Fixture() {
+    write_text(dir.path() / "shake.txt", fq::test::sine_record(1.0));
+    case_file = dir.path() / "arm.yaml";
+    write_text(case_file, fq::test::arm_case(0.4, "shake.txt"));
+  }
+  // Starts a checkpointed run into `out` and kills it (SIGKILL) as soon as
+  // its first checkpoint is on disk. Returns the exit code (137 = killed).
+  int run_and_kill(const fs::path& out) {
+    AppProcess p({"run", case_file.string(), "--out", out.string(), "--quiet", "--checkpoint-every", "0.02"}, dir.path());
+    const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while (!fs::exists(out / "checkpoint.bin") && std::chrono::steady_clock::now() < give_up)
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    p.signal(SIGKILL);
+    return p.wait();
+  }
+};
+
+TEST(CheckpointCli, KilledRunResumedGivesTheUninterruptedOutput) {
+  Fixture f;
+  const fs::path ref = f.dir.path() / "ref", out = f.dir.path() / "out";
+  ASSERT_EQ(run_app({"run", f.case_file.string(), "--out", ref.string(), "--quiet"}, f.dir.path()).code, 0);
+  ASSERT_EQ(f.run_and_kill(out), 128 + SIGKILL) << "the run must be killed before it ends";
+  ASSERT_FALSE(fs::exists(out / "summary.json"));
+  ASSERT_LT(fs::file_size(out / "history.csv"), fs::file_size(ref / "history.csv")) << "nothing left to resume";
+
+  const auto r = run_app({"resume", out.string(), "--quiet"}, f.dir.path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string hash = state_hash(ref / "summary.json");
+  ASSERT_FALSE(hash.empty());
+  EXPECT_EQ(state_hash(out / "summary.json"), hash);
+  for (const char* name : {"history.csv", "events.csv", "case.pvd"})
+    EXPECT_TRUE(read_text(out / name) == read_text(ref / name)) << name << " differs from the uninterrupted run";
+  EXPECT_NE(read_text(out / "events.csv").find("joint_broken"), std::string::npos) << "the run must span the break";
+}
+
+TEST(CheckpointCli, BadCheckpointOrChangedCaseIsRefusedWithExitCode2) {
+  Fixture f;
+  const fs::path out = f.dir.path() / "out";
+  ASSERT_EQ(f.run_and_kill(out), 128 + SIGKILL);
+  const fs::path ckpt = out / "checkpoint.bin";
+  const std::string good = read_text(ckpt);
+  const std::string history = read_text(out / "history.csv");
+
+  auto expect_refused = [&](const char* fault) {
+    const auto r = run_app({"resume", out.string(), "--quiet"}, f.dir.path());
+    EXPECT_EQ(r.code, 2) << fault << ": " << r.err;
+    EXPECT_NE(r.err.find("checkpoint.bin"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(fault), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
+    // Nothing half written: the folder is as the killed run left it.
+    EXPECT_FALSE(fs::exists(out / "summary.json"));
+    EXPECT_TRUE(read_text(out / "history.csv") == history);
+  };
+  std::string flipped = good;
+  flipped[flipped.size() / 2] = char(flipped[flipped.size() / 2] ^ 0x01);
+  write_text(ckpt, flipped);
+  expect_refused("damaged");
+  write_text(ckpt, good.substr(0, good.size() / 3));
+  expect_refused("truncated");
+  write_text(ckpt, "time_s,kinetic_J\n0,0\n");
+  expect_refused("not a framequake checkpoint");
+
+  write_text(ckpt, good);
+  const std::string case_text = read_text(f.case_file);
+  write_text(f.case_file, case_text + "# edited after the checkpoint\n");
+  expect_refused("changed");
+  write_text(f.case_file, case_text);
+
+  fs::remove(ckpt);
+  expect_refused("does not exist");
+
+  // With the intact checkpoint back, the same folder resumes.
+  write_text(ckpt, good);
+  EXPECT_EQ(run_app({"resume", out.string(), "--quiet"}, f.dir.path()).code, 0);
+}
+
+TEST(CheckpointCli, BadIntervalOrMissingFolderIsAUsageError) {
+  Fixture f;
+  const fs::path out = f.dir.path() / "out";
+  for (const char* bad : {"0", "-1", "abc", "nan"}) {
+    const auto r = run_app({"run", f.case_file.string(), "--out", out.string(), "--checkpoint-every", bad}, f.dir.path());
+    EXPECT_EQ(r.code, 2) << bad;
+    EXPECT_NE(r.err.find("--checkpoint-every"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(out)) << "nothing may be written on a usage error";
+  }
+  const auto missing = run_app({"resume"}, f.dir.path());
+  EXPECT_EQ(missing.code, 2);
+  EXPECT_NE(missing.err.find("missing DIR"), std::string::npos) << missing.err;
+}
+
+}  // namespace
