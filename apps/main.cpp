@@ -2,6 +2,7 @@
 //
 //   framequake run CASE [--out DIR] [--quiet] [--force] [--threads N]
 //   framequake info CASE
+//   framequake render OUT_DIR [--compare ...]   (render/render_command.h)
 //   framequake --help | --version
 //
 // Exit codes: 0 run completed; 1 the run became unstable (output kept up to
@@ -26,6 +27,7 @@
 #include "io/case_runner.h"
 #include "io/input_error.h"
 #include "progress_display.h"
+#include "render/render_command.h"
 
 #if defined(_OPENMP)
 #include <omp.h>
@@ -49,6 +51,7 @@ const char* kMainHelp =
     "Usage:\n"
     "  framequake run CASE [options]   run a case file, write VTK frames, history and summary\n"
     "  framequake info CASE            describe a case: bodies, total mass, time step, output plan\n"
+    "  framequake render OUT_DIR       animate a finished run (GIF/MP4, PNG frames); --compare for several\n"
     "  framequake --help               this text;  framequake COMMAND --help for a command\n"
     "  framequake --version            print the version\n"
     "\n"
@@ -186,6 +189,9 @@ int command_info(int argc, char** argv) {
   return kExitOk;
 }
 
+// Offscreen animation of finished runs: everything lives in render/.
+int command_render(int argc, char** argv) { return fq::render::render_command(argc, argv, 2); }
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -202,6 +208,7 @@ int main(int argc, char** argv) {
     }
     if (command == "run") return command_run(argc, argv);
     if (command == "info") return command_info(argc, argv);
+    if (command == "render") return command_render(argc, argv);
   } catch (const std::exception& e) {
     // Anything not foreseen above still ends in a message and a non-zero code.
     std::cerr << "framequake: internal error: " << e.what() << "\n";
