@@ -1,6 +1,7 @@
 #include "render/gif_writer.h"
 
 #include <array>
+#include <cstdlib>
 #include <stdexcept>
 #include <system_error>
 
@@ -32,18 +33,20 @@ std::vector<std::uint8_t> make_palette() {
   return p;
 }
 
-// Nearest grey entry (cube greys included) for each grey level 0..255.
-std::array<std::uint8_t, 256> make_grey_table(const std::vector<std::uint8_t>& palette) {
-  std::array<std::uint8_t, 256> table{};
-  for (int level = 0; level < 256; ++level) {
+// Nearest grey entry (cube greys included) for each channel sum r + g + b
+// (0..765): the grey g minimising (r-g)^2 + (g-g)^2 + (b-g)^2 is the one
+// closest to the mean, i.e. minimising |3 g - sum| (exact, no rounding).
+std::array<std::uint8_t, 766> make_grey_table(const std::vector<std::uint8_t>& palette) {
+  std::array<std::uint8_t, 766> table{};
+  for (int sum = 0; sum <= 765; ++sum) {
     int best = 0, best_err = 1 << 30;
     for (int i = 0; i < 256; ++i) {
       const int r = palette[std::size_t(3 * i)], g = palette[std::size_t(3 * i + 1)], b = palette[std::size_t(3 * i + 2)];
       if (r != g || g != b) continue;
-      const int err = (r - level) * (r - level);
+      const int err = std::abs(3 * r - sum);
       if (err < best_err) best_err = err, best = i;
     }
-    table[std::size_t(level)] = std::uint8_t(best);
+    table[std::size_t(sum)] = std::uint8_t(best);
   }
   return table;
 }
@@ -86,14 +89,14 @@ const std::vector<std::uint8_t>& gif_palette_rgb() {
 }
 
 std::uint8_t gif_palette_index(std::uint8_t r, std::uint8_t g, std::uint8_t b) {
-  static const std::array<std::uint8_t, 256> grey = make_grey_table(gif_palette_rgb());
+  static const std::array<std::uint8_t, 766> grey = make_grey_table(gif_palette_rgb());
   const std::vector<std::uint8_t>& p = gif_palette_rgb();
   // Nearest cube entry: each channel rounded to its nearest level.
   const int ri = (r + kCubeStep / 2) / kCubeStep, gi = (g + kCubeStep / 2) / kCubeStep, bi = (b + kCubeStep / 2) / kCubeStep;
   const int cube = ri * 36 + gi * 6 + bi;
   const int cube_err = sq(r - ri * kCubeStep) + sq(g - gi * kCubeStep) + sq(b - bi * kCubeStep);
   // Nearest grey: the grey closest to the channel mean minimises the squared error.
-  const std::uint8_t gidx = grey[std::size_t((r + g + b + 1) / 3)];
+  const std::uint8_t gidx = grey[std::size_t(r + g + b)];
   const int gv = p[std::size_t(3 * gidx)];
   const int grey_err = sq(r - gv) + sq(g - gv) + sq(b - gv);
   return grey_err < cube_err ? gidx : std::uint8_t(cube);
