@@ -158,7 +158,8 @@ int render_command(int argc, char** argv, int first) {
             << report.width_px << "x" << report.height_px << " px in " << report.wall_s << " s (" << per_frame_ms
             << " ms per frame: read " << 1e3 * report.read_s / std::max(1, report.frames) << ", draw "
             << 1e3 * report.draw_s / std::max(1, report.frames) << ", encode "
-            << 1e3 * report.encode_s / std::max(1, report.frames) << ")\n";
+            << 1e3 * report.encode_s / std::max(1, report.frames) << "; CPU "
+            << 1e3 * report.cpu_s / std::max(1, report.frames) << ")\n";
   if (!args.options.animation.empty()) std::cout << "framequake: animation " << args.options.animation.string() << "\n";
   if (args.options.png_folder) std::cout << "framequake: PNG frames in " << args.options.png_folder->string() << "\n";
   return kExitOk;

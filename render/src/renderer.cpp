@@ -32,6 +32,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <csignal>
+#include <ctime>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -300,15 +302,18 @@ std::vector<double> merged_times(const std::vector<RunData>& runs, int every) {
 // Pipe of raw RGB frames into ffmpeg for MP4 output.
 class FfmpegPipe {
  public:
-  FfmpegPipe(const fs::path& file, int w, int h, double fps) : file_(file), temp_(fs::path(file).concat(".part.mp4")) {
+  FfmpegPipe(const fs::path& file, int w, int h, double fps) : file_(file), temp_(fs::path(file).concat(".part")) {
     std::ostringstream cmd;
     cmd << "ffmpeg -hide_banner -loglevel error -y -f rawvideo -pix_fmt rgb24 -s " << w << "x" << h << " -r " << fps
-        << " -i - -c:v libx264 -pix_fmt yuv420p -vf pad=ceil(iw/2)*2:ceil(ih/2)*2 '" << temp_.string() << "'";
+        << " -i - -c:v libx264 -pix_fmt yuv420p -vf 'pad=ceil(iw/2)*2:ceil(ih/2)*2' -f mp4 '" << temp_.string() << "'";
+    // A dead ffmpeg must give a write error and a message, not kill us with SIGPIPE.
+    old_sigpipe_ = std::signal(SIGPIPE, SIG_IGN);
     pipe_ = popen(cmd.str().c_str(), "w");
     if (!pipe_) throw std::runtime_error("cannot start ffmpeg for '" + file.string() + "'");
   }
   ~FfmpegPipe() {
     if (pipe_) pclose(pipe_);
+    std::signal(SIGPIPE, old_sigpipe_);
     std::error_code ec;
     if (!done_) fs::remove(temp_, ec);
   }
@@ -330,6 +335,7 @@ class FfmpegPipe {
   fs::path file_, temp_;
   FILE* pipe_ = nullptr;
   bool done_ = false;
+  void (*old_sigpipe_)(int) = SIG_DFL;
 };
 
 bool ffmpeg_available() { return std::system("ffmpeg -version >/dev/null 2>&1") == 0; }
@@ -344,6 +350,7 @@ std::string lower_extension(const fs::path& p) {
 
 RenderReport render_runs(const std::vector<RunData>& runs, const RenderOptions& options) {
   const auto t_start = Clock::now();
+  const std::clock_t cpu_start = std::clock();
   if (runs.empty()) throw RenderInputError("no run to render");
   if (options.panel_width_px < 64 || options.panel_height_px < 64 || options.panel_width_px > 4096 ||
       options.panel_height_px > 4096)
@@ -356,6 +363,8 @@ RenderReport render_runs(const std::vector<RunData>& runs, const RenderOptions& 
   if (!options.animation.empty()) {
     const std::string ext = lower_extension(options.animation);
     if (ext == ".mp4") {
+      if (options.animation.string().find('\'') != std::string::npos)
+        throw RenderInputError("'" + options.animation.string() + "': an MP4 path must not contain a single quote");
       if (!ffmpeg_available())
         throw RenderInputError("'" + options.animation.string() +
                                "': MP4 needs ffmpeg on PATH (apt-get install ffmpeg); write a .gif instead");
@@ -512,18 +521,18 @@ RenderReport render_runs(const std::vector<RunData>& runs, const RenderOptions& 
       label << "ground acceleration " << "xyz"[axis] << " (m/s^2), peak " << std::setprecision(3) << own_peak
             << "; full scale +-" << std::setprecision(3) << peak;
     } else {
-      label << "no ground acceleration in history.csv";
+      label << "no ground motion (zero or absent in history.csv)";
     }
     make_text(p->trace, label.str(), 0.02, 0.97, 13, light);
     // Legend of the damage colours, right-aligned on the label row.
     // Laid out from the right edge with an estimated glyph width (Arial at
-    // 12 pt is about 7 px per character), on the row below the label.
-    static const char* names[5] = {"intact", "yielded", "joint broken", "detached", "* broken joint"};
+    // 12 pt is at most about 8 px per character), on the row below the label.
+    static const char* names[5] = {"intact", "yielded", "damaged", "detached", "* broken joint"};
     double x = 0.98;
     for (int s = 4; s >= 0; --s) {
       const auto& colour = s == 4 ? kBrokenJointColour : kDamageColour[std::size_t(s)];
       make_text(p->trace, names[s], x, 0.80, 12, colour, true);
-      x -= (7.0 * double(std::char_traits<char>::length(names[s])) + 14.0) / options.panel_width_px;
+      x -= (8.0 * double(std::char_traits<char>::length(names[s])) + 16.0) / options.panel_width_px;
     }
     make_polyline_2d(p->trace, p->cursor, {255, 204, 0}, 2.0f);
     set_cursor(p->cursor, plot_x(times.front()));
@@ -610,6 +619,7 @@ RenderReport render_runs(const std::vector<RunData>& runs, const RenderOptions& 
   if (ffmpeg) ffmpeg->finish();
   report.encode_s += seconds_since(t0);
   report.wall_s = seconds_since(t_start);
+  report.cpu_s = double(std::clock() - cpu_start) / CLOCKS_PER_SEC;
   return report;
 }
 

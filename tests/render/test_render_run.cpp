@@ -276,27 +276,27 @@ TEST(RenderRun, CompareShowsRunsSideBySideInStep) {
   const fs::path gif = dir.path() / "cmp.gif";
   std::string out, err;
   ASSERT_EQ(run_app({"render", "--compare", fine.string(), coarse.string(), "--to", gif.string(), "--png", "--size",
-                     "320x240"},
+                     "240x180"},
                     dir.path(), &out, &err),
             0)
       << out << err;
   if (fq_test::pil_available()) {
     const fq_test::GifInfo info = fq_test::read_gif_with_pil(gif);
     EXPECT_EQ(info.n_frames, 26) << info.json;
-    EXPECT_EQ(info.width, 640);
-    EXPECT_EQ(info.height, 240);
+    EXPECT_EQ(info.width, 480);
+    EXPECT_EQ(info.height, 180);
   }
   const fs::path frames = dir.path() / "cmp_frames";
   int frames_where_only_left_shows_break = 0;
   for (std::size_t k = 0; k < t_fine.size(); ++k) {
     const Image im = read_png(png(frames, k));
-    ASSERT_EQ(im.w, 640);
+    ASSERT_EQ(im.w, 480);
     const double t = t_fine[k];
     double shown_coarse = t_coarse.front();
     for (const double tc : t_coarse)
       if (tc <= t + 1e-9) shown_coarse = tc;
     SCOPED_TRACE("frame " + std::to_string(k) + " at t = " + std::to_string(t) + " s");
-    const Counts left = count(im, 0, 320), right = count(im, 320, 640);
+    const Counts left = count(im, 0, 240), right = count(im, 240, 480);
     EXPECT_EQ(left.marker > 0, t >= break_fine);
     EXPECT_EQ(right.marker > 0, shown_coarse >= break_coarse);
     frames_where_only_left_shows_break += (left.marker > 0) != (right.marker > 0);
@@ -330,6 +330,24 @@ TEST(RenderRun, BadUsageEndsWithAClearMessageAndWritesNothing) {
   EXPECT_NE(err.find(".gif or .mp4"), std::string::npos) << err;
   EXPECT_FALSE(fs::exists(dir.path() / "a.avi"));
   EXPECT_FALSE(fs::exists(run / "animation.gif"));
+}
+
+TEST(RenderRun, Mp4ThroughFfmpegHasOneFramePerOutputFrame) {
+  // Optional output: only when Debian's ffmpeg (with ffprobe) is installed.
+  if (std::system("ffprobe -version > /dev/null 2>&1") != 0) GTEST_SKIP() << "ffmpeg/ffprobe not installed";
+  fq_test::TempDir dir;
+  const fs::path run = run_case(dir.path(), "r", "0.05");
+  const std::size_t frames = pvd_times(run).size();
+  const fs::path mp4 = dir.path() / "r.mp4";
+  std::string out, err;
+  ASSERT_EQ(run_app({"render", run.string(), "--to", mp4.string(), "--size", "320x240"}, dir.path(), &out, &err), 0)
+      << out << err;
+  const std::string cmd = "ffprobe -v error -count_frames -select_streams v:0 -show_entries "
+                          "stream=nb_read_frames,width,height -of csv=p=0 '" + mp4.string() + "' > '" +
+                          (dir.path() / "probe.txt").string() + "'";
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  EXPECT_EQ(fq_test::read_text(dir.path() / "probe.txt"), "320,240," + std::to_string(frames) + "\n");
+  EXPECT_FALSE(fs::exists(dir.path() / "r.mp4.part"));
 }
 
 }  // namespace

@@ -58,6 +58,7 @@ struct RenderReport {
   std::vector<double> frame_time_s; // simulated time of each animation frame
   double wall_s = 0.0;              // whole render
   double read_s = 0.0, draw_s = 0.0, encode_s = 0.0;  // split of wall_s
+  double cpu_s = 0.0;  // processor time of this process (all threads, Mesa's included)
   int width_px = 0, height_px = 0;
 };
 
