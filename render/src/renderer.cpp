@@ -267,6 +267,7 @@ struct Panel {
   const RunData* run = nullptr;
   std::size_t shown = std::numeric_limits<std::size_t>::max();  // index of the frame drawn
   vtkNew<vtkRenderer> scene, trace;
+  vtkNew<vtkRenderer> overlay;  // layer 1 over `scene`, same camera: markers never hidden
   FrameScene frame;
   vtkNew<vtkPolyData> cursor;
   vtkSmartPointer<vtkTextActor> time_text;
@@ -413,6 +414,7 @@ RenderReport render_runs(const std::vector<RunData>& runs, const RenderOptions& 
   window->SetOffScreenRendering(1);
   window->SetMultiSamples(0);  // exact colours: no blending along edges
   window->SetSize(W, H);
+  window->SetNumberOfLayers(2);
   window->SetAlphaBitPlanes(0);
 
   vtkNew<vtkSphereSource> sphere;
@@ -429,8 +431,12 @@ RenderReport render_runs(const std::vector<RunData>& runs, const RenderOptions& 
     p->trace->SetViewport(x0, 0.0, x1, kTraceHeightFraction);
     p->scene->SetBackground(kSkyColour[0] / 255.0, kSkyColour[1] / 255.0, kSkyColour[2] / 255.0);
     p->trace->SetBackground(kTraceBackground[0] / 255.0, kTraceBackground[1] / 255.0, kTraceBackground[2] / 255.0);
+    p->overlay->SetViewport(x0, kTraceHeightFraction, x1, 1.0);
+    p->overlay->SetLayer(1);
+    p->overlay->SetActiveCamera(p->scene->GetActiveCamera());
     window->AddRenderer(p->scene);
     window->AddRenderer(p->trace);
+    window->AddRenderer(p->overlay);
 
     // Members: flat-shaded boxes coloured per cell, with dark edges.
     vtkNew<vtkPolyDataMapper> members_mapper;
@@ -457,7 +463,8 @@ RenderReport render_runs(const std::vector<RunData>& runs, const RenderOptions& 
     ground->GetProperty()->SetDiffuse(0.3);
     p->scene->AddActor(ground);
 
-    // Broken joints: unlit spheres, so the marker colour is exact in every pixel.
+    // Broken joints: unlit spheres, so the marker colour is exact in every
+    // pixel, drawn in the overlay layer so that members never hide them.
     vtkNew<vtkGlyph3D> glyphs;
     glyphs->SetInputData(p->frame.broken_joints);
     glyphs->SetSourceConnection(sphere->GetOutputPort());
@@ -470,7 +477,7 @@ RenderReport render_runs(const std::vector<RunData>& runs, const RenderOptions& 
     p->broken_actor->SetMapper(broken_mapper);
     set_colour(p->broken_actor->GetProperty(), kBrokenJointColour);
     p->broken_actor->GetProperty()->LightingOff();
-    p->scene->AddActor(p->broken_actor);
+    p->overlay->AddActor(p->broken_actor);
 
     frame_camera(p->scene->GetActiveCamera(), bounds, double(options.panel_width_px) / ((1.0 - kTraceHeightFraction) * H));
     // The ground box is large: clip planes come from the members' bounds.
