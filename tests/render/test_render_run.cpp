@@ -19,7 +19,6 @@
 #include <limits>
 #include <cstdlib>
 #include <filesystem>
-#include <regex>
 #include <string>
 #include <vector>
 
@@ -73,9 +72,9 @@ fs::path run_case(const fs::path& dir, const std::string& name, const std::strin
 std::vector<double> pvd_times(const fs::path& run) {
   const std::string doc = fq_test::read_text(run / "case.pvd");
   std::vector<double> t;
-  const std::regex re("timestep=\"([^\"]+)\"");
-  for (auto it = std::sregex_iterator(doc.begin(), doc.end(), re); it != std::sregex_iterator(); ++it)
-    t.push_back(std::stod((*it)[1].str()));
+  const std::string key = "timestep=\"";
+  for (auto at = doc.find(key); at != std::string::npos; at = doc.find(key, at + 1))
+    t.push_back(std::stod(doc.substr(at + key.size(), doc.find('"', at + key.size()) - at - key.size())));
   return t;
 }
 
