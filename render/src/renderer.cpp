@@ -72,7 +72,9 @@ struct LeakCheckPause {
   ~LeakCheckPause() { __lsan_enable(); }
 };
 #else
-struct LeakCheckPause {};
+struct LeakCheckPause {
+  LeakCheckPause() = default;
+};
 #endif
 
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
@@ -610,7 +612,7 @@ RenderReport render_runs(const std::vector<RunData>& runs, const RenderOptions& 
       // with dlopen and keeps a few allocations for the life of the process
       // (LeakSanitizer reports them from an unloaded module). They are not
       // ours to free, so they are not tracked; later frames are.
-      LeakCheckPause pause;
+      [[maybe_unused]] const LeakCheckPause pause;
       window->Render();
     } else {
       window->Render();
