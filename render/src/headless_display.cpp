@@ -6,8 +6,10 @@
 #include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
+#include <X11/Xlib.h>
 
 #include <cerrno>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -49,7 +51,15 @@ HeadlessDisplay::~HeadlessDisplay() {
 
 bool HeadlessDisplay::ensure(std::string& out_error) {
   const char* display = std::getenv("DISPLAY");
-  if (display && *display) return true;
+  if (display && *display) {
+    // VTK aborts the process on a display it cannot open: check first.
+    if (Display* d = XOpenDisplay(nullptr)) {
+      XCloseDisplay(d);
+      return true;
+    }
+    std::fprintf(stderr, "framequake render: cannot open X display '%s' (DISPLAY); starting a private Xvfb instead\n",
+                 display);
+  }
   std::string xvfb;
   if (!find_on_path("Xvfb", xvfb)) {
     out_error = std::string("no X display (DISPLAY is unset) and Xvfb is not on PATH: ") + kHowTo;

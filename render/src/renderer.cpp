@@ -562,6 +562,17 @@ RenderReport render_runs(const std::vector<RunData>& runs, const RenderOptions& 
     panels.push_back(std::move(p));
   }
 
+  {
+    // The first render creates the OpenGL context, before any file is
+    // opened: VTK aborts the process when it cannot, and nothing must be
+    // left half written then. Mesa loads its driver with dlopen and keeps a
+    // few allocations for the life of the process (LeakSanitizer reports
+    // them from an unloaded module); they are not ours to free, so they are
+    // not tracked. Allocations of every later render are.
+    [[maybe_unused]] const LeakCheckPause pause;
+    window->Render();
+  }
+
   std::unique_ptr<GifWriter> gif;
   std::unique_ptr<FfmpegPipe> ffmpeg;
   if (!options.animation.empty()) {
@@ -607,16 +618,7 @@ RenderReport render_runs(const std::vector<RunData>& runs, const RenderOptions& 
     report.read_s += seconds_since(t0);
 
     t0 = Clock::now();
-    if (fi == 0) {
-      // The first render creates the OpenGL context: Mesa loads its driver
-      // with dlopen and keeps a few allocations for the life of the process
-      // (LeakSanitizer reports them from an unloaded module). They are not
-      // ours to free, so they are not tracked; later frames are.
-      [[maybe_unused]] const LeakCheckPause pause;
-      window->Render();
-    } else {
-      window->Render();
-    }
+    window->Render();
     pixels->SetNumberOfComponents(3);
     window->GetPixelData(0, 0, W - 1, H - 1, 0, pixels, 0);
     report.draw_s += seconds_since(t0);

@@ -21,8 +21,8 @@ class HeadlessDisplay {
   HeadlessDisplay(const HeadlessDisplay&) = delete;
   HeadlessDisplay& operator=(const HeadlessDisplay&) = delete;
 
-  // Makes sure DISPLAY names a display: keeps an existing one, else starts
-  // Xvfb and sets DISPLAY. Returns false with a message saying what to install
+  // Makes sure DISPLAY names a display: keeps an existing one that opens,
+  // else (unset, or it does not open) starts Xvfb and sets DISPLAY. Returns false with a message saying what to install
   // or run when neither works.
   bool ensure(std::string& out_error);
   bool started_server() const { return pid_ > 0; }
