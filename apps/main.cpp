@@ -6,6 +6,7 @@
 //   framequake info CASE
 //   framequake compare CASE... [--out DIR] [--jobs N] [--window-length S]
 //   framequake sweep CASE... [--scales LIST] [--record FILE]... [--out DIR]
+//   framequake render OUT_DIR [--compare ...]   (render/render_command.h)
 //   framequake --help | --version
 //
 // Exit codes: 0 run completed; 1 the run became unstable (output kept up to
@@ -33,6 +34,7 @@
 #include "io/input_error.h"
 #include "progress_display.h"
 #include "study_commands.h"
+#include "render/render_command.h"
 
 #if defined(_OPENMP)
 #include <omp.h>
@@ -59,6 +61,7 @@ const char* kMainHelp =
     "  framequake info CASE            describe a case: bodies, total mass, time step, output plan\n"
     "  framequake compare CASE...      run cases side by side; table of storey drifts and verdicts, figure\n"
     "  framequake sweep CASE...        run cases over amplitude scales (and records); collapse scales, figure\n"
+    "  framequake render OUT_DIR       animate a finished run (GIF/MP4, PNG frames); --compare for several\n"
     "  framequake --help               this text;  framequake COMMAND --help for a command\n"
     "  framequake --version            print the version\n"
     "\n"
@@ -304,6 +307,9 @@ int command_info(int argc, char** argv) {
   return kExitOk;
 }
 
+// Offscreen animation of finished runs: everything lives in render/.
+int command_render(int argc, char** argv) { return fq::render::render_command(argc, argv, 2); }
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -326,6 +332,7 @@ int main(int argc, char** argv) {
                                   : fq_app::command_sweep(argc, argv, &g_stop_requested);
     }
     if (command == "resume") return command_resume(argc, argv);
+    if (command == "render") return command_render(argc, argv);
   } catch (const std::exception& e) {
     // Anything not foreseen above still ends in a message and a non-zero code.
     std::cerr << "framequake: internal error: " << e.what() << "\n";

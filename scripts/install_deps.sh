@@ -8,7 +8,8 @@ packages=(
   libeigen3-dev libvtk9-dev libgsl-dev libyaml-cpp-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   clang libclang-rt-14-dev
-  python3-vtk9 python3-matplotlib python3-numpy
+  python3-vtk9 python3-matplotlib python3-numpy python3-pil
+  xvfb xauth
 )
 
 missing=()

@@ -2,14 +2,49 @@
 
 #include <limits>
 #include <sstream>
+#include <vector>
 
 #include "io/json_writer.h"
 
 namespace fq {
 
+namespace {
+
+// Damage state of each member from the state of its joints, written on the
+// member's body cell (the bodies block comes first with one cell per body,
+// so body i is cell i: vtk_frame_writer.h). 0 intact: every joint elastic
+// (or no joint); 1 yielded: a joint yielded, none broken; 2 damaged: a joint
+// broken, another still holding; 3 detached: every joint broken.
+void add_member_damage(const Simulation& sim, const JointSystem& js, VtkFrameBuilder& frame) {
+  const std::size_t bodies = sim.bodies().size();
+  std::vector<std::int32_t> joints(bodies, 0), broken(bodies, 0), yielded(bodies, 0);
+  for (std::size_t j = 0; j < js.joint_count(); ++j) {
+    const JointStatus st = js.joint_status(j);
+    for (const BodyId b : {js.joint_body_a(j), js.joint_body_b(j)}) {
+      const auto i = std::size_t(b);
+      if (i >= bodies) continue;
+      ++joints[i];
+      if (st == JointStatus::Broken) ++broken[i];
+      if (st == JointStatus::Yielded) ++yielded[i];
+    }
+  }
+  const auto damage = frame.cell_array("damage_state", VtkArrayType::Int32, 1, -1);
+  for (std::size_t i = 0; i < bodies; ++i) {
+    double state = 0.0;
+    if (broken[i] > 0)
+      state = broken[i] == joints[i] ? 3.0 : 2.0;
+    else if (yielded[i] > 0)
+      state = 1.0;
+    frame.set(damage, VtkFrameBuilder::Index(i), state);
+  }
+}
+
+}  // namespace
+
 void attach_joint_output(RunOutput& output, const JointSystem& joints) {
   const JointSystem* js = &joints;
-  output.add_cell_block("springs", [js](const Simulation& /*sim*/, VtkFrameBuilder& frame) {
+  output.add_cell_block("springs", [js](const Simulation& sim, VtkFrameBuilder& frame) {
+    add_member_damage(sim, *js, frame);
     const std::size_t n = js->spring_count();
     const auto force = frame.cell_array("spring_force_N", VtkArrayType::Float64, 1, std::nan(""));
     const auto ratio = frame.cell_array("strain_ratio", VtkArrayType::Float64, 1, std::nan(""));

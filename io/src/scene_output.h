@@ -13,7 +13,9 @@ namespace fq {
 // spring_force_N, strain_ratio (|delta| / ultimate, 1 = deletion),
 // spring_state (0 elastic, 1 yielded, 2 deleted), spring_role (0 normal,
 // 1 shear, 2 link), joint_id and joint_broken (0/1); history columns
-// joints_intact_count, joints_yielded_count, joints_broken_count.
+// joints_intact_count, joints_yielded_count, joints_broken_count. Also sets
+// damage_state on the body cells from the members' joints (0 intact,
+// 1 yielded, 2 damaged: some joint broken, 3 detached: all joints broken).
 void attach_joint_output(RunOutput& output, const JointSystem& joints);
 
 // Summary fields: joint counts at the end and the time of the first joint

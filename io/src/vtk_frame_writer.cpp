@@ -121,6 +121,9 @@ void VtkFrameWriter::add_bodies(const Simulation& sim, VtkFrameBuilder& frame) {
   const auto vel = frame.cell_array("velocity_mps", VtkArrayType::Float64, 3, nan);
   const auto omega = frame.cell_array("angular_velocity_radps", VtkArrayType::Float64, 3, nan);
   const auto state = frame.cell_array("state", VtkArrayType::Int32, 1, -1.0);
+  // Damage of the member: 0 here; the springs block raises it from its joints
+  // (io/src/scene_output.cpp), so a scene without joints still carries it.
+  const auto damage = frame.cell_array("damage_state", VtkArrayType::Int32, 1, -1.0);
 
   // VTK_HEXAHEDRON order: bottom face 0-1-2-3 counter-clockwise seen from
   // the top face 4-5-6-7 (4 above 0, ...). In body coordinates (signs of the
@@ -144,6 +147,7 @@ void VtkFrameWriter::add_bodies(const Simulation& sim, VtkFrameBuilder& frame) {
     frame.set(vel, cell, b.velocity_mps[i]);
     frame.set(omega, cell, b.angular_velocity_radps[i]);
     frame.set(state, cell, b.is_fixed[i] ? 1.0 : 0.0);
+    frame.set(damage, cell, 0.0);
     names.push_back(b.info[i].name);
   }
   frame.add_field("body_names", std::move(names));

@@ -20,7 +20,9 @@
 //   velocity_mps (3, m/s)           world frame, mid-step v(t - dt/2) of the
 //                                   leapfrog scheme (the state holds no other)
 //   angular_velocity_radps (3, rad/s) world frame, mid-step like velocity_mps
-//   state (int)                     0 free, 1 fixed (later issues: damage states)
+//   state (int)                     0 free, 1 fixed
+//   damage_state (int)              0 intact; raised by the springs block
+//                                   (scene_output.h): 1 yielded, 2 damaged, 3 detached
 //   field data body_names (strings, one per body)
 //
 // VTK types stay out of this header (VTK is a private dependency of fq_io):

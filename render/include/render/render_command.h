@@ -1,0 +1,14 @@
+// The `framequake render` command: argument parsing, display set-up and the
+// report printed at the end, so that apps/main.cpp only dispatches to it.
+#pragma once
+
+namespace fq::render {
+
+extern const char* const kRenderHelp;
+
+// argv[first] is the first argument after `render`. Returns the exit code:
+// 0 done; 2 bad usage or unusable run folder (nothing written); 3 output
+// could not be written or no X display could be found or started.
+int render_command(int argc, char** argv, int first);
+
+}  // namespace fq::render
