@@ -19,7 +19,8 @@ app=./build/apps/framequake
 work=$(mktemp -d /tmp/fq_sensitivity_XXXXXX)
 trap 'rm -rf "$work"' EXIT
 mkdir -p validation/results
-out=validation/results/frames_sensitivity.md
+target=validation/results/frames_sensitivity.md
+out=$work/report.md  # moved into place when complete
 cp -r cases/ground_motions "$work/"
 
 variant() {  # variant NAME CASE SED_SCRIPT -> path of the changed copy
@@ -37,7 +38,7 @@ variant() {  # variant NAME CASE SED_SCRIPT -> path of the changed copy
   echo "# Sensitivity of the frame verdicts"
   echo
   echo "Produced by \`bash validation/frames_sensitivity.sh\` on $(date -u +%Y-%m-%d)"
-  echo "(window: ${FQ_WINDOW:-as shipped, record 0-20 s})."
+  echo "(window: ${FQ_WINDOW:+record seconds from, length: }${FQ_WINDOW:-as shipped, record 0-20 s})."
   echo
 } > "$out"
 
@@ -66,4 +67,5 @@ for factor in 2 4; do
   "$app" compare "${files[@]}" --out "$work/strength$factor" --no-figure > "$work/log" 2>&1 || true
   grep '^|' "$work/strength$factor/comparison.md" >> "$out"
 done
-echo "[frames_sensitivity] wrote $out"
+mv "$out" "$target"
+echo "[frames_sensitivity] wrote $target"
