@@ -69,18 +69,27 @@ bool BroadPhase::needs_rebuild(const BodyStore& bodies, const BondedPairs* bonde
   if (bodies.size() != position0_m_.size()) return true;
   const double limit = 0.5 * skin_m_;
   const std::int64_t n = std::int64_t(bodies.size());
-  int exceeded = 0;
-#if defined(_OPENMP)
-#pragma omp parallel for schedule(static) reduction(max : exceeded) if (n >= 4096)
-#endif
-  for (std::int64_t i = 0; i < n; ++i) {
-    if (!participates_[i] || bodies.is_fixed[i]) continue;
+  auto exceeds = [&](std::int64_t i) {
+    if (!participates_[i] || bodies.is_fixed[i]) return false;
     const double moved = (bodies.position_m[i] - position0_m_[i]).norm();
     // Rotation angle since the rebuild: 2 asin |vec(q0^-1 q)|.
     const double s = std::min(1.0, (orientation0_[i].conjugate() * bodies.orientation[i]).vec().norm());
     const double bound = moved + half_diagonal_m_[i] * 2.0 * std::asin(s);
-    if (bound > limit) exceeded = 1;
+    return bound > limit;
+  };
+  // Small scenes never enter the OpenMP runtime (dem_core/parallel_for.h)
+  // and stop at the first body that moved too far.
+  if (n < 4096) {
+    for (std::int64_t i = 0; i < n; ++i)
+      if (exceeds(i)) return true;
+    return false;
   }
+  int exceeded = 0;
+#if defined(_OPENMP)
+#pragma omp parallel for schedule(static) reduction(max : exceeded)
+#endif
+  for (std::int64_t i = 0; i < n; ++i)
+    if (exceeds(i)) exceeded = 1;
   return exceeded != 0;
 }
 

@@ -12,6 +12,7 @@
 #include "contacts/collide_box_box.h"
 #include "contacts/collide_box_ground.h"
 #include "contacts/linear_contact_law.h"
+#include "dem_core/parallel_for.h"
 
 namespace fq {
 
@@ -152,10 +153,7 @@ void ContactSystem::narrow_phase(const BodyStore& bodies, const StepInfo& /*step
   if (chunk_buffers_.size() < n_chunks) chunk_buffers_.resize(n_chunks);
 
   const std::int64_t chunks = std::int64_t(n_chunks);
-#if defined(_OPENMP)
-#pragma omp parallel for schedule(dynamic, 1) if (n_items >= std::size_t(settings_.parallel_threshold))
-#endif
-  for (std::int64_t c = 0; c < chunks; ++c) {
+  parallel_for_dynamic(chunks, n_items >= std::size_t(settings_.parallel_threshold), [&](std::int64_t c) {
     std::vector<ContactPoint>& buf = chunk_buffers_[std::size_t(c)];
     buf.clear();
     ContactManifold manifold;
@@ -214,7 +212,7 @@ void ContactSystem::narrow_phase(const BodyStore& bodies, const StepInfo& /*step
         buf.push_back(cp);
       }
     }
-  }
+  });
 
   std::size_t total = 0;
   for (std::size_t c = 0; c < n_chunks; ++c) total += chunk_buffers_[c].size();
@@ -228,10 +226,7 @@ void ContactSystem::narrow_phase(const BodyStore& bodies, const StepInfo& /*step
 
 void ContactSystem::apply_law(const BodyStore& bodies, const StepInfo& step) {
   const std::int64_t n = std::int64_t(contacts_.size());
-#if defined(_OPENMP)
-#pragma omp parallel for schedule(static) if (n >= settings_.parallel_threshold)
-#endif
-  for (std::int64_t k = 0; k < n; ++k) {
+  parallel_for_static(n, n >= settings_.parallel_threshold, [&](std::int64_t k) {
     ContactPoint& c = contacts_[std::size_t(k)];
     // Tangential history of the same (pair, feature) at the previous step.
     const auto it = std::lower_bound(previous_.begin(), previous_.end(), c, [](const ContactPoint& p, const ContactPoint& q) {
@@ -284,7 +279,7 @@ void ContactSystem::apply_law(const BodyStore& bodies, const StepInfo& step) {
     }
     c.viscous_J = 0.0;  // booked in finish_step
     c.friction_J = 0.0;
-  }
+  });
   // Elastic energy summed in contact order (deterministic).
   double elastic = 0.0, viscous = 0.0, friction = 0.0;
   for (const ContactPoint& c : contacts_) elastic += c.elastic_J;
@@ -305,10 +300,7 @@ void ContactSystem::finish_step(const BodyStore& bodies, const StepInfo& step, E
   // The bodies hold v(n+1/2) and w(n+1/2); the arms are those of step n.
   const double dt = step.dt_s;
   const std::int64_t n = std::int64_t(contacts_.size());
-#if defined(_OPENMP)
-#pragma omp parallel for schedule(static) if (n >= settings_.parallel_threshold)
-#endif
-  for (std::int64_t k = 0; k < n; ++k) {
+  parallel_for_static(n, n >= settings_.parallel_threshold, [&](std::int64_t k) {
     ContactPoint& c = contacts_[std::size_t(k)];
     const bool moving_a = c.body_a >= 0 && (c.pair_key & kGroundKeyHigh) != kGroundKeyHigh;
     const Vec3 va = moving_a ? Vec3(bodies.velocity_mps[c.body_a] + bodies.angular_velocity_radps[c.body_a].cross(c.arm_a_m))
@@ -323,7 +315,7 @@ void ContactSystem::finish_step(const BodyStore& bodies, const StepInfo& step, E
     c.friction_work_loss_J = c.sliding ? loss_tangential_J : 0.0;
     c.viscous_J = c.viscous_work_loss_J - d_elastic_n - (c.sliding ? 0.0 : d_elastic_t);
     c.friction_J = c.friction_work_loss_J - (c.sliding ? d_elastic_t : 0.0);
-  }
+  });
   // Summed in contact order (deterministic). The ledger counts step 0's
   // work from t = 0 only (its second half), and reports each step's work
   // half at the step itself (energy_ledger.h); elastic changes count in full.
@@ -364,12 +356,11 @@ void ContactSystem::gather(BodyStore& bodies) {
     body_start_[0] = 0;
   }
   const std::int64_t nb = std::int64_t(n);
-#if defined(_OPENMP)
-#pragma omp parallel for schedule(static) if (nb >= settings_.parallel_threshold && contacts_.size() >= std::size_t(settings_.parallel_threshold))
-#endif
-  for (std::int64_t i = 0; i < nb; ++i) {
+  const bool parallel =
+      nb >= settings_.parallel_threshold && contacts_.size() >= std::size_t(settings_.parallel_threshold);
+  parallel_for_static(nb, parallel, [&](std::int64_t i) {
     const std::int32_t s = body_start_[std::size_t(i)], e = body_start_[std::size_t(i) + 1];
-    if (s == e) continue;
+    if (s == e) return;
     Vec3 f = Vec3::Zero(), t = Vec3::Zero();
     const Vec3 x = bodies.position_m[std::size_t(i)];
     for (std::int32_t k = s; k < e; ++k) {
@@ -382,7 +373,7 @@ void ContactSystem::gather(BodyStore& bodies) {
     }
     bodies.force_N[std::size_t(i)] += f;
     bodies.torque_Nm[std::size_t(i)] += t;
-  }
+  });
 }
 
 void ContactSystem::report_energy(EnergyLedger& ledger) const {

@@ -9,6 +9,7 @@
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_odeiv2.h>
 
+#include "dem_core/parallel_for.h"
 #include "dem_core/rotation.h"
 
 namespace fq {
@@ -244,10 +245,8 @@ void Simulation::integrate() {
   std::vector<ChunkSums>& sums = chunk_sums_;
   if (sums.size() != chunks) sums.resize(chunks);  // once: no allocation in the step loop
 
-#if defined(_OPENMP)
-#pragma omp parallel for schedule(static) if (n >= 4 * kReductionChunk)
-#endif
-  for (std::size_t c = 0; c < chunks; ++c) {
+  parallel_for_static(std::int64_t(chunks), n >= 4 * kReductionChunk, [&](std::int64_t ci) {
+    const auto c = std::size_t(ci);
     ChunkSums s{};
     const std::size_t end = std::min(n, (c + 1) * kReductionChunk);
     for (std::size_t i = c * kReductionChunk; i < end; ++i) {
@@ -274,7 +273,7 @@ void Simulation::integrate() {
     }
     s.finite = std::isfinite(s.kinetic_new_J) && s.momentum_new.allFinite();
     sums[c] = s;
-  }
+  });
 
   ChunkSums total{};
   for (const ChunkSums& s : sums) {

@@ -6,6 +6,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "dem_core/parallel_for.h"
+
 namespace fq {
 
 namespace {
@@ -155,6 +157,14 @@ void JointSystem::prepare(const BodyStore& bodies) {
   plastic_J_.assign(ns, 0.0);
   viscous_done_J_.assign(ns, 0.0);
   viscous_half_J_.assign(ns, 0.0);
+  // Springs of one point (a normal and two shear springs of a four-corner
+  // layout) share their attachments: the geometry and relative velocity of
+  // the point are computed once, for the first of them.
+  same_point_as_prev_.assign(ns, 0);
+  for (std::size_t s = 1; s < ns; ++s)
+    same_point_as_prev_[s] = spring_joint_[s] == spring_joint_[s - 1] &&
+                             attach_a_local_m_[s] == attach_a_local_m_[s - 1] &&
+                             attach_b_local_m_[s] == attach_b_local_m_[s - 1];
   slot_force_N_.assign(2 * ns, Vec3::Zero());
   slot_torque_Nm_.assign(2 * ns, Vec3::Zero());
   // CSR: slots of each body in ascending slot index (= ascending spring).
@@ -180,12 +190,10 @@ void JointSystem::accumulate_forces(BodyStore& bodies, const StepInfo& /*step*/)
   const auto nj_i = std::int64_t(nj);
 
   // 1. Joint frames and spring geometry.
-#if defined(_OPENMP)
-#pragma omp parallel for schedule(static) if (parallel_(spring_joint_.size()))
-#endif
-  for (std::int64_t ji = 0; ji < nj_i; ++ji) {
+  const bool parallel = parallel_(spring_joint_.size());
+  parallel_for_static(nj_i, parallel, [&](std::int64_t ji) {
     const auto j = std::size_t(ji);
-    if (joint_broken_[j]) continue;
+    if (joint_broken_[j]) return;
     const BodyId a = joint_body_a_[j], b = joint_body_b_[j];
     const Quat qa = bodies.orientation[a] * joint_frame_a_[j];
     Quat qb = bodies.orientation[b] * joint_frame_b_[j];
@@ -197,10 +205,16 @@ void JointSystem::accumulate_forces(BodyStore& bodies, const StepInfo& /*step*/)
     joint_frame_world_[j] = frame;
     const Mat3& ra = bodies.rotation[a];
     const Mat3& rb = bodies.rotation[b];
+    Vec3 pa = Vec3::Zero(), pb = Vec3::Zero(), d = Vec3::Zero(), vrel = Vec3::Zero();
     for (auto s = std::size_t(joint_first_[j]); s < std::size_t(joint_first_[j + 1]); ++s) {
-      const Vec3 arm_a = ra * attach_a_local_m_[s], arm_b = rb * attach_b_local_m_[s];
-      const Vec3 pa = bodies.position_m[a] + arm_a, pb = bodies.position_m[b] + arm_b;
-      const Vec3 d = pb - pa;
+      if (!same_point_as_prev_[s] || s == std::size_t(joint_first_[j])) {
+        const Vec3 arm_a = ra * attach_a_local_m_[s], arm_b = rb * attach_b_local_m_[s];
+        pa = bodies.position_m[a] + arm_a;
+        pb = bodies.position_m[b] + arm_b;
+        d = pb - pa;
+        vrel = (bodies.velocity_mps[b] + bodies.angular_velocity_radps[b].cross(arm_b)) -
+               (bodies.velocity_mps[a] + bodies.angular_velocity_radps[a].cross(arm_a));
+      }
       Vec3 e;
       double delta;
       if (spring_axis_[s] >= 0) {
@@ -211,24 +225,19 @@ void JointSystem::accumulate_forces(BodyStore& bodies, const StepInfo& /*step*/)
         e = len > 0.0 ? Vec3(d / len) : direction_[s];
         delta = len - rest_length_m_[s];
       }
-      const Vec3 vrel = (bodies.velocity_mps[b] + bodies.angular_velocity_radps[b].cross(arm_b)) -
-                        (bodies.velocity_mps[a] + bodies.angular_velocity_radps[a].cross(arm_a));
       end_a_m_[s] = pa;
       end_b_m_[s] = pb;
       direction_[s] = e;
       delta_m_[s] = delta;
       rate_mps_[s] = e.dot(vrel);
     }
-  }
+  });
 
   // 2. Laws, batch by batch.
   evaluate_laws_();
 
   // 3. Slots and the fracture test.
-#if defined(_OPENMP)
-#pragma omp parallel for schedule(static) if (parallel_(spring_joint_.size()))
-#endif
-  for (std::int64_t ji = 0; ji < nj_i; ++ji) {
+  parallel_for_static(nj_i, parallel, [&](std::int64_t ji) {
     const auto j = std::size_t(ji);
     const auto first = std::size_t(joint_first_[j]), last = std::size_t(joint_first_[j + 1]);
     if (joint_broken_[j]) {
@@ -238,7 +247,7 @@ void JointSystem::accumulate_forces(BodyStore& bodies, const StepInfo& /*step*/)
         slot_torque_Nm_[2 * s].setZero();
         slot_torque_Nm_[2 * s + 1].setZero();
       }
-      continue;
+      return;
     }
     const BodyId a = joint_body_a_[j], b = joint_body_b_[j];
     JointSpringSummary sum;
@@ -272,17 +281,14 @@ void JointSystem::accumulate_forces(BodyStore& bodies, const StepInfo& /*step*/)
     const bool brk = joint_should_break(joint_break_[j], sum);
     joint_break_pending_[j] = brk ? 1 : 0;
     joint_event_pending_[j] = (brk || any_pending) ? 1 : 0;
-  }
+  });
 
   // 4. Gather per body in slot order.
   const auto nb_i = std::int64_t(body_count_);
-#if defined(_OPENMP)
-#pragma omp parallel for schedule(static) if (parallel_(spring_joint_.size()))
-#endif
-  for (std::int64_t bi = 0; bi < nb_i; ++bi) {
+  parallel_for_static(nb_i, parallel, [&](std::int64_t bi) {
     const auto i = std::size_t(bi);
     const auto first = std::size_t(body_slot_first_[i]), last = std::size_t(body_slot_first_[i + 1]);
-    if (first == last) continue;
+    if (first == last) return;
     Vec3 f = Vec3::Zero(), t = Vec3::Zero();
     for (std::size_t k = first; k < last; ++k) {
       const auto slot = std::size_t(body_slots_[k]);
@@ -291,18 +297,15 @@ void JointSystem::accumulate_forces(BodyStore& bodies, const StepInfo& /*step*/)
     }
     bodies.force_N[i] += f;
     bodies.torque_Nm[i] += t;
-  }
+  });
 }
 
 template <class Law, class State, class Eval>
 void JointSystem::run_batch_(Batch<Law, State>& batch, Eval eval, bool tracks_work) {
   const auto n = std::int64_t(batch.ids.size());
-#if defined(_OPENMP)
-#pragma omp parallel for schedule(static) if (parallel_(batch.ids.size()))
-#endif
-  for (std::int64_t k = 0; k < n; ++k) {
+  parallel_for_static(n, parallel_(batch.ids.size()), [&](std::int64_t k) {
     const auto s = std::size_t(batch.ids[std::size_t(k)]);
-    if (!alive_[s] || joint_broken_[std::size_t(spring_joint_[s])]) continue;
+    if (!alive_[s] || joint_broken_[std::size_t(spring_joint_[s])]) return;
     const double delta = delta_m_[s], rate = rate_mps_[s];
     const LawOutput out = eval(batch.law[std::size_t(k)], batch.state[std::size_t(k)], delta);
     if (out.failed) {
@@ -320,7 +323,7 @@ void JointSystem::run_batch_(Batch<Law, State>& batch, Eval eval, bool tracks_wo
       stored_J_[s] = 0.0;
       law_force_N_[s] = dashpot_force_N_[s] = force_N_[s] = 0.0;
       has_prev_[s] = 0;
-      continue;
+      return;
     }
     if (tracks_work && has_prev_[s]) {
       work_J_[s] += 0.5 * (law_force_prev_N_[s] + out.force_N) * (delta - delta_prev_m_[s]);
@@ -342,7 +345,7 @@ void JointSystem::run_batch_(Batch<Law, State>& batch, Eval eval, bool tracks_wo
     delta_prev_m_[s] = delta;
     law_force_prev_N_[s] = out.force_N;
     has_prev_[s] = 1;
-  }
+  });
 }
 
 void JointSystem::evaluate_laws_() {
@@ -373,30 +376,34 @@ void JointSystem::finish_step(const BodyStore& bodies, const StepInfo& step, Eve
   // end_n - (x(n+1) - dt v(n+1/2)).
   const auto nj_i = std::int64_t(nj);
   const double dt = step.dt_s;
-#if defined(_OPENMP)
-#pragma omp parallel for schedule(static) if (parallel_(spring_joint_.size()))
-#endif
-  for (std::int64_t ji = 0; ji < nj_i; ++ji) {
+  parallel_for_static(nj_i, parallel_(spring_joint_.size()), [&](std::int64_t ji) {
     const auto j = std::size_t(ji);
     if (joint_broken_[j]) {  // its last dashpot term is now complete
       for (auto s = std::size_t(joint_first_[j]); s < std::size_t(joint_first_[j + 1]); ++s) viscous_half_J_[s] = 0.0;
-      continue;
+      return;
     }
     const BodyId a = joint_body_a_[j], b = joint_body_b_[j];
     const Vec3 xa = bodies.position_m[a] - dt * bodies.velocity_mps[a];
     const Vec3 xb = bodies.position_m[b] - dt * bodies.velocity_mps[b];
     const Vec3& wa = bodies.angular_velocity_radps[a];
     const Vec3& wb = bodies.angular_velocity_radps[b];
+    const Vec3 w_sum = wa + wb;
+    Vec3 vrel = Vec3::Zero();
+    bool vrel_valid = false;  // vrel belongs to the current point
     for (auto s = std::size_t(joint_first_[j]); s < std::size_t(joint_first_[j + 1]); ++s) {
+      if (!same_point_as_prev_[s]) vrel_valid = false;
       if (!(dashpot_Nspm_[s] > 0.0) || dashpot_force_N_[s] == 0.0) {
         viscous_half_J_[s] = 0.0;
         continue;
       }
-      const Vec3 vrel =
-          (bodies.velocity_mps[b] + wb.cross(end_b_m_[s] - xb)) - (bodies.velocity_mps[a] + wa.cross(end_a_m_[s] - xa));
+      if (!vrel_valid) {
+        vrel = (bodies.velocity_mps[b] + wb.cross(end_b_m_[s] - xb)) -
+               (bodies.velocity_mps[a] + wa.cross(end_a_m_[s] - xa));
+        vrel_valid = true;
+      }
       const Vec3& e = direction_[s];
       const Vec3 torque_d = (0.5 * dashpot_force_N_[s]) * (end_b_m_[s] - end_a_m_[s]).cross(e);
-      const double power_next = dashpot_force_N_[s] * e.dot(vrel) - torque_d.dot(wa + wb);
+      const double power_next = dashpot_force_N_[s] * e.dot(vrel) - torque_d.dot(w_sum);
       const double term = dt * 0.5 * (dashpot_power_prev_W_[s] + power_next);
       // The ledger's kinetic energy at n is KE_0 + (t_0/2 + t_1 + ... +
       // t_{n-1} + t_n/2) (the start shifts v back half a step), so the
@@ -404,7 +411,7 @@ void JointSystem::finish_step(const BodyStore& bodies, const StepInfo& step, Eve
       viscous_done_J_[s] += step.step == 0 ? 0.5 * term : term;
       viscous_half_J_[s] = 0.5 * term;
     }
-  }
+  });
   for (std::size_t j = 0; j < nj; ++j) {
     if (!joint_event_pending_[j]) continue;
     joint_event_pending_[j] = 0;

@@ -159,6 +159,7 @@ class JointSystem final : public ForceProvider {
   std::vector<SpringRole> spring_role_;
   std::vector<std::int8_t> spring_axis_;                   // 0, 1, 2 joint-frame axis; -1 for links
   std::vector<Vec3> attach_a_local_m_, attach_b_local_m_;  // body frames (m)
+  std::vector<std::uint8_t> same_point_as_prev_;          // attachments equal to spring s-1's (same joint)
   std::vector<double> rest_length_m_;                      // links (m)
   std::vector<double> reference_length_m_;
   std::vector<double> dashpot_Nspm_;
