@@ -203,33 +203,45 @@ void JointSystem::accumulate_forces(BodyStore& bodies, const StepInfo& /*step*/)
     qm.normalize();
     const Mat3 frame = qm.toRotationMatrix();
     joint_frame_world_[j] = frame;
-    const Mat3& ra = bodies.rotation[a];
-    const Mat3& rb = bodies.rotation[b];
+    const Mat3 ra = bodies.rotation[a], rb = bodies.rotation[b];
+    const Vec3 xa = bodies.position_m[a], xb = bodies.position_m[b];
+    const Vec3 va = bodies.velocity_mps[a], vb = bodies.velocity_mps[b];
+    const Vec3 wa = bodies.angular_velocity_radps[a], wb = bodies.angular_velocity_radps[b];
+    // Raw pointers: see step 3.
+    const std::uint8_t* __restrict same_point = same_point_as_prev_.data();
+    const std::int8_t* __restrict axis = spring_axis_.data();
+    const Vec3* __restrict attach_a = attach_a_local_m_.data();
+    const Vec3* __restrict attach_b = attach_b_local_m_.data();
+    Vec3* __restrict end_a = end_a_m_.data();
+    Vec3* __restrict end_b = end_b_m_.data();
+    Vec3* __restrict direction = direction_.data();
+    double* __restrict delta_m = delta_m_.data();
+    double* __restrict rate_mps = rate_mps_.data();
     Vec3 pa = Vec3::Zero(), pb = Vec3::Zero(), d = Vec3::Zero(), vrel = Vec3::Zero();
-    for (auto s = std::size_t(joint_first_[j]); s < std::size_t(joint_first_[j + 1]); ++s) {
-      if (!same_point_as_prev_[s] || s == std::size_t(joint_first_[j])) {
-        const Vec3 arm_a = ra * attach_a_local_m_[s], arm_b = rb * attach_b_local_m_[s];
-        pa = bodies.position_m[a] + arm_a;
-        pb = bodies.position_m[b] + arm_b;
+    const auto first = std::size_t(joint_first_[j]), last = std::size_t(joint_first_[j + 1]);
+    for (std::size_t s = first; s < last; ++s) {
+      if (!same_point[s] || s == first) {
+        const Vec3 arm_a = ra * attach_a[s], arm_b = rb * attach_b[s];
+        pa = xa + arm_a;
+        pb = xb + arm_b;
         d = pb - pa;
-        vrel = (bodies.velocity_mps[b] + bodies.angular_velocity_radps[b].cross(arm_b)) -
-               (bodies.velocity_mps[a] + bodies.angular_velocity_radps[a].cross(arm_a));
+        vrel = (vb + wb.cross(arm_b)) - (va + wa.cross(arm_a));
       }
       Vec3 e;
       double delta;
-      if (spring_axis_[s] >= 0) {
-        e = frame.col(spring_axis_[s]);
+      if (axis[s] >= 0) {
+        e = frame.col(axis[s]);
         delta = e.dot(d);
       } else {
         const double len = d.norm();
-        e = len > 0.0 ? Vec3(d / len) : direction_[s];
+        e = len > 0.0 ? Vec3(d / len) : direction[s];
         delta = len - rest_length_m_[s];
       }
-      end_a_m_[s] = pa;
-      end_b_m_[s] = pb;
-      direction_[s] = e;
-      delta_m_[s] = delta;
-      rate_mps_[s] = e.dot(vrel);
+      end_a[s] = pa;
+      end_b[s] = pb;
+      direction[s] = e;
+      delta_m[s] = delta;
+      rate_mps[s] = e.dot(vrel);
     }
   });
 
@@ -250,31 +262,47 @@ void JointSystem::accumulate_forces(BodyStore& bodies, const StepInfo& /*step*/)
       return;
     }
     const BodyId a = joint_body_a_[j], b = joint_body_b_[j];
+    // Raw pointers: the compiler cannot tell that the vectors' own pointers
+    // are not changed by the stores below, and would reload them per spring.
+    const double* __restrict force_N = force_N_.data();
+    const double* __restrict dashpot_force_N = dashpot_force_N_.data();
+    const double* __restrict dashpot_Nspm = dashpot_Nspm_.data();
+    const double* __restrict rate_mps = rate_mps_.data();
+    const Vec3* __restrict direction = direction_.data();
+    const Vec3* __restrict end_a = end_a_m_.data();
+    const Vec3* __restrict end_b = end_b_m_.data();
+    Vec3* __restrict slot_force = slot_force_N_.data();
+    Vec3* __restrict slot_torque = slot_torque_Nm_.data();
+    double* __restrict power_prev_W = dashpot_power_prev_W_.data();
+    const Vec3 xa = bodies.position_m[a], xb = bodies.position_m[b];
+    const Vec3 w_sum = bodies.angular_velocity_radps[a] + bodies.angular_velocity_radps[b];
+    const bool strain_limit = joint_break_[j].criterion == BreakCriterion::StrainLimit;
     JointSpringSummary sum;
     bool any_pending = false;
     for (std::size_t s = first; s < last; ++s) {
-      const double f = force_N_[s];
-      const Vec3 force = f * direction_[s];  // on a; -force on b (f > 0 = tension pulls b back)
-      const Vec3 d = end_b_m_[s] - end_a_m_[s];
+      const double f = force_N[s];
+      const Vec3 e = direction[s];
+      const Vec3 force = f * e;  // on a; -force on b (f > 0 = tension pulls b back)
+      const Vec3 d = end_b[s] - end_a[s];
       const Vec3 frame_torque = 0.5 * d.cross(force);
-      if (dashpot_Nspm_[s] > 0.0) {
+      if (dashpot_Nspm[s] > 0.0) {
         // Dissipated power of the dashpot force system at n-1/2: f_d r minus
         // the power of its share of the frame torque (completed in finish_step).
-        const Vec3 torque_d = (0.5 * dashpot_force_N_[s]) * d.cross(direction_[s]);
-        dashpot_power_prev_W_[s] = dashpot_force_N_[s] * rate_mps_[s] -
-                                   torque_d.dot(bodies.angular_velocity_radps[a] + bodies.angular_velocity_radps[b]);
+        const Vec3 torque_d = (0.5 * dashpot_force_N[s]) * d.cross(e);
+        power_prev_W[s] = dashpot_force_N[s] * rate_mps[s] - torque_d.dot(w_sum);
       }
-      slot_force_N_[2 * s] = force;
-      slot_torque_Nm_[2 * s] = (end_a_m_[s] - bodies.position_m[a]).cross(force) + frame_torque;
-      slot_force_N_[2 * s + 1] = -force;
-      slot_torque_Nm_[2 * s + 1] = (end_b_m_[s] - bodies.position_m[b]).cross(-force) + frame_torque;
+      slot_force[2 * s] = force;
+      slot_torque[2 * s] = (end_a[s] - xa).cross(force) + frame_torque;
+      slot_force[2 * s + 1] = -force;
+      slot_torque[2 * s + 1] = (end_b[s] - xb).cross(-force) + frame_torque;
       const bool normal = spring_role_[s] == SpringRole::Normal || spring_axis_[s] == -1;
       ++sum.springs;
       if (normal) ++sum.normal_springs;
       if (alive_[s]) {
         ++sum.springs_alive;
         if (normal) ++sum.normal_springs_alive;
-        sum.max_strain = std::max(sum.max_strain, std::abs(delta_m_[s]) / reference_length_m_[s]);
+        // Only the strain-limit criterion reads it (fracture.h).
+        if (strain_limit) sum.max_strain = std::max(sum.max_strain, std::abs(delta_m_[s]) / reference_length_m_[s]);
       }
       any_pending = any_pending || pending_[s] != 0;
     }
@@ -303,15 +331,32 @@ void JointSystem::accumulate_forces(BodyStore& bodies, const StepInfo& /*step*/)
 template <class Law, class State, class Eval>
 void JointSystem::run_batch_(Batch<Law, State>& batch, Eval eval, bool tracks_work) {
   const auto n = std::int64_t(batch.ids.size());
+  // Raw pointers for the common path (see accumulate_forces, step 3).
+  const std::int32_t* __restrict ids = batch.ids.data();
+  const Law* __restrict laws = batch.law.data();
+  State* __restrict states = batch.state.data();
+  const std::uint8_t* __restrict alive = alive_.data();
+  const double* __restrict delta_m = delta_m_.data();
+  const double* __restrict rate_mps = rate_mps_.data();
+  const double* __restrict dashpot_Nspm = dashpot_Nspm_.data();
+  double* __restrict law_force_N = law_force_N_.data();
+  double* __restrict dashpot_force_N = dashpot_force_N_.data();
+  double* __restrict force_N = force_N_.data();
+  double* __restrict delta_prev_m = delta_prev_m_.data();
+  double* __restrict law_force_prev_N = law_force_prev_N_.data();
+  double* __restrict work_J = work_J_.data();
+  double* __restrict stored_J = stored_J_.data();
+  double* __restrict plastic_J = plastic_J_.data();
+  std::uint8_t* __restrict has_prev = has_prev_.data();
   parallel_for_static(n, parallel_(batch.ids.size()), [&](std::int64_t k) {
-    const auto s = std::size_t(batch.ids[std::size_t(k)]);
-    if (!alive_[s] || joint_broken_[std::size_t(spring_joint_[s])]) return;
-    const double delta = delta_m_[s], rate = rate_mps_[s];
-    const LawOutput out = eval(batch.law[std::size_t(k)], batch.state[std::size_t(k)], delta);
+    const auto s = std::size_t(ids[k]);
+    if (!alive[s] || joint_broken_[std::size_t(spring_joint_[s])]) return;
+    const double delta = delta_m[s], rate = rate_mps[s];
+    const LawOutput out = eval(laws[k], states[k], delta);
     if (out.failed) {
       // Deleted: the force drops to zero now and forever.
       pending_[s] |= kPendingDelete;
-      failure_force_N_[s] = law_force_prev_N_[s];
+      failure_force_N_[s] = law_force_prev_N[s];
       const bool tension = delta > 0.0;
       failure_mode_[s] = spring_role_[s] == SpringRole::Shear ? "shear" : (tension ? "tension" : "compression");
       if (!yielded_[s]) {
@@ -319,32 +364,32 @@ void JointSystem::run_batch_(Batch<Law, State>& batch, Eval eval, bool tracks_wo
         pending_[s] |= kPendingYield;
       }
       alive_[s] = 0;
-      plastic_J_[s] += stored_J_[s];  // release what was stored
-      stored_J_[s] = 0.0;
-      law_force_N_[s] = dashpot_force_N_[s] = force_N_[s] = 0.0;
-      has_prev_[s] = 0;
+      plastic_J[s] += stored_J[s];  // release what was stored
+      stored_J[s] = 0.0;
+      law_force_N[s] = dashpot_force_N[s] = force_N[s] = 0.0;
+      has_prev[s] = 0;
       return;
     }
-    if (tracks_work && has_prev_[s]) {
-      work_J_[s] += 0.5 * (law_force_prev_N_[s] + out.force_N) * (delta - delta_prev_m_[s]);
-      plastic_J_[s] = work_J_[s] - out.stored_J;
+    if (tracks_work && has_prev[s]) {
+      work_J[s] += 0.5 * (law_force_prev_N[s] + out.force_N) * (delta - delta_prev_m[s]);
+      plastic_J[s] = work_J[s] - out.stored_J;
     } else if (tracks_work) {
-      work_J_[s] = out.stored_J;  // first evaluation: the rest state stores what the law says
+      work_J[s] = out.stored_J;  // first evaluation: the rest state stores what the law says
     }
-    stored_J_[s] = out.stored_J;
+    stored_J[s] = out.stored_J;
     if (out.inelastic && !yielded_[s]) {
       yielded_[s] = 1;
       pending_[s] |= kPendingYield;
       failure_force_N_[s] = out.force_N;
       failure_mode_[s] = spring_role_[s] == SpringRole::Shear ? "shear" : (delta > 0.0 ? "tension" : "compression");
     }
-    const double fd = dashpot_Nspm_[s] * rate;
-    law_force_N_[s] = out.force_N;
-    dashpot_force_N_[s] = fd;
-    force_N_[s] = out.force_N + fd;
-    delta_prev_m_[s] = delta;
-    law_force_prev_N_[s] = out.force_N;
-    has_prev_[s] = 1;
+    const double fd = dashpot_Nspm[s] * rate;
+    law_force_N[s] = out.force_N;
+    dashpot_force_N[s] = fd;
+    force_N[s] = out.force_N + fd;
+    delta_prev_m[s] = delta;
+    law_force_prev_N[s] = out.force_N;
+    has_prev[s] = 1;
   });
 }
 
