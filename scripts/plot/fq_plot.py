@@ -5,6 +5,8 @@ programs produce is drawn here, with one style and units on every axis.
     fq_plot.py compare DIR   DIR/comparison.csv + DIR/<case>/history.csv
                              -> DIR/first_storey_drift.png
     fq_plot.py sweep DIR     DIR/sweep.csv -> DIR/sweep.png
+    fq_plot.py stability CSV stability_limits' CSV -> CSV with .png (bisected
+                             omega*dt per integrator against theory)
 
 Run with Debian's python3 (python3-matplotlib): /usr/bin/python3.
 """
@@ -148,11 +150,32 @@ def plot_sweep(folder):
     os.replace(target + ".tmp.png", target)
 
 
+def plot_stability(csv_path):
+    rows = read_csv(csv_path)
+    names = [r["integrator"] for r in rows]
+    measured = [number(r["omega_dt"]) for r in rows]
+    theory = [number(r["omega_dt_theory"]) for r in rows]
+    fig, ax = plt.subplots()
+    x = range(len(rows))
+    ax.bar([i - 0.2 for i in x], measured, width=0.4, color=COLOURS[1], label="bisected on the jointed chain")
+    ax.bar([i + 0.2 for i in x], theory, width=0.4, color="0.6", label="theory (linear oscillator)")
+    ax.set_xticks(list(x))
+    ax.set_xticklabels(names, rotation=15)
+    ax.set_ylabel("largest stable omega_max * dt (-)")
+    ax.set_title("Stability limit per integrator")
+    ax.legend(loc="upper left", fontsize=8)
+    fig.tight_layout()
+    target = os.path.splitext(csv_path)[0] + ".png"
+    fig.savefig(target + ".tmp.png")
+    os.replace(target + ".tmp.png", target)
+
+
 def main(argv):
     plt.rcParams.update(STYLE)
-    if len(argv) != 3 or argv[1] not in ("compare", "sweep"):
-        fail("usage: fq_plot.py compare|sweep DIR")
-    {"compare": plot_compare, "sweep": plot_sweep}[argv[1]](argv[2])
+    commands = {"compare": plot_compare, "sweep": plot_sweep, "stability": plot_stability}
+    if len(argv) != 3 or argv[1] not in commands:
+        fail("usage: fq_plot.py compare|sweep DIR  or  fq_plot.py stability CSV")
+    commands[argv[1]](argv[2])
 
 
 if __name__ == "__main__":
