@@ -172,14 +172,15 @@ int main(int argc, char** argv) {
     studies.push_back(cl);
 
     // Kobe NS record seconds 7-10 (the strong motion, peak at 8.52 s) at 0.05 of its
-    // amplitude: 0.95 s simulated; no spring leaves its elastic range (checked per run:
-    // the case's trilinear springs would yield at 0.19 mm, see after_run). With the
-    // case's 5 % dashpots, and without them to separate their effect on the orders.
+    // amplitude: 0.95 s simulated. The case as written stays elastic under it (checked
+    // with framequake run, validation/README.md); after_run's yield check is vacuous on
+    // the linear copy. With the case's 5 % dashpots, and without them to separate
+    // their effect on the orders.
     for (bool damped : {true, false}) {
       Study fe;
       fe.problem = frame_problem(case_file, true, damped, 0.05, 7.0, 3.0);
       fe.methods = all;
-      for (Integrator m : all) fe.levels[m] = 4 - q;
+      for (Integrator m : all) fe.levels[m] = 6 - q;
       fe.gsl_tolerances = {1e-6, 1e-9};
       studies.push_back(fe);
     }
