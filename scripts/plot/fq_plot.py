@@ -7,6 +7,9 @@ programs produce is drawn here, with one style and units on every axis.
     fq_plot.py sweep DIR     DIR/sweep.csv -> DIR/sweep.png
     fq_plot.py stability CSV stability_limits' CSV -> CSV with .png (bisected
                              omega*dt per integrator against theory)
+    fq_plot.py work-precision DIR_OR_CSV
+                             work_precision.csv (validation/work_precision)
+                             -> work_precision.png beside it
 
 Run with Debian's python3 (python3-matplotlib): /usr/bin/python3.
 """
@@ -170,12 +173,67 @@ def plot_stability(csv_path):
     os.replace(target + ".tmp.png", target)
 
 
+# Fixed colour and marker per integrator, the same in every panel.
+INTEGRATORS = ["central_difference", "velocity_verlet", "symplectic_euler", "rk4", "forward_euler", "gsl_rk8pd"]
+MARKERS = ["o", "s", "^", "D", "v", "*"]
+
+
+def plot_work_precision(path):
+    """Error against wall time per simulated second, log-log, one panel per
+    problem, one line per integrator (markers: one per dt, or per tolerance
+    for gsl_rk8pd). Runs that diverged or were refused have no error and are
+    left out; their rows stay in the CSV."""
+    csv_path = os.path.join(path, "work_precision.csv") if os.path.isdir(path) else path
+    rows = read_csv(csv_path)
+    problems = []
+    for row in rows:
+        if row["problem"] not in problems:
+            problems.append(row["problem"])
+    if not problems:
+        fail("no rows in " + csv_path)
+    cols = min(2, len(problems))
+    nrows = (len(problems) + cols - 1) // cols
+    fig, axes = plt.subplots(nrows, cols, figsize=(5.2 * cols, 4.2 * nrows), squeeze=False)
+    for k, problem in enumerate(problems):
+        ax = axes[k // cols][k % cols]
+        norm = ""
+        drawn = False
+        for i, name in enumerate(INTEGRATORS):
+            pts = [r for r in rows if r["problem"] == problem and r["integrator"] == name]
+            norm = norm or (pts[0]["error_norm"] if pts else "")
+            ok = [(number(r["wall_s_per_simulated_s"]), number(r["error_m"])) for r in pts if r["status"] == "ok"]
+            ok = [(w, e) for w, e in ok if w > 0 and e > 0]
+            if not ok:
+                continue
+            knob = "tolerance" if name == "gsl_rk8pd" else "dt"
+            ax.plot([w for w, _ in ok], [e for _, e in ok], color=COLOURS[i % len(COLOURS)], lw=1.0,
+                    marker=MARKERS[i], ms=4, label="%s (%d %s)" % (name, len(ok), knob))
+            drawn = True
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_title(problem, fontsize=10)
+        ax.set_xlabel("wall time per simulated second (s/s)")
+        ax.set_ylabel("error (m), " + (norm or "?"), fontsize=8)
+        if drawn:
+            ax.legend(loc="best", fontsize=7)
+    for k in range(len(problems), nrows * cols):
+        axes[k // cols][k % cols].axis("off")
+    fig.suptitle("Work-precision: error against the reference vs wall time (median; shared machine)", fontsize=10)
+    fig.tight_layout()
+    target = os.path.join(os.path.dirname(os.path.abspath(csv_path)), "work_precision.png")
+    fig.savefig(target + ".tmp.png")
+    os.replace(target + ".tmp.png", target)
+
+
+COMMANDS = {"compare": plot_compare, "sweep": plot_sweep, "work-precision": plot_work_precision,
+            "stability": plot_stability}
+
+
 def main(argv):
     plt.rcParams.update(STYLE)
-    commands = {"compare": plot_compare, "sweep": plot_sweep, "stability": plot_stability}
-    if len(argv) != 3 or argv[1] not in commands:
-        fail("usage: fq_plot.py compare|sweep DIR  or  fq_plot.py stability CSV")
-    commands[argv[1]](argv[2])
+    if len(argv) != 3 or argv[1] not in COMMANDS:
+        fail("usage: fq_plot.py compare|sweep DIR, fq_plot.py work-precision DIR_OR_CSV, or fq_plot.py stability CSV")
+    COMMANDS[argv[1]](argv[2])
 
 
 if __name__ == "__main__":
