@@ -269,6 +269,36 @@ bool prepare_folder(const fs::path& out) {
   return true;
 }
 
+// Prepares the output folder and runs the jobs side by side, one line per
+// finished run; false when the folder cannot be made.
+bool run_jobs(const StudyArgs& args, const std::vector<fq::BatchJob>& jobs, const std::atomic<bool>* stop_requested,
+              const std::string& what, std::vector<fq::BatchOutcome>& outcomes) {
+  if (!prepare_folder(args.out)) return false;
+  fq::BatchOptions options;
+  options.parallel_runs = args.jobs;
+  options.allow_unstable_time_step = args.force;
+  options.stop_requested = stop_requested;
+  options.on_done = print_done;
+  std::cerr << "framequake: " << what << ", output in " << args.out.string() << "\n";
+  outcomes = fq::run_batch(jobs, options);
+  return true;
+}
+
+// Draws `kind`'s figure when asked and at least one run finished; the exit
+// code folds in a figure failure only when the runs themselves succeeded.
+int finish_with_figure(const StudyArgs& args, const std::vector<fq::BatchOutcome>& outcomes, const char* kind,
+                       const char* file) {
+  int code = worst_exit(outcomes);
+  if (args.figure && std::any_of(outcomes.begin(), outcomes.end(), [](const auto& o) { return o.ok; })) {
+    const int fig = run_figure(kind, args.out);
+    if (fig == kExitOk)
+      std::cout << "framequake: figure in " << (args.out / file).string() << "\n";
+    else if (code == kExitOk)
+      code = fig;
+  }
+  return code;
+}
+
 }  // namespace
 
 int command_compare(int argc, char** argv, const std::atomic<bool>* stop_requested) {
@@ -292,15 +322,9 @@ int command_compare(int argc, char** argv, const std::atomic<bool>* stop_request
     std::cerr << "framequake: error: " << e.what() << "\n";
     return kExitBadInput;
   }
-  if (!prepare_folder(args.out)) return kExitOutputFailed;
-
-  fq::BatchOptions options;
-  options.parallel_runs = args.jobs;
-  options.allow_unstable_time_step = args.force;
-  options.stop_requested = stop_requested;
-  options.on_done = print_done;
-  std::cerr << "framequake: comparing " << jobs.size() << " case(s), output in " << args.out.string() << "\n";
-  const std::vector<fq::BatchOutcome> outcomes = fq::run_batch(jobs, options);
+  std::vector<fq::BatchOutcome> outcomes;
+  if (!run_jobs(args, jobs, stop_requested, "comparing " + std::to_string(jobs.size()) + " case(s)", outcomes))
+    return kExitOutputFailed;
 
   const std::size_t storeys = max_storeys(outcomes);
   std::ostringstream csv, md;
@@ -360,15 +384,7 @@ int command_compare(int argc, char** argv, const std::atomic<bool>* stop_request
     return kExitOutputFailed;
   std::cout << md.str();
   std::cout << "framequake: table in " << (args.out / "comparison.md").string() << " and comparison.csv\n";
-  int code = worst_exit(outcomes);
-  if (args.figure && std::any_of(outcomes.begin(), outcomes.end(), [](const auto& o) { return o.ok; })) {
-    const int fig = run_figure("compare", args.out);
-    if (fig == kExitOk)
-      std::cout << "framequake: figure in " << (args.out / "first_storey_drift.png").string() << "\n";
-    else if (code == kExitOk)
-      code = fig;
-  }
-  return code;
+  return finish_with_figure(args, outcomes, "compare", "first_storey_drift.png");
 }
 
 int command_sweep(int argc, char** argv, const std::atomic<bool>* stop_requested) {
@@ -438,15 +454,9 @@ int command_sweep(int argc, char** argv, const std::atomic<bool>* stop_requested
     std::cerr << "framequake: error: " << e.what() << "\n";
     return kExitBadInput;
   }
-  if (!prepare_folder(args.out)) return kExitOutputFailed;
-
-  fq::BatchOptions options;
-  options.parallel_runs = args.jobs;
-  options.allow_unstable_time_step = args.force;
-  options.stop_requested = stop_requested;
-  options.on_done = print_done;
-  std::cerr << "framequake: sweep of " << jobs.size() << " run(s), output in " << args.out.string() << "\n";
-  const std::vector<fq::BatchOutcome> outcomes = fq::run_batch(jobs, options);
+  std::vector<fq::BatchOutcome> outcomes;
+  if (!run_jobs(args, jobs, stop_requested, "sweep of " + std::to_string(jobs.size()) + " run(s)", outcomes))
+    return kExitOutputFailed;
 
   const std::size_t storeys = max_storeys(outcomes);
   std::ostringstream csv;
@@ -523,15 +533,7 @@ int command_sweep(int argc, char** argv, const std::atomic<bool>* stop_requested
     return kExitOutputFailed;
   std::cout << md.str();
   std::cout << "framequake: tables in " << (args.out / "sweep.csv").string() << " and collapse_scales.md\n";
-  int code = worst_exit(outcomes);
-  if (args.figure && std::any_of(outcomes.begin(), outcomes.end(), [](const auto& o) { return o.ok; })) {
-    const int fig = run_figure("sweep", args.out);
-    if (fig == kExitOk)
-      std::cout << "framequake: figure in " << (args.out / "sweep.png").string() << "\n";
-    else if (code == kExitOk)
-      code = fig;
-  }
-  return code;
+  return finish_with_figure(args, outcomes, "sweep", "sweep.png");
 }
 
 const char* compare_help() { return kCompareHelp; }

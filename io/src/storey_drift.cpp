@@ -140,21 +140,19 @@ void StoreyDriftMonitor::replay_history(const std::filesystem::path& history_csv
 }
 
 void StoreyDriftMonitor::record(std::size_t i, const Eigen::Vector2d& drift_m, double time_s) {
-  {
-    drift_m_[i] = drift_m;
-    const Eigen::Vector2d ratio = drift_ratio_rad(i);
-    StoreyDriftRecord& r = records_[i];
-    r.peak_ratio_x_rad = std::max(r.peak_ratio_x_rad, std::abs(ratio.x()));
-    r.peak_ratio_y_rad = std::max(r.peak_ratio_y_rad, std::abs(ratio.y()));
-    const double magnitude = ratio.norm();
-    if (magnitude > r.peak_ratio_rad) {
-      r.peak_ratio_rad = magnitude;
-      r.peak_time_s = time_s;
-    }
-    if (r.collapse_time_s < 0.0 && magnitude >= limits_.collapse_drift_ratio_rad) r.collapse_time_s = time_s;
-    r.final_ratio_x_rad = ratio.x();
-    r.final_ratio_y_rad = ratio.y();
+  drift_m_[i] = drift_m;
+  const Eigen::Vector2d ratio = drift_ratio_rad(i);
+  StoreyDriftRecord& r = records_[i];
+  r.peak_ratio_x_rad = std::max(r.peak_ratio_x_rad, std::abs(ratio.x()));
+  r.peak_ratio_y_rad = std::max(r.peak_ratio_y_rad, std::abs(ratio.y()));
+  const double magnitude = ratio.norm();
+  if (magnitude > r.peak_ratio_rad) {
+    r.peak_ratio_rad = magnitude;
+    r.peak_time_s = time_s;
   }
+  if (r.collapse_time_s < 0.0 && magnitude >= limits_.collapse_drift_ratio_rad) r.collapse_time_s = time_s;
+  r.final_ratio_x_rad = ratio.x();
+  r.final_ratio_y_rad = ratio.y();
 }
 
 StoreyVerdict StoreyDriftMonitor::verdict(std::size_t i) const {
