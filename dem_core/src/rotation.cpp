@@ -9,8 +9,11 @@ void fast_sincos(double angle, double& out_cos, double& out_sin) {
   // below the 1e-16 relative round-off of the result.
   if (std::abs(angle) < 2e-3) {
     const double a2 = angle * angle;
-    out_sin = angle * (1.0 - a2 / 6.0 * (1.0 - a2 / 20.0 * (1.0 - a2 / 42.0)));
-    out_cos = 1.0 - a2 / 2.0 * (1.0 - a2 / 12.0 * (1.0 - a2 / 30.0));
+    // Products with the reciprocals: a division by 6 cannot be turned into a
+    // multiplication by the compiler (1/6 is inexact), and costs ~15 cycles.
+    constexpr double k6 = 1.0 / 6.0, k20 = 1.0 / 20.0, k42 = 1.0 / 42.0, k12 = 1.0 / 12.0, k30 = 1.0 / 30.0;
+    out_sin = angle * (1.0 - a2 * k6 * (1.0 - a2 * k20 * (1.0 - a2 * k42)));
+    out_cos = 1.0 - a2 * 0.5 * (1.0 - a2 * k12 * (1.0 - a2 * k30));
   } else {
     out_sin = std::sin(angle);
     out_cos = std::cos(angle);
@@ -24,17 +27,24 @@ namespace {
 // and the body-frame momentum turns the opposite way, pi <- Rot(theta)^T pi.
 inline void rotate_about_body_axis(int axis, double h, const Vec3& inverse_inertia, Quat& q, Vec3& pi) {
   const double theta = h * pi[axis] * inverse_inertia[axis];
-  double c, s;
-  fast_sincos(theta, c, s);
+  // One series for the half angle; the whole angle by the double-angle
+  // formulas (exact identities, one rounding each).
   double ch, sh;
   fast_sincos(0.5 * theta, ch, sh);
+  const double c = 1.0 - 2.0 * sh * sh, s = 2.0 * sh * ch;
   const int a = (axis + 1) % 3, b = (axis + 2) % 3;
   const double pa = pi[a], pb = pi[b];
   pi[a] = c * pa + s * pb;
   pi[b] = -s * pa + c * pb;
-  Quat step(ch, 0.0, 0.0, 0.0);
-  step.vec()[axis] = sh;
-  q = q * step;
+  // q <- q * (ch, sh e_axis), written out: the step quaternion has two
+  // non-zero components, and v x e_axis = (0, v_b, -v_a) in the order
+  // (axis, a, b).
+  const double w = q.w();
+  Vec3 v = q.vec();
+  q.w() = ch * w - sh * v[axis];
+  q.vec()[axis] = ch * v[axis] + sh * w;
+  q.vec()[a] = ch * v[a] + sh * v[b];
+  q.vec()[b] = ch * v[b] - sh * v[a];
 }
 
 }  // namespace

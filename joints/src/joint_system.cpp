@@ -111,16 +111,19 @@ void JointSystem::add_spring_(std::int32_t joint, SpringRole role, std::int8_t a
   law_kind_.push_back(def.law.kind);
   switch (def.law.kind) {
     case SpringLawKind::LinearElastic:
+      law_index_.push_back(std::int32_t(linear_.ids.size()));
       linear_.ids.push_back(s);
       linear_.law.push_back(def.law.linear);
       linear_.state.emplace_back();
       break;
     case SpringLawKind::Trilinear:
+      law_index_.push_back(std::int32_t(trilinear_.ids.size()));
       trilinear_.ids.push_back(s);
       trilinear_.law.push_back(compile_trilinear(def.law.trilinear, def.reference_length_m));
       trilinear_.state.emplace_back();
       break;
     case SpringLawKind::Curee:
+      law_index_.push_back(std::int32_t(curee_.ids.size()));
       curee_.ids.push_back(s);
       curee_.law.push_back(compile_curee(def.law.curee));
       curee_.state.emplace_back();
@@ -157,163 +160,67 @@ void JointSystem::prepare(const BodyStore& bodies) {
   plastic_J_.assign(ns, 0.0);
   viscous_done_J_.assign(ns, 0.0);
   viscous_half_J_.assign(ns, 0.0);
-  // Springs of one point (a normal and two shear springs of a four-corner
-  // layout) share their attachments: the geometry and relative velocity of
-  // the point are computed once, for the first of them.
-  same_point_as_prev_.assign(ns, 0);
-  for (std::size_t s = 1; s < ns; ++s)
-    same_point_as_prev_[s] = spring_joint_[s] == spring_joint_[s - 1] &&
-                             attach_a_local_m_[s] == attach_a_local_m_[s - 1] &&
-                             attach_b_local_m_[s] == attach_b_local_m_[s - 1];
-  slot_force_N_.assign(2 * ns, Vec3::Zero());
-  slot_torque_Nm_.assign(2 * ns, Vec3::Zero());
-  // CSR: slots of each body in ascending slot index (= ascending spring).
+  // Points: consecutive springs of one joint with the same attachments (the
+  // normal and two shear springs of a four-corner point) share their ends,
+  // separation and relative velocity.
+  const std::size_t nj = joint_body_a_.size();
+  point_first_.clear();
+  joint_first_point_.assign(1, 0);
+  point_attach_a_m_.clear();
+  point_attach_b_m_.clear();
+  spring_point_.assign(ns, 0);
+  spring_is_normal_.assign(ns, 0);
+  joint_spring_count_.assign(nj, 0);
+  joint_normal_count_.assign(nj, 0);
+  for (std::size_t j = 0; j < nj; ++j) {
+    for (auto s = std::size_t(joint_first_[j]); s < std::size_t(joint_first_[j + 1]); ++s) {
+      const bool same_point = s > std::size_t(joint_first_[j]) && spring_axis_[s] >= 0 && spring_axis_[s - 1] >= 0 &&
+                              attach_a_local_m_[s] == attach_a_local_m_[s - 1] &&
+                              attach_b_local_m_[s] == attach_b_local_m_[s - 1];
+      if (!same_point) {
+        point_first_.push_back(std::int32_t(s));
+        point_attach_a_m_.push_back(attach_a_local_m_[s]);
+        point_attach_b_m_.push_back(attach_b_local_m_[s]);
+      }
+      spring_point_[s] = std::int32_t(point_first_.size() - 1);
+      spring_is_normal_[s] = spring_role_[s] == SpringRole::Normal || spring_axis_[s] == -1;
+      ++joint_spring_count_[j];
+      if (spring_is_normal_[s]) ++joint_normal_count_[j];
+    }
+    joint_first_point_.push_back(std::int32_t(point_first_.size()));
+  }
+  point_first_.push_back(std::int32_t(ns));
+  const std::size_t np = point_attach_a_m_.size();
+  point_end_a_m_.assign(np, Vec3::Zero());
+  point_end_b_m_.assign(np, Vec3::Zero());
+  point_dashpot_force_N_.assign(np, Vec3::Zero());
+  spring_geometry_current_ = false;
+  slot_force_N_.assign(2 * nj, Vec3::Zero());
+  slot_torque_Nm_.assign(2 * nj, Vec3::Zero());
+  // CSR: slots of each body in ascending slot index (= ascending joint).
   body_slot_first_.assign(body_count_ + 1, 0);
-  for (std::size_t s = 0; s < ns; ++s) {
-    const std::size_t j = std::size_t(spring_joint_[s]);
+  for (std::size_t j = 0; j < nj; ++j) {
     ++body_slot_first_[std::size_t(joint_body_a_[j]) + 1];
     ++body_slot_first_[std::size_t(joint_body_b_[j]) + 1];
   }
   for (std::size_t i = 0; i < body_count_; ++i) body_slot_first_[i + 1] += body_slot_first_[i];
-  body_slots_.assign(2 * ns, 0);
+  body_slots_.assign(2 * nj, 0);
   std::vector<std::int32_t> fill(body_slot_first_.begin(), body_slot_first_.end() - 1);
-  for (std::size_t s = 0; s < ns; ++s) {
-    const std::size_t j = std::size_t(spring_joint_[s]);
-    body_slots_[std::size_t(fill[std::size_t(joint_body_a_[j])]++)] = std::int32_t(2 * s);
-    body_slots_[std::size_t(fill[std::size_t(joint_body_b_[j])]++)] = std::int32_t(2 * s + 1);
+  for (std::size_t j = 0; j < nj; ++j) {
+    body_slots_[std::size_t(fill[std::size_t(joint_body_a_[j])]++)] = std::int32_t(2 * j);
+    body_slots_[std::size_t(fill[std::size_t(joint_body_b_[j])]++)] = std::int32_t(2 * j + 1);
   }
 }
 
 void JointSystem::accumulate_forces(BodyStore& bodies, const StepInfo& /*step*/) {
   if (!prepared_) prepare(bodies);
-  const std::size_t nj = joint_body_a_.size();
-  const auto nj_i = std::int64_t(nj);
-
-  // 1. Joint frames and spring geometry.
   const bool parallel = parallel_(spring_joint_.size());
-  parallel_for_static(nj_i, parallel, [&](std::int64_t ji) {
-    const auto j = std::size_t(ji);
-    if (joint_broken_[j]) return;
-    const BodyId a = joint_body_a_[j], b = joint_body_b_[j];
-    const Quat qa = bodies.orientation[a] * joint_frame_a_[j];
-    Quat qb = bodies.orientation[b] * joint_frame_b_[j];
-    if (qa.dot(qb) < 0.0) qb.coeffs() = -qb.coeffs();
-    Quat qm;
-    qm.coeffs() = qa.coeffs() + qb.coeffs();
-    qm.normalize();
-    const Mat3 frame = qm.toRotationMatrix();
-    joint_frame_world_[j] = frame;
-    const Mat3 ra = bodies.rotation[a], rb = bodies.rotation[b];
-    const Vec3 xa = bodies.position_m[a], xb = bodies.position_m[b];
-    const Vec3 va = bodies.velocity_mps[a], vb = bodies.velocity_mps[b];
-    const Vec3 wa = bodies.angular_velocity_radps[a], wb = bodies.angular_velocity_radps[b];
-    // Raw pointers: see step 3.
-    const std::uint8_t* __restrict same_point = same_point_as_prev_.data();
-    const std::int8_t* __restrict axis = spring_axis_.data();
-    const Vec3* __restrict attach_a = attach_a_local_m_.data();
-    const Vec3* __restrict attach_b = attach_b_local_m_.data();
-    Vec3* __restrict end_a = end_a_m_.data();
-    Vec3* __restrict end_b = end_b_m_.data();
-    Vec3* __restrict direction = direction_.data();
-    double* __restrict delta_m = delta_m_.data();
-    double* __restrict rate_mps = rate_mps_.data();
-    Vec3 pa = Vec3::Zero(), pb = Vec3::Zero(), d = Vec3::Zero(), vrel = Vec3::Zero();
-    const auto first = std::size_t(joint_first_[j]), last = std::size_t(joint_first_[j + 1]);
-    for (std::size_t s = first; s < last; ++s) {
-      if (!same_point[s] || s == first) {
-        const Vec3 arm_a = ra * attach_a[s], arm_b = rb * attach_b[s];
-        pa = xa + arm_a;
-        pb = xb + arm_b;
-        d = pb - pa;
-        vrel = (vb + wb.cross(arm_b)) - (va + wa.cross(arm_a));
-      }
-      Vec3 e;
-      double delta;
-      if (axis[s] >= 0) {
-        e = frame.col(axis[s]);
-        delta = e.dot(d);
-      } else {
-        const double len = d.norm();
-        e = len > 0.0 ? Vec3(d / len) : direction[s];
-        delta = len - rest_length_m_[s];
-      }
-      end_a[s] = pa;
-      end_b[s] = pb;
-      direction[s] = e;
-      delta_m[s] = delta;
-      rate_mps[s] = e.dot(vrel);
-    }
-  });
+  parallel_for_static(std::int64_t(joint_body_a_.size()), parallel,
+                      [&](std::int64_t j) { joint_step_(bodies, std::size_t(j)); });
+  spring_geometry_current_ = false;
 
-  // 2. Laws, batch by batch.
-  evaluate_laws_();
-
-  // 3. Slots and the fracture test.
-  parallel_for_static(nj_i, parallel, [&](std::int64_t ji) {
-    const auto j = std::size_t(ji);
-    const auto first = std::size_t(joint_first_[j]), last = std::size_t(joint_first_[j + 1]);
-    if (joint_broken_[j]) {
-      for (std::size_t s = first; s < last; ++s) {
-        slot_force_N_[2 * s].setZero();
-        slot_force_N_[2 * s + 1].setZero();
-        slot_torque_Nm_[2 * s].setZero();
-        slot_torque_Nm_[2 * s + 1].setZero();
-      }
-      return;
-    }
-    const BodyId a = joint_body_a_[j], b = joint_body_b_[j];
-    // Raw pointers: the compiler cannot tell that the vectors' own pointers
-    // are not changed by the stores below, and would reload them per spring.
-    const double* __restrict force_N = force_N_.data();
-    const double* __restrict dashpot_force_N = dashpot_force_N_.data();
-    const double* __restrict dashpot_Nspm = dashpot_Nspm_.data();
-    const double* __restrict rate_mps = rate_mps_.data();
-    const Vec3* __restrict direction = direction_.data();
-    const Vec3* __restrict end_a = end_a_m_.data();
-    const Vec3* __restrict end_b = end_b_m_.data();
-    Vec3* __restrict slot_force = slot_force_N_.data();
-    Vec3* __restrict slot_torque = slot_torque_Nm_.data();
-    double* __restrict power_prev_W = dashpot_power_prev_W_.data();
-    const Vec3 xa = bodies.position_m[a], xb = bodies.position_m[b];
-    const Vec3 w_sum = bodies.angular_velocity_radps[a] + bodies.angular_velocity_radps[b];
-    const bool strain_limit = joint_break_[j].criterion == BreakCriterion::StrainLimit;
-    JointSpringSummary sum;
-    bool any_pending = false;
-    for (std::size_t s = first; s < last; ++s) {
-      const double f = force_N[s];
-      const Vec3 e = direction[s];
-      const Vec3 force = f * e;  // on a; -force on b (f > 0 = tension pulls b back)
-      const Vec3 d = end_b[s] - end_a[s];
-      const Vec3 frame_torque = 0.5 * d.cross(force);
-      if (dashpot_Nspm[s] > 0.0) {
-        // Dissipated power of the dashpot force system at n-1/2: f_d r minus
-        // the power of its share of the frame torque (completed in finish_step).
-        const Vec3 torque_d = (0.5 * dashpot_force_N[s]) * d.cross(e);
-        power_prev_W[s] = dashpot_force_N[s] * rate_mps[s] - torque_d.dot(w_sum);
-      }
-      slot_force[2 * s] = force;
-      slot_torque[2 * s] = (end_a[s] - xa).cross(force) + frame_torque;
-      slot_force[2 * s + 1] = -force;
-      slot_torque[2 * s + 1] = (end_b[s] - xb).cross(-force) + frame_torque;
-      const bool normal = spring_role_[s] == SpringRole::Normal || spring_axis_[s] == -1;
-      ++sum.springs;
-      if (normal) ++sum.normal_springs;
-      if (alive_[s]) {
-        ++sum.springs_alive;
-        if (normal) ++sum.normal_springs_alive;
-        // Only the strain-limit criterion reads it (fracture.h).
-        if (strain_limit) sum.max_strain = std::max(sum.max_strain, std::abs(delta_m_[s]) / reference_length_m_[s]);
-      }
-      any_pending = any_pending || pending_[s] != 0;
-    }
-    const bool brk = joint_should_break(joint_break_[j], sum);
-    joint_break_pending_[j] = brk ? 1 : 0;
-    joint_event_pending_[j] = (brk || any_pending) ? 1 : 0;
-  });
-
-  // 4. Gather per body in slot order.
-  const auto nb_i = std::int64_t(body_count_);
-  parallel_for_static(nb_i, parallel, [&](std::int64_t bi) {
+  // Gather per body in slot order.
+  parallel_for_static(std::int64_t(body_count_), parallel, [&](std::int64_t bi) {
     const auto i = std::size_t(bi);
     const auto first = std::size_t(body_slot_first_[i]), last = std::size_t(body_slot_first_[i + 1]);
     if (first == last) return;
@@ -328,81 +235,252 @@ void JointSystem::accumulate_forces(BodyStore& bodies, const StepInfo& /*step*/)
   });
 }
 
-template <class Law, class State, class Eval>
-void JointSystem::run_batch_(Batch<Law, State>& batch, Eval eval, bool tracks_work) {
-  const auto n = std::int64_t(batch.ids.size());
-  // Raw pointers for the common path (see accumulate_forces, step 3).
-  const std::int32_t* __restrict ids = batch.ids.data();
-  const Law* __restrict laws = batch.law.data();
-  State* __restrict states = batch.state.data();
-  const std::uint8_t* __restrict alive = alive_.data();
-  const double* __restrict delta_m = delta_m_.data();
-  const double* __restrict rate_mps = rate_mps_.data();
-  const double* __restrict dashpot_Nspm = dashpot_Nspm_.data();
-  double* __restrict law_force_N = law_force_N_.data();
-  double* __restrict dashpot_force_N = dashpot_force_N_.data();
-  double* __restrict force_N = force_N_.data();
-  double* __restrict delta_prev_m = delta_prev_m_.data();
-  double* __restrict law_force_prev_N = law_force_prev_N_.data();
-  double* __restrict work_J = work_J_.data();
-  double* __restrict stored_J = stored_J_.data();
-  double* __restrict plastic_J = plastic_J_.data();
-  std::uint8_t* __restrict has_prev = has_prev_.data();
-  parallel_for_static(n, parallel_(batch.ids.size()), [&](std::int64_t k) {
-    const auto s = std::size_t(ids[k]);
-    if (!alive[s] || joint_broken_[std::size_t(spring_joint_[s])]) return;
-    const double delta = delta_m[s], rate = rate_mps[s];
-    const LawOutput out = eval(laws[k], states[k], delta);
-    if (out.failed) {
-      // Deleted: the force drops to zero now and forever.
-      pending_[s] |= kPendingDelete;
-      failure_force_N_[s] = law_force_prev_N[s];
-      const bool tension = delta > 0.0;
-      failure_mode_[s] = spring_role_[s] == SpringRole::Shear ? "shear" : (tension ? "tension" : "compression");
-      if (!yielded_[s]) {
-        yielded_[s] = 1;
-        pending_[s] |= kPendingYield;
-      }
-      alive_[s] = 0;
-      plastic_J[s] += stored_J[s];  // release what was stored
-      stored_J[s] = 0.0;
-      law_force_N[s] = dashpot_force_N[s] = force_N[s] = 0.0;
-      has_prev[s] = 0;
-      return;
-    }
-    if (tracks_work && has_prev[s]) {
-      work_J[s] += 0.5 * (law_force_prev_N[s] + out.force_N) * (delta - delta_prev_m[s]);
-      plastic_J[s] = work_J[s] - out.stored_J;
-    } else if (tracks_work) {
-      work_J[s] = out.stored_J;  // first evaluation: the rest state stores what the law says
-    }
-    stored_J[s] = out.stored_J;
-    if (out.inelastic && !yielded_[s]) {
+// Inlined into joint_step_, its only caller on the hot path.
+[[gnu::always_inline]] inline bool JointSystem::evaluate_spring_(std::size_t s, double delta, double rate) {
+  const auto k = std::size_t(law_index_[s]);
+  LawOutput out;
+  bool tracks_work = true;
+  switch (law_kind_[s]) {
+    case SpringLawKind::Trilinear:
+      out = evaluate_trilinear(trilinear_.law[k], trilinear_.state[k], delta);
+      // Until it first yields a trilinear spring is on its initial linear
+      // branch, where the trapezoid work equals the stored energy exactly:
+      // no books to keep (work = stored below).
+      tracks_work = yielded_[s] || out.inelastic;
+      break;
+    case SpringLawKind::LinearElastic:
+      out = evaluate_linear_elastic(linear_.law[k], linear_.state[k], delta);
+      tracks_work = false;
+      break;
+    case SpringLawKind::Curee:
+      out = evaluate_curee(curee_.law[k], curee_.state[k], delta);
+      break;
+    case SpringLawKind::Count:
+      break;
+  }
+  if (out.failed) {
+    // Deleted: the force drops to zero now and forever.
+    pending_[s] |= kPendingDelete;
+    failure_force_N_[s] = law_force_prev_N_[s];
+    const bool tension = delta > 0.0;
+    failure_mode_[s] = spring_role_[s] == SpringRole::Shear ? "shear" : (tension ? "tension" : "compression");
+    if (!yielded_[s]) {
       yielded_[s] = 1;
       pending_[s] |= kPendingYield;
-      failure_force_N_[s] = out.force_N;
-      failure_mode_[s] = spring_role_[s] == SpringRole::Shear ? "shear" : (delta > 0.0 ? "tension" : "compression");
     }
-    const double fd = dashpot_Nspm[s] * rate;
-    law_force_N[s] = out.force_N;
-    dashpot_force_N[s] = fd;
-    force_N[s] = out.force_N + fd;
-    delta_prev_m[s] = delta;
-    law_force_prev_N[s] = out.force_N;
-    has_prev[s] = 1;
-  });
+    alive_[s] = 0;
+    plastic_J_[s] += stored_J_[s];  // release what was stored
+    stored_J_[s] = 0.0;
+    law_force_N_[s] = dashpot_force_N_[s] = force_N_[s] = 0.0;
+    has_prev_[s] = 0;
+    return false;
+  }
+  if (tracks_work && has_prev_[s]) {
+    work_J_[s] += 0.5 * (law_force_prev_N_[s] + out.force_N) * (delta - delta_prev_m_[s]);
+    plastic_J_[s] = work_J_[s] - out.stored_J;
+  } else {
+    // First evaluation (the rest state stores what the law says), or a
+    // linear branch from rest.
+    work_J_[s] = out.stored_J;
+  }
+  stored_J_[s] = out.stored_J;
+  if (out.inelastic && !yielded_[s]) {
+    yielded_[s] = 1;
+    pending_[s] |= kPendingYield;
+    failure_force_N_[s] = out.force_N;
+    failure_mode_[s] = spring_role_[s] == SpringRole::Shear ? "shear" : (delta > 0.0 ? "tension" : "compression");
+  }
+  const double fd = dashpot_Nspm_[s] * rate;
+  law_force_N_[s] = out.force_N;
+  dashpot_force_N_[s] = fd;
+  force_N_[s] = out.force_N + fd;
+  delta_prev_m_[s] = delta;
+  law_force_prev_N_[s] = out.force_N;
+  has_prev_[s] = 1;
+  return true;
 }
 
-void JointSystem::evaluate_laws_() {
-  run_batch_(
-      linear_,
-      [](const LinearElasticParams& l, LinearElasticState& st, double d) { return evaluate_linear_elastic(l, st, d); },
-      false);
-  run_batch_(
-      trilinear_, [](const TrilinearLaw& l, TrilinearState& st, double d) { return evaluate_trilinear(l, st, d); },
-      true);
-  run_batch_(
-      curee_, [](const CureeLaw& l, CureeState& st, double d) { return evaluate_curee(l, st, d); }, true);
+// One joint, one pass (joint_system.h). Writes only what joint j owns: its
+// springs, its points, its two slots and its flags.
+void JointSystem::joint_step_(const BodyStore& bodies, std::size_t j) {
+  if (joint_broken_[j]) {
+    slot_force_N_[2 * j].setZero();
+    slot_force_N_[2 * j + 1].setZero();
+    slot_torque_Nm_[2 * j].setZero();
+    slot_torque_Nm_[2 * j + 1].setZero();
+    return;
+  }
+  const BodyId a = joint_body_a_[j], b = joint_body_b_[j];
+  const Quat qa = bodies.orientation[a] * joint_frame_a_[j];
+  Quat qb = bodies.orientation[b] * joint_frame_b_[j];
+  if (qa.dot(qb) < 0.0) qb.coeffs() = -qb.coeffs();
+  Quat qm;
+  qm.coeffs() = qa.coeffs() + qb.coeffs();
+  qm.normalize();
+  const Mat3 frame = qm.toRotationMatrix();
+  joint_frame_world_[j] = frame;
+  const Mat3 ra = bodies.rotation[a], rb = bodies.rotation[b];
+  const Vec3 xa = bodies.position_m[a], xb = bodies.position_m[b];
+  const Vec3 va = bodies.velocity_mps[a], vb = bodies.velocity_mps[b];
+  const Vec3 wa = bodies.angular_velocity_radps[a], wb = bodies.angular_velocity_radps[b];
+  const Vec3 w_sum = wa + wb;
+  // Raw pointers: the compiler cannot tell that the vectors' own data
+  // pointers are not changed by the stores below, and would reload them.
+  const std::int32_t* __restrict point_first = point_first_.data();
+  const Vec3* __restrict attach_a = point_attach_a_m_.data();
+  const Vec3* __restrict attach_b = point_attach_b_m_.data();
+  const std::int8_t* __restrict axis = spring_axis_.data();
+  const double* __restrict reference_length = reference_length_m_.data();
+  const std::uint8_t* __restrict is_normal = spring_is_normal_.data();
+  // Written by evaluate_spring_ as well: no __restrict.
+  const std::uint8_t* alive = alive_.data();
+  const std::uint8_t* pending = pending_.data();
+  const double* force_N = force_N_.data();
+  const double* dashpot_force_N = dashpot_force_N_.data();
+  double* __restrict delta_m = delta_m_.data();
+  double* __restrict rate_mps = rate_mps_.data();
+  Vec3* __restrict end_a = point_end_a_m_.data();
+  Vec3* __restrict end_b = point_end_b_m_.data();
+  Vec3* __restrict point_dashpot = point_dashpot_force_N_.data();
+  double* __restrict power_prev_W = dashpot_power_prev_W_.data();
+
+  const bool strain_limit = joint_break_[j].criterion == BreakCriterion::StrainLimit;
+  JointSpringSummary sum;
+  sum.springs = joint_spring_count_[j];
+  sum.normal_springs = joint_normal_count_[j];
+  bool any_pending = false;
+  // The point loop is written in scalars: Eigen's packet code for 3-vectors
+  // (two lanes plus a tail) costs about twice the instructions here.
+  // Matrices are column-major: m[3 c + r] is row r of column c.
+  const double* ra_m = ra.data();
+  const double* rb_m = rb.data();
+  const double* fr = frame.data();  // columns t1, t2, n
+  double force_on_a[3] = {0.0, 0.0, 0.0}, torque_on_a[3] = {0.0, 0.0, 0.0};
+  auto count_alive = [&](std::size_t s, double delta) {
+    ++sum.springs_alive;
+    if (is_normal[s]) ++sum.normal_springs_alive;
+    // Only the strain-limit criterion reads it (fracture.h).
+    if (strain_limit) sum.max_strain = std::max(sum.max_strain, std::abs(delta) / reference_length[s]);
+  };
+  const auto first_point = std::size_t(joint_first_point_[j]), last_point = std::size_t(joint_first_point_[j + 1]);
+  for (std::size_t p = first_point; p < last_point; ++p) {
+    const double* la = attach_a[p].data();
+    const double* lb = attach_b[p].data();
+    double arm_a[3], arm_b[3], d[3], vrel[3];
+    for (int r = 0; r < 3; ++r) {
+      arm_a[r] = ra_m[r] * la[0] + ra_m[3 + r] * la[1] + ra_m[6 + r] * la[2];
+      arm_b[r] = rb_m[r] * lb[0] + rb_m[3 + r] * lb[1] + rb_m[6 + r] * lb[2];
+    }
+    const Vec3 pa(xa[0] + arm_a[0], xa[1] + arm_a[1], xa[2] + arm_a[2]);
+    const Vec3 pb(xb[0] + arm_b[0], xb[1] + arm_b[1], xb[2] + arm_b[2]);
+    for (int r = 0; r < 3; ++r) d[r] = pb[r] - pa[r];
+    // v_rel = (v_b + w_b x arm_b) - (v_a + w_a x arm_a)
+    vrel[0] = (vb[0] + wb[1] * arm_b[2] - wb[2] * arm_b[1]) - (va[0] + wa[1] * arm_a[2] - wa[2] * arm_a[1]);
+    vrel[1] = (vb[1] + wb[2] * arm_b[0] - wb[0] * arm_b[2]) - (va[1] + wa[2] * arm_a[0] - wa[0] * arm_a[2]);
+    vrel[2] = (vb[2] + wb[0] * arm_b[1] - wb[1] * arm_b[0]) - (va[2] + wa[0] * arm_a[1] - wa[1] * arm_a[0]);
+    end_a[p] = pa;
+    end_b[p] = pb;
+    double d_axis[3], v_axis[3];  // components along the joint axes
+    // The point's springs summed into one force (on a) and one dashpot force.
+    double force[3], dashpot[3];
+    const auto first = std::size_t(point_first[p]), last = std::size_t(point_first[p + 1]);
+    if (axis[first] >= 0) {
+      // Point springs: one joint axis each, forces summed along the axes.
+      double f_axis[3] = {0.0, 0.0, 0.0}, fd_axis[3] = {0.0, 0.0, 0.0};
+      for (int c = 0; c < 3; ++c) {
+        d_axis[c] = fr[3 * c] * d[0] + fr[3 * c + 1] * d[1] + fr[3 * c + 2] * d[2];
+        v_axis[c] = fr[3 * c] * vrel[0] + fr[3 * c + 1] * vrel[1] + fr[3 * c + 2] * vrel[2];
+      }
+      for (std::size_t s = first; s < last; ++s) {
+        const int ax = axis[s];
+        const double delta = d_axis[ax], rate = v_axis[ax];
+        delta_m[s] = delta;
+        rate_mps[s] = rate;
+        if (alive[s] && evaluate_spring_(s, delta, rate)) {
+          f_axis[ax] += force_N[s];
+          fd_axis[ax] += dashpot_force_N[s];
+          count_alive(s, delta);
+        }
+        any_pending = any_pending || pending[s] != 0;
+      }
+      for (int r = 0; r < 3; ++r) {
+        force[r] = fr[r] * f_axis[0] + fr[3 + r] * f_axis[1] + fr[6 + r] * f_axis[2];
+        dashpot[r] = fr[r] * fd_axis[0] + fr[3 + r] * fd_axis[1] + fr[6 + r] * fd_axis[2];
+      }
+    } else {
+      // A link (its own point): along its current direction.
+      const std::size_t s = first;
+      const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+      const Vec3 e = len > 0.0 ? Vec3(Vec3(d[0], d[1], d[2]) / len) : direction_[s];
+      direction_[s] = e;
+      const double delta = len - rest_length_m_[s];
+      const double rate = e[0] * vrel[0] + e[1] * vrel[1] + e[2] * vrel[2];
+      delta_m[s] = delta;
+      rate_mps[s] = rate;
+      double f = 0.0, fd = 0.0;
+      if (alive[s] && evaluate_spring_(s, delta, rate)) {
+        f = force_N[s];
+        fd = dashpot_force_N[s];
+        count_alive(s, delta);
+      }
+      any_pending = any_pending || pending[s] != 0;
+      for (int r = 0; r < 3; ++r) {
+        force[r] = f * e[r];
+        dashpot[r] = fd * e[r];
+      }
+    }
+    // Dissipated power of the dashpot force system at n-1/2 (completed in
+    // finish_step): F_d . v_rel - (1/2) (d x F_d) . (w_a + w_b).
+    point_dashpot[p] = Vec3(dashpot[0], dashpot[1], dashpot[2]);
+    const double dxf[3] = {d[1] * dashpot[2] - d[2] * dashpot[1], d[2] * dashpot[0] - d[0] * dashpot[2],
+                           d[0] * dashpot[1] - d[1] * dashpot[0]};
+    power_prev_W[first] = (dashpot[0] * vrel[0] + dashpot[1] * vrel[1] + dashpot[2] * vrel[2]) -
+                          0.5 * (dxf[0] * w_sum[0] + dxf[1] * w_sum[1] + dxf[2] * w_sum[2]);
+    // F on a and -F on b, both at the mid-point (joint_system.h): torque on
+    // a (arm_a + d/2) x F.
+    const double m[3] = {arm_a[0] + 0.5 * d[0], arm_a[1] + 0.5 * d[1], arm_a[2] + 0.5 * d[2]};
+    force_on_a[0] += force[0];
+    force_on_a[1] += force[1];
+    force_on_a[2] += force[2];
+    torque_on_a[0] += m[1] * force[2] - m[2] * force[1];
+    torque_on_a[1] += m[2] * force[0] - m[0] * force[2];
+    torque_on_a[2] += m[0] * force[1] - m[1] * force[0];
+  }
+  const Vec3 f_a(force_on_a[0], force_on_a[1], force_on_a[2]);
+  const Vec3 t_a(torque_on_a[0], torque_on_a[1], torque_on_a[2]);
+  slot_force_N_[2 * j] = f_a;
+  slot_torque_Nm_[2 * j] = t_a;
+  slot_force_N_[2 * j + 1] = -f_a;
+  // Torque on b: -(m - x_b) x F = -(m - x_a) x F + (x_b - x_a) x F, summed over points.
+  slot_torque_Nm_[2 * j + 1] = (xb - xa).cross(f_a) - t_a;
+  const bool brk = joint_should_break(joint_break_[j], sum);
+  joint_break_pending_[j] = brk ? 1 : 0;
+  joint_event_pending_[j] = (brk || any_pending) ? 1 : 0;
+}
+
+void JointSystem::materialise_spring_geometry_() const {
+  if (spring_geometry_current_) return;
+  const std::size_t ns = spring_joint_.size();
+  end_a_m_.resize(ns, Vec3::Zero());
+  end_b_m_.resize(ns, Vec3::Zero());
+  direction_.resize(ns, Vec3::UnitZ());
+  for (std::size_t s = 0; s < ns && !point_first_.empty(); ++s) {
+    const auto p = std::size_t(spring_point_[s]);
+    end_a_m_[s] = point_end_a_m_[p];
+    end_b_m_[s] = point_end_b_m_[p];
+    if (spring_axis_[s] >= 0) direction_[s] = joint_frame_world_[std::size_t(spring_joint_[s])].col(spring_axis_[s]);
+  }
+  spring_geometry_current_ = true;
+}
+
+const std::vector<Vec3>& JointSystem::spring_end_a_m() const {
+  materialise_spring_geometry_();
+  return end_a_m_;
+}
+
+const std::vector<Vec3>& JointSystem::spring_end_b_m() const {
+  materialise_spring_geometry_();
+  return end_b_m_;
 }
 
 void JointSystem::kill_spring_(std::size_t s) {
@@ -430,31 +508,28 @@ void JointSystem::finish_step(const BodyStore& bodies, const StepInfo& step, Eve
     const BodyId a = joint_body_a_[j], b = joint_body_b_[j];
     const Vec3 xa = bodies.position_m[a] - dt * bodies.velocity_mps[a];
     const Vec3 xb = bodies.position_m[b] - dt * bodies.velocity_mps[b];
+    const Vec3& va = bodies.velocity_mps[a];
+    const Vec3& vb = bodies.velocity_mps[b];
     const Vec3& wa = bodies.angular_velocity_radps[a];
     const Vec3& wb = bodies.angular_velocity_radps[b];
     const Vec3 w_sum = wa + wb;
-    Vec3 vrel = Vec3::Zero();
-    bool vrel_valid = false;  // vrel belongs to the current point
-    for (auto s = std::size_t(joint_first_[j]); s < std::size_t(joint_first_[j + 1]); ++s) {
-      if (!same_point_as_prev_[s]) vrel_valid = false;
-      if (!(dashpot_Nspm_[s] > 0.0) || dashpot_force_N_[s] == 0.0) {
-        viscous_half_J_[s] = 0.0;
+    for (auto p = std::size_t(joint_first_point_[j]); p < std::size_t(joint_first_point_[j + 1]); ++p) {
+      const auto first = std::size_t(point_first_[p]);
+      const Vec3& dashpot = point_dashpot_force_N_[p];
+      if (dashpot.isZero(0.0)) {
+        viscous_half_J_[first] = 0.0;
         continue;
       }
-      if (!vrel_valid) {
-        vrel = (bodies.velocity_mps[b] + wb.cross(end_b_m_[s] - xb)) -
-               (bodies.velocity_mps[a] + wa.cross(end_a_m_[s] - xa));
-        vrel_valid = true;
-      }
-      const Vec3& e = direction_[s];
-      const Vec3 torque_d = (0.5 * dashpot_force_N_[s]) * (end_b_m_[s] - end_a_m_[s]).cross(e);
-      const double power_next = dashpot_force_N_[s] * e.dot(vrel) - torque_d.dot(w_sum);
-      const double term = dt * 0.5 * (dashpot_power_prev_W_[s] + power_next);
+      const Vec3& pa = point_end_a_m_[p];
+      const Vec3& pb = point_end_b_m_[p];
+      const Vec3 vrel = (vb + wb.cross(pb - xb)) - (va + wa.cross(pa - xa));
+      const double power_next = dashpot.dot(vrel) - 0.5 * (pb - pa).cross(dashpot).dot(w_sum);
+      const double term = dt * 0.5 * (dashpot_power_prev_W_[first] + power_next);
       // The ledger's kinetic energy at n is KE_0 + (t_0/2 + t_1 + ... +
       // t_{n-1} + t_n/2) (the start shifts v back half a step), so the
       // first step counts half.
-      viscous_done_J_[s] += step.step == 0 ? 0.5 * term : term;
-      viscous_half_J_[s] = 0.5 * term;
+      viscous_done_J_[first] += step.step == 0 ? 0.5 * term : term;
+      viscous_half_J_[first] = 0.5 * term;
     }
   });
   for (std::size_t j = 0; j < nj; ++j) {
@@ -469,8 +544,9 @@ void JointSystem::finish_step(const BodyStore& bodies, const StepInfo& step, Eve
     e.body_b = joint_body_b_[j];
     for (std::size_t s = first; s < last; ++s) {
       if (!pending_[s]) continue;
+      const auto p = std::size_t(spring_point_[s]);
       e.spring_index = std::int32_t(s - first);
-      e.position_m = 0.5 * (end_a_m_[s] + end_b_m_[s]);
+      e.position_m = 0.5 * (point_end_a_m_[p] + point_end_b_m_[p]);
       e.mode = failure_mode_[s];
       e.force_N = failure_force_N_[s];
       if (pending_[s] & kPendingYield) {
@@ -490,16 +566,16 @@ void JointSystem::finish_step(const BodyStore& bodies, const StepInfo& step, Eve
       e.kind = EventKind::JointBroken;
       e.spring_index = -1;
       // Force at failure: magnitude of the resultant the joint carried.
-      Vec3 resultant = Vec3::Zero(), where = Vec3::Zero();
+      Vec3 where = Vec3::Zero();
       for (std::size_t s = first; s < last; ++s) {
-        resultant += slot_force_N_[2 * s];
-        where += 0.5 * (end_a_m_[s] + end_b_m_[s]);
+        const auto p = std::size_t(spring_point_[s]);
+        where += 0.5 * (point_end_a_m_[p] + point_end_b_m_[p]);
       }
-      e.force_N = resultant.norm();
+      e.force_N = slot_force_N_[2 * j].norm();
       e.position_m = where / double(last - first);
       bool any_normal_dead = false;
       for (std::size_t s = first; s < last; ++s)
-        if (!alive_[s] && (spring_role_[s] == SpringRole::Normal || spring_axis_[s] == -1)) any_normal_dead = true;
+        if (!alive_[s] && spring_is_normal_[s]) any_normal_dead = true;
       e.mode = joint_break_[j].criterion == BreakCriterion::StrainLimit ? "strain_limit"
                : any_normal_dead                                        ? "normal_springs_deleted"
                                                                         : "springs_deleted";

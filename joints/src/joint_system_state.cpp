@@ -13,7 +13,8 @@ namespace fq {
 
 namespace {
 
-constexpr std::uint32_t kJointStateVersion = 1;
+// 2: force slots per joint (were per spring); dashpot books on a point's first spring.
+constexpr std::uint32_t kJointStateVersion = 2;
 
 template <class T>
 void read_into(StateReader& in, std::vector<T>& out_values, const char* what) {
@@ -40,6 +41,7 @@ void JointSystem::save_state(StateWriter& out) const {
   out.vec(joint_break_pending_);
   out.vec(joint_event_pending_);
 
+  materialise_spring_geometry_();
   out.vec3s(end_a_m_);
   out.vec3s(end_b_m_);
   out.vec3s(direction_);
@@ -132,8 +134,14 @@ void JointSystem::load_state(StateReader& in) {
   read_into(in, plastic_J_, "spring plastic energy");
   read_into(in, viscous_done_J_, "spring viscous energy");
   read_into(in, viscous_half_J_, "spring viscous half step");
-  read_into(in, slot_force_N_, "spring force slots");
-  read_into(in, slot_torque_Nm_, "spring torque slots");
+  read_into(in, slot_force_N_, "joint force slots");
+  read_into(in, slot_torque_Nm_, "joint torque slots");
+  // Point ends from the springs' (the springs of a point share them).
+  for (std::size_t p = 0; p + 1 < point_first_.size(); ++p) {
+    point_end_a_m_[p] = end_a_m_[std::size_t(point_first_[p])];
+    point_end_b_m_[p] = end_b_m_[std::size_t(point_first_[p])];
+  }
+  spring_geometry_current_ = true;
 
   for (TrilinearState& st : trilinear_.state) st.plastic_offset_m = in.f64("trilinear plastic offset");
   for (CureeState& st : curee_.state) {

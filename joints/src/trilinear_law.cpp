@@ -37,6 +37,8 @@ TrilinearLaw compile_trilinear(const TrilinearParams& p, double reference_length
   law.fy_c_N = p.yield_force_compression_N;
   law.k0_c_Npm = p.yield_force_compression_N / law.dy_c_m;
   law.k1_c_Npm = (p.ultimate_force_compression_N - p.yield_force_compression_N) / (law.du_c_m - law.dy_c_m);
+  law.inv_k0_t_mpN = 1.0 / law.k0_t_Npm;
+  law.inv_k0_c_mpN = 1.0 / law.k0_c_Npm;
   require(law.k1_t_Npm < law.k0_t_Npm, "ultimate_force_tension_N",
           "below the elastic line (hardening slope < initial slope)");
   require(law.k1_c_Npm < law.k0_c_Npm, "ultimate_force_compression_N",

@@ -1,19 +1,20 @@
 // fq::JointSystem: every joint of a scene as one force provider.
 //
-// Data layout (structures of arrays over springs; springs are stored joint
-// by joint, so a spring's global index orders (joint, spring)). One step:
-//   1. per joint (parallel): joint frame from the two bodies' orientations,
-//      then per spring its world end points, direction, deformation and rate;
-//   2. per law batch (parallel within a batch): force from the law (switch
-//      per batch, no virtual call per spring), dashpot force, energy books,
-//      deletion and yield flags;
-//   3. per joint (parallel): each spring writes force and torque for body a
-//      and body b into its own two slots; the joint's fracture test;
-//   4. per body (parallel): gathers its slots in a fixed order (CSR, spring
-//      index ascending) and adds them to the body store.
-// Every write goes to a slot owned by one loop index, and every sum runs in
-// a fixed order, so results are bitwise identical for any thread count.
-// Nothing is allocated per step.
+// Data layout (structures of arrays; springs are stored joint by joint and,
+// within a joint, point by point, so a spring's global index orders (joint,
+// point, spring)). A "point" is one pair of attachments: the normal and two
+// shear springs of a four-corner point share it, a link has its own. One
+// step is ONE pass per joint (parallel over joints for large scenes):
+//   joint frame from the two bodies' orientations; per point its world ends,
+//   separation d and relative velocity; per spring its deformation and rate,
+//   its law (a switch on the law kind, no virtual call), dashpot force,
+//   energy books, deletion and yield flags; the point's springs summed into
+//   one force F applied at the mid-point of the two ends; the joint's sums
+//   written to its two slots (body a, body b); the fracture test.
+// Then per body (parallel) its joints' slots are gathered in a fixed order
+// (CSR, joint id ascending). Every write goes to a slot owned by one loop
+// index and every sum runs in a fixed order, so results are bitwise identical
+// for any thread count. Nothing is allocated per step.
 //
 // Joint frame (objective, carried by the bodies): the rest frame is stored
 // relative to each body (q_ja = q_a^-1 q_j0, q_jb = q_b^-1 q_j0); the
@@ -26,7 +27,11 @@
 // not collinear when p_b != p_a; the frame's dependence on the rotations
 // adds the torque (1/2) d x F to each body (d = p_b - p_a, F = f e), the
 // exact derivative of the spring energy through the mean-rotation frame to
-// first order. With it the pair conserves angular momentum exactly.
+// first order. With it the pair conserves angular momentum exactly. The
+// pair plus that torque is the force F on a and -F on b, both acting at the
+// mid-point m = (p_a + p_b)/2: torque (m - x_a) x F on a, -(m - x_b) x F on
+// b. The springs of a point share p_a and p_b, so their forces are summed
+// first and the torques formed once per point.
 //
 // Energy: elastic = sum of stored energy (law); plastic = work done minus
 // stored (work by the trapezoid rule on each step's deformation increment,
@@ -35,16 +40,16 @@
 // (and their share of the frame torque) take from the bodies, evaluated on
 // the geometry of step n with v_n = (v(n-1/2) + v(n+1/2))/2 -- exactly the
 // work the ledger's leapfrog bookkeeping sees (completed in finish_step,
-// when v(n+1/2) is known). Reported through step n as t_0/2 + t_1 + ... +
+// when v(n+1/2) is known). Per point, with F_d the sum of its dashpot
+// forces: P_d = F_d . v_rel - (1/2)(d x F_d) . (w_a + w_b); it is booked on
+// the point's first spring. Reported through step n as t_0/2 + t_1 + ... +
 // t_{n-1} + t_n/2: the ledger's kinetic energy at n equals KE_0 plus exactly
 // that trapezoid sum of the work terms, because the start shifts v back
 // half a step.
 //
-// stiffest_mode: Gershgorin upper bound of the mass-normalised initial
-// stiffness (translation and rotation of both bodies coupled, rotational
-// inertia replaced by the smallest principal moment), naming the joint of
-// the stiffest spring on the worst body. Dashpots are not included (with
-// damping ratio zeta the central-difference limit is 2/w (sqrt(1+zeta^2) - zeta)).
+// stiffest_mode: top eigenvalue of the mass-normalised initial stiffness
+// and dashpot matrices by power iteration (joint_system.cpp), naming the
+// joint of the spring that stores most energy in that mode.
 #pragma once
 
 #include <cstdint>
@@ -113,8 +118,8 @@ class JointSystem final : public ForceProvider {
   // Read-only view for output (valid after a force evaluation).
   std::size_t joint_count() const { return joint_body_a_.size(); }
   std::size_t spring_count() const { return spring_joint_.size(); }
-  const std::vector<Vec3>& spring_end_a_m() const { return end_a_m_; }    // world (m)
-  const std::vector<Vec3>& spring_end_b_m() const { return end_b_m_; }    // world (m)
+  const std::vector<Vec3>& spring_end_a_m() const;  // world (m)
+  const std::vector<Vec3>& spring_end_b_m() const;  // world (m)
   const std::vector<double>& spring_force_N() const { return force_N_; }  // law + dashpot, + = tension (N)
   const std::vector<double>& spring_deformation_m() const { return delta_m_; }
   const std::vector<std::int32_t>& spring_joint() const { return spring_joint_; }
@@ -135,8 +140,13 @@ class JointSystem final : public ForceProvider {
  private:
   void add_spring_(std::int32_t joint, SpringRole role, std::int8_t axis, const Vec3& attach_a_local,
                    const Vec3& attach_b_local, double rest_length_m, const SpringDef& def, double reduced_mass_kg);
-  void evaluate_laws_();
+  void joint_step_(const BodyStore& bodies, std::size_t j);
+  // Law of spring s at deformation delta: force, books and flags. Returns
+  // false when the spring was deleted now.
+  bool evaluate_spring_(std::size_t s, double delta, double rate);
   void kill_spring_(std::size_t s);
+  // Per-spring ends and directions from the per-point ones (output, checkpoints).
+  void materialise_spring_geometry_() const;
   bool parallel_(std::size_t n) const { return n >= std::size_t(settings_.parallel_min_items); }
 
   BondedPairs* bonded_;
@@ -159,15 +169,27 @@ class JointSystem final : public ForceProvider {
   std::vector<SpringRole> spring_role_;
   std::vector<std::int8_t> spring_axis_;                   // 0, 1, 2 joint-frame axis; -1 for links
   std::vector<Vec3> attach_a_local_m_, attach_b_local_m_;  // body frames (m)
-  std::vector<std::uint8_t> same_point_as_prev_;          // attachments equal to spring s-1's (same joint)
+  std::vector<std::uint8_t> spring_is_normal_;            // normal spring of a point, or axial link
+  std::vector<std::int32_t> spring_point_;
+  std::vector<std::int32_t> law_index_;  // index into the batch of its law kind
   std::vector<double> rest_length_m_;                      // links (m)
   std::vector<double> reference_length_m_;
   std::vector<double> dashpot_Nspm_;
   std::vector<double> stiffness0_Npm_;
   std::vector<double> ultimate_t_m_, ultimate_c_m_;
   std::vector<SpringLawKind> law_kind_;
-  // Springs: per step.
-  std::vector<Vec3> end_a_m_, end_b_m_, direction_;
+  // Points: springs [point_first_[p], point_first_[p+1]); joint j owns
+  // points [joint_first_point_[j], joint_first_point_[j+1]).
+  std::vector<std::int32_t> point_first_, joint_first_point_;
+  std::vector<Vec3> point_attach_a_m_, point_attach_b_m_;  // body frames (m)
+  std::vector<Vec3> point_end_a_m_, point_end_b_m_;        // world, this step (m)
+  std::vector<Vec3> point_dashpot_force_N_;                // sum of its dashpot forces f_d e (N), on a
+  std::vector<std::int32_t> joint_spring_count_, joint_normal_count_;
+  // Springs: per step. Ends and directions of springs are filled from the
+  // points on demand (mutable cache), except link directions (their
+  // fallback when the ends coincide).
+  mutable std::vector<Vec3> end_a_m_, end_b_m_, direction_;
+  mutable bool spring_geometry_current_ = false;
   std::vector<double> delta_m_, rate_mps_;
   std::vector<double> law_force_N_, dashpot_force_N_, force_N_;
   // Springs: history and books.
@@ -179,7 +201,7 @@ class JointSystem final : public ForceProvider {
   std::vector<double> dashpot_power_prev_W_;  // dissipated power at v(n-1/2), geometry n (W)
   std::vector<std::uint8_t> has_prev_;
   std::vector<double> work_J_, stored_J_, plastic_J_, viscous_done_J_, viscous_half_J_;
-  // Slots: 2 s for body a, 2 s + 1 for body b.
+  // Slots: 2 j for body a, 2 j + 1 for body b of joint j.
   std::vector<Vec3> slot_force_N_, slot_torque_Nm_;
   std::vector<std::int32_t> body_slot_first_, body_slots_;
 
@@ -194,8 +216,6 @@ class JointSystem final : public ForceProvider {
   Batch<LinearElasticParams, LinearElasticState> linear_;
   Batch<TrilinearLaw, TrilinearState> trilinear_;
   Batch<CureeLaw, CureeState> curee_;
-  template <class Law, class State, class Eval>
-  void run_batch_(Batch<Law, State>& batch, Eval eval, bool tracks_work);
 };
 
 }  // namespace fq

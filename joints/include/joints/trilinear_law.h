@@ -44,6 +44,9 @@ struct TrilinearParams {
 struct TrilinearLaw {
   double k0_t_Npm = 0.0, k1_t_Npm = 0.0, dy_t_m = 0.0, fy_t_N = 0.0, du_t_m = 0.0;
   double k0_c_Npm = 0.0, k1_c_Npm = 0.0, dy_c_m = 0.0, fy_c_N = 0.0, du_c_m = 0.0;
+  // 1 / k0 (m/N): the stored energy F^2 / (2 k_e) is formed every step, and
+  // a division costs as much as the rest of the law.
+  double inv_k0_t_mpN = 0.0, inv_k0_c_mpN = 0.0;
 };
 
 struct TrilinearState {
@@ -70,9 +73,9 @@ inline LawOutput evaluate_trilinear(const TrilinearLaw& law, TrilinearState& io_
     f = std::clamp(f, f_lo, f_hi);
     io_state.plastic_offset_m = delta_m - f / (f >= 0.0 ? law.k0_t_Npm : law.k0_c_Npm);
   }
-  const double ke = f >= 0.0 ? law.k0_t_Npm : law.k0_c_Npm;
+  const double inv_ke = f >= 0.0 ? law.inv_k0_t_mpN : law.inv_k0_c_mpN;
   out.force_N = f;
-  out.stored_J = 0.5 * f * f / ke;
+  out.stored_J = 0.5 * f * f * inv_ke;
   out.inelastic = io_state.plastic_offset_m != 0.0;
   return out;
 }
