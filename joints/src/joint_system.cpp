@@ -111,22 +111,13 @@ void JointSystem::add_spring_(std::int32_t joint, SpringRole role, std::int8_t a
   law_kind_.push_back(def.law.kind);
   switch (def.law.kind) {
     case SpringLawKind::LinearElastic:
-      law_index_.push_back(std::int32_t(linear_.ids.size()));
-      linear_.ids.push_back(s);
-      linear_.law.push_back(def.law.linear);
-      linear_.state.emplace_back();
+      law_index_.push_back(linear_.add(s, def.law.linear));
       break;
     case SpringLawKind::Trilinear:
-      law_index_.push_back(std::int32_t(trilinear_.ids.size()));
-      trilinear_.ids.push_back(s);
-      trilinear_.law.push_back(compile_trilinear(def.law.trilinear, def.reference_length_m));
-      trilinear_.state.emplace_back();
+      law_index_.push_back(trilinear_.add(s, compile_trilinear(def.law.trilinear, def.reference_length_m)));
       break;
     case SpringLawKind::Curee:
-      law_index_.push_back(std::int32_t(curee_.ids.size()));
-      curee_.ids.push_back(s);
-      curee_.law.push_back(compile_curee(def.law.curee));
-      curee_.state.emplace_back();
+      law_index_.push_back(curee_.add(s, compile_curee(def.law.curee)));
       break;
     case SpringLawKind::Count:
       throw std::invalid_argument("unknown spring law kind");
@@ -242,18 +233,18 @@ void JointSystem::accumulate_forces(BodyStore& bodies, const StepInfo& /*step*/)
   bool tracks_work = true;
   switch (law_kind_[s]) {
     case SpringLawKind::Trilinear:
-      out = evaluate_trilinear(trilinear_.law[k], trilinear_.state[k], delta);
+      out = evaluate_trilinear(trilinear_.law[std::size_t(trilinear_.law_of[k])], trilinear_.state[k], delta);
       // Until it first yields a trilinear spring is on its initial linear
       // branch, where the trapezoid work equals the stored energy exactly:
       // no books to keep (work = stored below).
       tracks_work = yielded_[s] || out.inelastic;
       break;
     case SpringLawKind::LinearElastic:
-      out = evaluate_linear_elastic(linear_.law[k], linear_.state[k], delta);
+      out = evaluate_linear_elastic(linear_.law[std::size_t(linear_.law_of[k])], linear_.state[k], delta);
       tracks_work = false;
       break;
     case SpringLawKind::Curee:
-      out = evaluate_curee(curee_.law[k], curee_.state[k], delta);
+      out = evaluate_curee(curee_.law[std::size_t(curee_.law_of[k])], curee_.state[k], delta);
       break;
     case SpringLawKind::Count:
       break;
@@ -371,15 +362,19 @@ void JointSystem::joint_step_(const BodyStore& bodies, std::size_t j) {
       arm_a[r] = ra_m[r] * la[0] + ra_m[3 + r] * la[1] + ra_m[6 + r] * la[2];
       arm_b[r] = rb_m[r] * lb[0] + rb_m[3 + r] * lb[1] + rb_m[6 + r] * lb[2];
     }
-    const Vec3 pa(xa[0] + arm_a[0], xa[1] + arm_a[1], xa[2] + arm_a[2]);
-    const Vec3 pb(xb[0] + arm_b[0], xb[1] + arm_b[1], xb[2] + arm_b[2]);
-    for (int r = 0; r < 3; ++r) d[r] = pb[r] - pa[r];
+    // Element-wise stores: a Vec3 assembled from scalars goes through the
+    // stack and is re-read as a packet, which stalls store forwarding.
+    double* pa = end_a[p].data();
+    double* pb = end_b[p].data();
+    for (int r = 0; r < 3; ++r) {
+      pa[r] = xa[r] + arm_a[r];
+      pb[r] = xb[r] + arm_b[r];
+      d[r] = pb[r] - pa[r];
+    }
     // v_rel = (v_b + w_b x arm_b) - (v_a + w_a x arm_a)
     vrel[0] = (vb[0] + wb[1] * arm_b[2] - wb[2] * arm_b[1]) - (va[0] + wa[1] * arm_a[2] - wa[2] * arm_a[1]);
     vrel[1] = (vb[1] + wb[2] * arm_b[0] - wb[0] * arm_b[2]) - (va[1] + wa[2] * arm_a[0] - wa[0] * arm_a[2]);
     vrel[2] = (vb[2] + wb[0] * arm_b[1] - wb[1] * arm_b[0]) - (va[2] + wa[0] * arm_a[1] - wa[1] * arm_a[0]);
-    end_a[p] = pa;
-    end_b[p] = pb;
     double d_axis[3], v_axis[3];  // components along the joint axes
     // The point's springs summed into one force (on a) and one dashpot force.
     double force[3], dashpot[3];
@@ -431,7 +426,7 @@ void JointSystem::joint_step_(const BodyStore& bodies, std::size_t j) {
     }
     // Dissipated power of the dashpot force system at n-1/2 (completed in
     // finish_step): F_d . v_rel - (1/2) (d x F_d) . (w_a + w_b).
-    point_dashpot[p] = Vec3(dashpot[0], dashpot[1], dashpot[2]);
+    for (int r = 0; r < 3; ++r) point_dashpot[p][r] = dashpot[r];
     const double dxf[3] = {d[1] * dashpot[2] - d[2] * dashpot[1], d[2] * dashpot[0] - d[0] * dashpot[2],
                            d[0] * dashpot[1] - d[1] * dashpot[0]};
     power_prev_W[first] = (dashpot[0] * vrel[0] + dashpot[1] * vrel[1] + dashpot[2] * vrel[2]) -
@@ -446,13 +441,20 @@ void JointSystem::joint_step_(const BodyStore& bodies, std::size_t j) {
     torque_on_a[1] += m[2] * force[0] - m[0] * force[2];
     torque_on_a[2] += m[0] * force[1] - m[1] * force[0];
   }
-  const Vec3 f_a(force_on_a[0], force_on_a[1], force_on_a[2]);
-  const Vec3 t_a(torque_on_a[0], torque_on_a[1], torque_on_a[2]);
-  slot_force_N_[2 * j] = f_a;
-  slot_torque_Nm_[2 * j] = t_a;
-  slot_force_N_[2 * j + 1] = -f_a;
   // Torque on b: -(m - x_b) x F = -(m - x_a) x F + (x_b - x_a) x F, summed over points.
-  slot_torque_Nm_[2 * j + 1] = (xb - xa).cross(f_a) - t_a;
+  const double* f = force_on_a;
+  const double ab[3] = {xb[0] - xa[0], xb[1] - xa[1], xb[2] - xa[2]};
+  const double ab_x_f[3] = {ab[1] * f[2] - ab[2] * f[1], ab[2] * f[0] - ab[0] * f[2], ab[0] * f[1] - ab[1] * f[0]};
+  double* slot_fa = slot_force_N_[2 * j].data();
+  double* slot_fb = slot_force_N_[2 * j + 1].data();
+  double* slot_ta = slot_torque_Nm_[2 * j].data();
+  double* slot_tb = slot_torque_Nm_[2 * j + 1].data();
+  for (int r = 0; r < 3; ++r) {
+    slot_fa[r] = f[r];
+    slot_fb[r] = -f[r];
+    slot_ta[r] = torque_on_a[r];
+    slot_tb[r] = ab_x_f[r] - torque_on_a[r];
+  }
   const bool brk = joint_should_break(joint_break_[j], sum);
   joint_break_pending_[j] = brk ? 1 : 0;
   joint_event_pending_[j] = (brk || any_pending) ? 1 : 0;

@@ -54,6 +54,7 @@
 
 #include <cstdint>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "dem_core/bonded_pairs.h"
@@ -205,13 +206,27 @@ class JointSystem final : public ForceProvider {
   std::vector<Vec3> slot_force_N_, slot_torque_Nm_;
   std::vector<std::int32_t> body_slot_first_, body_slots_;
 
-  // Law batches: spring ids of each kind, with that kind's laws and states
-  // (index k of a batch belongs to spring ids[k]).
+  // Law batches: the springs of each kind with their states (member k of a
+  // batch is spring ids[k]) and the distinct parameter sets they use
+  // (law[law_of[k]]): a scene has a few joint types but may have 1e6
+  // springs, and one shared parameter set stays in cache.
   template <class Law, class State>
   struct Batch {
     std::vector<std::int32_t> ids;
+    std::vector<std::int32_t> law_of;
     std::vector<Law> law;
     std::vector<State> state;
+    std::unordered_map<std::string, std::int32_t> law_lookup;  // bytes of a parameter set -> index
+    // Adds spring s with parameters l; returns its member index k.
+    std::int32_t add(std::int32_t s, const Law& l) {
+      const std::string key(reinterpret_cast<const char*>(&l), sizeof(Law));
+      const auto [it, added] = law_lookup.emplace(key, std::int32_t(law.size()));
+      if (added) law.push_back(l);
+      ids.push_back(s);
+      law_of.push_back(it->second);
+      state.emplace_back();
+      return std::int32_t(ids.size() - 1);
+    }
   };
   Batch<LinearElasticParams, LinearElasticState> linear_;
   Batch<TrilinearLaw, TrilinearState> trilinear_;
