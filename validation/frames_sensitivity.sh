@@ -10,7 +10,9 @@
 # Writes validation/results/frames_sensitivity.md (one table per variant
 # family, the rows of `framequake compare`).
 #
-# Usage: bash validation/frames_sensitivity.sh            (about 12 runs)
+# Also: the record scaled by 1 + 1e-12 (round-off sensitivity).
+#
+# Usage: bash validation/frames_sensitivity.sh            (15 runs)
 #        FQ_WINDOW="5 8" bash validation/frames_sensitivity.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -67,5 +69,17 @@ for factor in 2 4; do
   "$app" compare "${files[@]}" --out "$work/strength$factor" --no-figure > "$work/log" 2>&1 || true
   grep '^|' "$work/strength$factor/comparison.md" >> "$out"
 done
+
+# 3. Round-off: the record scaled by 1 + 1e-12, a change far below any
+# physical meaning (the record itself has 4-5 significant digits). How far
+# the results move shows how sensitive each frame is to round-off once its
+# joints yield; a change of summation order in the engine moves them alike.
+echo >> "$out"; echo "## Round-off: record amplitude x (1 + 1e-12)" >> "$out"; echo >> "$out"
+files=()
+for f in A B C; do
+  files+=("$(variant "frame_${f}_amp1e-12" "frame_$f" "s/amplitude_scale: 1.0}/amplitude_scale: 1.000000000001}/")")
+done
+"$app" compare "${files[@]}" --out "$work/roundoff" --no-figure > "$work/log" 2>&1 || true
+grep '^|' "$work/roundoff/comparison.md" >> "$out"
 mv "$out" "$target"
 echo "[frames_sensitivity] wrote $target"

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "dem_core/parallel_for.h"
+
 namespace fq {
 
 const char* member_kind_name(MemberKind kind) {
@@ -77,8 +79,11 @@ BodyId BodyStore::add_box(const BoxBodyDef& def) {
 }
 
 void BodyStore::update_rotations() {
-  const std::size_t n = size();
-  for (std::size_t i = 0; i < n; ++i) rotation[i] = orientation[i].toRotationMatrix();
+  const auto n = std::int64_t(size());
+  // Threads only for large scenes (parallel_for.h); each body writes its own matrix.
+  parallel_for_static(n, n >= 4096, [&](std::int64_t i) {
+    rotation[std::size_t(i)] = orientation[std::size_t(i)].toRotationMatrix();
+  });
 }
 
 Vec3 BodyStore::angular_velocity_from_momentum(BodyId i, const Mat3& r, const Vec3& angular_momentum_Nms_world) const {

@@ -47,6 +47,17 @@ double seconds_between(Clock::time_point a, Clock::time_point b) {
 // ledger is bitwise the same whatever the number of threads.
 constexpr std::size_t kReductionChunk = 1024;
 
+// Force m (g - a_g) on every free body, zero torque: the start of each force
+// evaluation. Threads only for large scenes.
+void set_body_loads(BodyStore& bodies, const Vec3& specific_force) {
+  const auto n = std::int64_t(bodies.size());
+  parallel_for_static(n, n >= std::int64_t(4 * kReductionChunk), [&](std::int64_t bi) {
+    const auto i = std::size_t(bi);
+    bodies.force_N[i] = bodies.is_fixed[i] ? Vec3::Zero() : Vec3(bodies.mass_kg[i] * specific_force);
+    bodies.torque_Nm[i].setZero();
+  });
+}
+
 // Energy blow-up guard. With elastic energy >= 0 and dissipation >= 0 (every
 // spring, dashpot and friction law of the design), the energy balance
 // (energy_ledger.h) bounds the kinetic energy by what the system was given:
@@ -155,11 +166,7 @@ void Simulation::compute_forces() {
   ground_acceleration_ = ground_motion_.acceleration(info.time_s);
   // Relative frame: every free body feels m (g - a_g).
   const Vec3 specific_force = settings_.gravity_mps2 - ground_acceleration_;
-  const std::size_t n = bodies_.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    bodies_.force_N[i] = bodies_.is_fixed[i] ? Vec3::Zero() : Vec3(bodies_.mass_kg[i] * specific_force);
-    bodies_.torque_Nm[i].setZero();
-  }
+  set_body_loads(bodies_, specific_force);
   if (timed) {
     auto t1 = Clock::now();
     profile_.seconds[int(Stage::ExternalForces)] += scale * seconds_between(t0, t1);
@@ -475,11 +482,7 @@ RunResult Simulation::run(const std::atomic<bool>* stop_requested) {
 void Simulation::evaluate_forces_at(const StepInfo& info) {
   ground_acceleration_ = ground_motion_.acceleration(info.time_s);
   const Vec3 specific_force = settings_.gravity_mps2 - ground_acceleration_;
-  const std::size_t n = bodies_.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    bodies_.force_N[i] = bodies_.is_fixed[i] ? Vec3::Zero() : Vec3(bodies_.mass_kg[i] * specific_force);
-    bodies_.torque_Nm[i].setZero();
-  }
+  set_body_loads(bodies_, specific_force);
   for (auto& p : providers_) p->accumulate_forces(bodies_, info);
 }
 
