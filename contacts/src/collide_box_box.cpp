@@ -83,6 +83,19 @@ int face_contact(const OrientedBox& ref, const OrientedBox& inc, int ref_axis, d
   int count = 4;
 
   const Vec3 ref_face_center = ref.center_m + ref.half_extents_m[ref_axis] * n;
+  const double face_offset = n.dot(ref_face_center);
+  out.count = 0;
+  // Clipping only moves points along the incident face, between its
+  // vertices: no clipped point lies deeper than the deepest of the four. If
+  // all four stay clear of the reference face by more than the round-off of
+  // world coordinates (1e-11 of their size: a thousand times the error of
+  // four clipping steps), no point would be made: skip the clipping.
+  const double coordinate_size = ref_face_center.lpNorm<Eigen::Infinity>() + inc_face_center.lpNorm<Eigen::Infinity>() +
+                                 inc.half_extents_m.maxCoeff();
+  const double clear_m = 1e-11 * coordinate_size;
+  bool may_touch = false;
+  for (int k = 0; k < 4; ++k) may_touch = may_touch || face_offset - n.dot(buf_a[k].p) > -clear_m;
+  if (!may_touch) return 0;
   const int r1 = kNext[ref_axis], r2 = kNext[r1];
   const Vec3 a1 = ref.rotation.col(r1), a2 = ref.rotation.col(r2);
   const double h1 = ref.half_extents_m[r1], h2 = ref.half_extents_m[r2];
@@ -104,6 +117,15 @@ int face_contact(const OrientedBox& ref, const OrientedBox& inc, int ref_axis, d
   const std::uint32_t head = kFeatureFaceContact | (ref_is_b ? (1u << 29) : 0u) |
                              (std::uint32_t(ref_axis * 2 + (n_sign > 0 ? 1 : 0)) << 26) |
                              (std::uint32_t(inc_axis * 2 + (inc_sign > 0 ? 1 : 0)) << 23);
+  // Depths first: a polygon wholly above the reference face makes no point
+  // and needs no weights.
+  double depths[16];
+  bool any_below = false;
+  for (int k = 0; k < count; ++k) {
+    depths[k] = face_offset - n.dot(src[k].p);
+    any_below = any_below || depths[k] > 0.0;
+  }
+  if (!any_below) return 0;
   // Perimeter shares of the clipped polygon (header: point weights).
   double edge_len[16];
   double perimeter = 0.0;
@@ -111,11 +133,9 @@ int face_contact(const OrientedBox& ref, const OrientedBox& inc, int ref_axis, d
     edge_len[k] = (src[k + 1 == count ? 0 : k + 1].p - src[k].p).norm();
     perimeter += edge_len[k];
   }
-  const double face_offset = n.dot(ref_face_center);
   const Vec3 normal_ab = ref_is_b ? Vec3(-n) : n;
-  out.count = 0;
   for (int k = 0; k < count && out.count < kMaxManifoldPoints; ++k) {
-    const double depth = face_offset - n.dot(src[k].p);
+    const double depth = depths[k];
     if (!(depth > 0.0)) continue;
     ContactPointGeometry& c = out.points[out.count++];
     c.position_m = src[k].p + (0.5 * depth) * n;
