@@ -7,10 +7,13 @@
 //      items; each chunk writes its own buffer, buffers are joined in chunk
 //      order, so the contact list is the same for any thread count
 //   3. contact law per point (linear_contact_law.h) with tangential history
-//      looked up from the previous step's contact list
+//      looked up from the previous step's contact list; done in the same
+//      pass as 2, item by item, while the pair's data is in cache (a box
+//      pair that did not touch keeps its separating axis, which is tested
+//      first at the next step: collide_box_box.h)
 //   4. gather: each body sums the forces of its contacts in contact order
-//      (one CSR list per body), so forces are bitwise identical for any
-//      number of OpenMP threads
+//      (one CSR list per body; on one thread the same sums in one sweep),
+//      so forces are bitwise identical for any number of OpenMP threads
 //
 // Contact order and keys: pairs sorted by (a, b), then ground contacts
 // sorted by box; points of one manifold sorted by feature. The key of a
