@@ -215,7 +215,12 @@ std::size_t ContactSystem::process_item(const BodyStore& bodies, const StepInfo&
                                           [](const ContactPoint& p, std::uint64_t k) { return p.pair_key < k; }) -
                          previous_.begin());
   }
-  while (cursor < previous_.size() && previous_[cursor].pair_key < key) ++cursor;
+  ContactPoint* const previous_end = previous_.data() + previous_.size();
+  ContactPoint* history = previous_.data() + cursor;
+  while (history != previous_end && history->pair_key < key) ++history;
+  ContactPoint* history_end = history;  // end of this pair's records
+  while (history_end != previous_end && history_end->pair_key == key) ++history_end;
+  cursor = std::size_t(history_end - previous_.data());
 
   const bool moving_a = item < n_pairs && a >= 0;
   const Vec3 x_a = moving_a ? bodies.position_m[a] : Vec3(Vec3::Zero());
@@ -242,11 +247,10 @@ std::size_t ContactSystem::process_item(const BodyStore& bodies, const StepInfo&
     c.effective_mass_kg = mass_per_weight * g.weight;
 
     // Tangential history of the same (pair, feature) at the previous step.
-    while (cursor < previous_.size() && previous_[cursor].pair_key == key && previous_[cursor].feature < c.feature)
-      ++cursor;
+    while (history != history_end && history->feature < c.feature) ++history;
     Vec3 shear = Vec3::Zero();
-    if (cursor < previous_.size() && previous_[cursor].pair_key == key && previous_[cursor].feature == c.feature) {
-      ContactPoint& p = previous_[cursor];
+    if (history != history_end && history->feature == c.feature) {
+      ContactPoint& p = *history;
       shear = p.shear_spring_N;
       c.reference_depth_m = std::min(p.reference_depth_m, c.depth_m);
       c.elastic_prev_J = p.elastic_J;
