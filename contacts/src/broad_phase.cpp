@@ -9,6 +9,7 @@ namespace fq {
 namespace {
 // At most this many cells per axis (the grid is coarsened beyond).
 constexpr std::int64_t kMaxCells = (std::int64_t(1) << 20) - 1;
+constexpr double kPi = 3.14159265358979323846;
 
 int bit_width(std::uint64_t v) {
   int b = 0;
@@ -74,6 +75,10 @@ bool BroadPhase::needs_rebuild(const BodyStore& bodies, const BondedPairs* bonde
     const double moved = (bodies.position_m[i] - position0_m_[i]).norm();
     // Rotation angle since the rebuild: 2 asin |vec(q0^-1 q)|.
     const double s = std::min(1.0, (orientation0_[i].conjugate() * bodies.orientation[i]).vec().norm());
+    // asin(s) <= (pi / 2) s on [0, 1]: while that bound, with a relative
+    // margin far above round-off, stays below the limit, so does the exact
+    // one below, and the asin is not needed (same answer, cheaper).
+    if ((moved + half_diagonal_m_[i] * kPi * s) * (1.0 + 1e-12) <= limit) return false;
     const double bound = moved + half_diagonal_m_[i] * 2.0 * std::asin(s);
     return bound > limit;
   };

@@ -12,6 +12,8 @@ constexpr double kRelativeTolerance = 0.95;
 // Cross products of edges closer to parallel than this (|sin| of the angle)
 // are skipped: the face axes decide those configurations.
 constexpr double kParallelSine = 1e-6;
+// Next axis in cyclic order (a table: an integer % costs tens of cycles).
+constexpr int kNext[3] = {1, 2, 0};
 
 struct ClipVertex {
   Vec3 p;
@@ -34,7 +36,7 @@ int clip(const ClipVertex* in, int n, const Vec3& dir, double offset, int plane,
   int m = 0;
   for (int k = 0; k < n; ++k) {
     const ClipVertex& p = in[k];
-    const ClipVertex& q = in[(k + 1) % n];
+    const ClipVertex& q = in[k + 1 == n ? 0 : k + 1];
     const double dp = dir.dot(p.p) - offset;
     const double dq = dir.dot(q.p) - offset;
     const bool in_p = dp <= tol, in_q = dq <= tol;
@@ -69,7 +71,7 @@ int face_contact(const OrientedBox& ref, const OrientedBox& inc, int ref_axis, d
   }
   const double inc_sign = n.dot(inc.rotation.col(inc_axis)) > 0.0 ? -1.0 : 1.0;
   const Vec3 inc_face_center = inc.center_m + inc_sign * inc.half_extents_m[inc_axis] * inc.rotation.col(inc_axis);
-  const int iu = (inc_axis + 1) % 3, iv = (inc_axis + 2) % 3;
+  const int iu = kNext[inc_axis], iv = kNext[iu];
   const Vec3 u = inc.half_extents_m[iu] * inc.rotation.col(iu);
   const Vec3 v = inc.half_extents_m[iv] * inc.rotation.col(iv);
 
@@ -81,7 +83,20 @@ int face_contact(const OrientedBox& ref, const OrientedBox& inc, int ref_axis, d
   int count = 4;
 
   const Vec3 ref_face_center = ref.center_m + ref.half_extents_m[ref_axis] * n;
-  const int r1 = (ref_axis + 1) % 3, r2 = (ref_axis + 2) % 3;
+  const double face_offset = n.dot(ref_face_center);
+  out.count = 0;
+  // Clipping only moves points along the incident face, between its
+  // vertices: no clipped point lies deeper than the deepest of the four. If
+  // all four stay clear of the reference face by more than the round-off of
+  // world coordinates (1e-11 of their size: a thousand times the error of
+  // four clipping steps), no point would be made: skip the clipping.
+  const double coordinate_size = ref_face_center.lpNorm<Eigen::Infinity>() + inc_face_center.lpNorm<Eigen::Infinity>() +
+                                 inc.half_extents_m.maxCoeff();
+  const double clear_m = 1e-11 * coordinate_size;
+  bool may_touch = false;
+  for (int k = 0; k < 4; ++k) may_touch = may_touch || face_offset - n.dot(buf_a[k].p) > -clear_m;
+  if (!may_touch) return 0;
+  const int r1 = kNext[ref_axis], r2 = kNext[r1];
   const Vec3 a1 = ref.rotation.col(r1), a2 = ref.rotation.col(r2);
   const double h1 = ref.half_extents_m[r1], h2 = ref.half_extents_m[r2];
   // Tolerance of "on a side plane": round-off of positions of size ~ the
@@ -102,25 +117,32 @@ int face_contact(const OrientedBox& ref, const OrientedBox& inc, int ref_axis, d
   const std::uint32_t head = kFeatureFaceContact | (ref_is_b ? (1u << 29) : 0u) |
                              (std::uint32_t(ref_axis * 2 + (n_sign > 0 ? 1 : 0)) << 26) |
                              (std::uint32_t(inc_axis * 2 + (inc_sign > 0 ? 1 : 0)) << 23);
+  // Depths first: a polygon wholly above the reference face makes no point
+  // and needs no weights.
+  double depths[16];
+  bool any_below = false;
+  for (int k = 0; k < count; ++k) {
+    depths[k] = face_offset - n.dot(src[k].p);
+    any_below = any_below || depths[k] > 0.0;
+  }
+  if (!any_below) return 0;
   // Perimeter shares of the clipped polygon (header: point weights).
   double edge_len[16];
   double perimeter = 0.0;
   for (int k = 0; k < count; ++k) {
-    edge_len[k] = (src[(k + 1) % count].p - src[k].p).norm();
+    edge_len[k] = (src[k + 1 == count ? 0 : k + 1].p - src[k].p).norm();
     perimeter += edge_len[k];
   }
-  const double face_offset = n.dot(ref_face_center);
   const Vec3 normal_ab = ref_is_b ? Vec3(-n) : n;
-  out.count = 0;
   for (int k = 0; k < count && out.count < kMaxManifoldPoints; ++k) {
-    const double depth = face_offset - n.dot(src[k].p);
+    const double depth = depths[k];
     if (!(depth > 0.0)) continue;
     ContactPointGeometry& c = out.points[out.count++];
     c.position_m = src[k].p + (0.5 * depth) * n;
     c.normal = normal_ab;
     c.depth_m = depth;
     c.feature = head | src[k].code;
-    c.weight = perimeter > 0.0 ? 2.0 * (edge_len[(k + count - 1) % count] + edge_len[k]) / perimeter
+    c.weight = perimeter > 0.0 ? 2.0 * (edge_len[k == 0 ? count - 1 : k - 1] + edge_len[k]) / perimeter
                                : 4.0 / double(count);
   }
   return out.count;
@@ -181,35 +203,89 @@ int edge_contact(const OrientedBox& a, const OrientedBox& b, int ia, int jb, con
   return 1;
 }
 
+// Overlaps of the boxes along the 15 candidate axes, all in a's frame
+// (r(i, j) = a_i . b_j, t = centre offset). Each is one function so that the
+// full test and the test of a remembered axis compute bitwise the same value.
+struct SatFrame {
+  Mat3 r;
+  Mat3 abs_r;
+  Vec3 t;
+  const Vec3& ha;
+  const Vec3& hb;
+};
+
+double face_a_overlap(const SatFrame& f, int i) {
+  return f.ha[i] + f.hb.dot(f.abs_r.row(i)) - std::fabs(f.t[i]);
+}
+
+double face_b_overlap(const SatFrame& f, int j) {
+  return f.ha.dot(f.abs_r.col(j)) + f.hb[j] - std::fabs(f.t.dot(f.r.col(j)));
+}
+
+// Edge axis a_i x b_j (a's frame): overlap times |l| in `scaled`, |l| in
+// `len`; the overlap is scaled / len (len < kParallelSine: axis skipped).
+[[gnu::always_inline]] inline void edge_overlap(const SatFrame& f, int i, int j, Vec3& l, double& len, double& scaled) {
+  l = Vec3::Unit(i).cross(f.r.col(j));
+  len = l.norm();
+  if (len < kParallelSine) return;
+  const double ra_l = f.ha.dot(l.cwiseAbs());
+  const double rb_l = std::fabs(f.hb[0] * l.dot(f.r.col(0))) + std::fabs(f.hb[1] * l.dot(f.r.col(1))) +
+                      std::fabs(f.hb[2] * l.dot(f.r.col(2)));
+  scaled = ra_l + rb_l - std::fabs(f.t.dot(l));
+}
+
+// True when axis k (0..2 faces of a, 3..5 faces of b, 6 + 3 i + j edge
+// a_i x b_j) separates the boxes, by the same test as the full search.
+bool separates(const SatFrame& f, int k) {
+  if (k < 3) return face_a_overlap(f, k) < 0.0;
+  if (k < 6) return face_b_overlap(f, k - 3) < 0.0;
+  Vec3 l;
+  double len = 0.0, scaled = 0.0;
+  edge_overlap(f, (k - 6) / 3, (k - 6) % 3, l, len, scaled);
+  return len >= kParallelSine && scaled / len < 0.0;
+}
+
 }  // namespace
 
 int collide_box_box(const OrientedBox& a, const OrientedBox& b, ContactManifold& out) {
+  return collide_box_box(a, b, out, nullptr);
+}
+
+int collide_box_box(const OrientedBox& a, const OrientedBox& b, ContactManifold& out, std::int8_t* io_separating_axis) {
   out.count = 0;
   const Mat3& ra = a.rotation;
   const Mat3& rb = b.rotation;
   const Vec3& ha = a.half_extents_m;
   const Vec3& hb = b.half_extents_m;
-  // Everything in a's frame: r(i, j) = a_i . b_j, t = centre offset.
-  const Mat3 r = ra.transpose() * rb;
-  const Vec3 t = ra.transpose() * (b.center_m - a.center_m);
   // A small epsilon on |r| keeps the test conservative when edges are
   // parallel and their cross product degenerates (Gottschalk's OBB tree).
-  const Mat3 abs_r = r.cwiseAbs().array() + 1e-14;
+  SatFrame f{ra.transpose() * rb, Mat3(), ra.transpose() * (b.center_m - a.center_m), ha, hb};
+  f.abs_r = f.r.cwiseAbs().array() + 1e-14;
+  const Mat3& r = f.r;
+  const Vec3& t = f.t;
+
+  // The axis that separated the pair last time usually still does (any
+  // separating axis gives the same answer: no contact).
+  if (io_separating_axis && *io_separating_axis >= 0 && separates(f, *io_separating_axis)) return 0;
+  auto separated_by = [&](int k) {
+    if (io_separating_axis) *io_separating_axis = std::int8_t(k);
+    return 0;
+  };
 
   double best_a = HUGE_VAL, best_b = HUGE_VAL, best_e = HUGE_VAL;
   int axis_a = -1, axis_b = -1, edge_i = -1, edge_j = -1;
   Vec3 edge_axis_local = Vec3::Zero();
   for (int i = 0; i < 3; ++i) {
-    const double pen = ha[i] + hb.dot(abs_r.row(i)) - std::fabs(t[i]);
-    if (pen < 0.0) return 0;
+    const double pen = face_a_overlap(f, i);
+    if (pen < 0.0) return separated_by(i);
     if (pen < best_a) {
       best_a = pen;
       axis_a = i;
     }
   }
   for (int j = 0; j < 3; ++j) {
-    const double pen = ha.dot(abs_r.col(j)) + hb[j] - std::fabs(t.dot(r.col(j)));
-    if (pen < 0.0) return 0;
+    const double pen = face_b_overlap(f, j);
+    if (pen < 0.0) return separated_by(3 + j);
     if (pen < best_b) {
       best_b = pen;
       axis_b = j;
@@ -217,14 +293,12 @@ int collide_box_box(const OrientedBox& a, const OrientedBox& b, ContactManifold&
   }
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) {
-      const Vec3 l = Vec3::Unit(i).cross(r.col(j));  // a's frame
-      const double len = l.norm();
+      Vec3 l;
+      double len = 0.0, scaled = 0.0;
+      edge_overlap(f, i, j, l, len, scaled);
       if (len < kParallelSine) continue;
-      const double ra_l = ha.dot(l.cwiseAbs());
-      const double rb_l = std::fabs(hb[0] * l.dot(r.col(0))) + std::fabs(hb[1] * l.dot(r.col(1))) +
-                          std::fabs(hb[2] * l.dot(r.col(2)));
-      const double pen = (ra_l + rb_l - std::fabs(t.dot(l))) / len;
-      if (pen < 0.0) return 0;
+      const double pen = scaled / len;
+      if (pen < 0.0) return separated_by(6 + 3 * i + j);
       if (pen < best_e) {
         best_e = pen;
         edge_i = i;
@@ -233,6 +307,7 @@ int collide_box_box(const OrientedBox& a, const OrientedBox& b, ContactManifold&
       }
     }
   }
+  if (io_separating_axis) *io_separating_axis = -1;
 
   const bool use_b_face = best_b < kRelativeTolerance * best_a;
   const double best_face = use_b_face ? best_b : best_a;

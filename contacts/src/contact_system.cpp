@@ -3,6 +3,7 @@
 #include <type_traits>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -22,15 +23,13 @@ namespace {
 // bookkeeping, small enough to balance two threads on a few hundred pairs.
 constexpr std::size_t kChunkItems = 64;
 constexpr std::uint64_t kGroundKeyHigh = 0xFFFFFFFFull << 32;
+// History cursor not yet placed (process_item).
+constexpr std::size_t kNoCursor = ~std::size_t(0);
 
 std::uint64_t pair_key(BodyId a, BodyId b) { return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b); }
 
 OrientedBox box_of(const BodyStore& bodies, BodyId i) {
   return {bodies.position_m[i], bodies.rotation[i], bodies.half_extents_m[i]};
-}
-
-bool key_less(const ContactPoint& c, std::uint64_t key, std::uint32_t feature) {
-  return c.pair_key != key ? c.pair_key < key : c.feature < feature;
 }
 
 }  // namespace
@@ -90,6 +89,8 @@ void ContactSystem::prepare(const BodyStore& bodies) {
     ground_coeff_ = int(coeffs_.size()) - 1;
   }
 
+  bounding_radius_m_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) bounding_radius_m_[i] = bodies.half_extents_m[i].norm();
   participates_.assign(n, 1);
   ground_body_ = kNoBody;
   ground_candidates_.clear();
@@ -115,6 +116,7 @@ void ContactSystem::accumulate_forces(BodyStore& bodies, const StepInfo& step) {
   if (!prepared_ || body_material_.size() != bodies.size()) prepare(bodies);
   if (broad_.update(bodies, bonded_)) {
     const auto& pairs = broad_.pairs();
+    pair_separating_axis_.assign(pairs.size(), -1);
     pair_coeff_.resize(pairs.size());
     for (std::size_t p = 0; p < pairs.size(); ++p)
       pair_coeff_[p] = coeff_index_for(body_material_[pairs[p].a], body_material_[pairs[p].b]);
@@ -128,7 +130,6 @@ void ContactSystem::accumulate_forces(BodyStore& bodies, const StepInfo& step) {
   }
   std::swap(previous_, contacts_);
   narrow_phase(bodies, step);
-  apply_law(bodies, step);
   if (!soft_start_pairs_.empty()) {
     // A released pair without any contact point has separated: from now on
     // it is an ordinary pair. contacts_ is sorted by pair key.
@@ -145,116 +146,127 @@ void ContactSystem::accumulate_forces(BodyStore& bodies, const StepInfo& step) {
   gather(bodies);
 }
 
-void ContactSystem::narrow_phase(const BodyStore& bodies, const StepInfo& /*step*/) {
+// Narrow phase and contact law, one pass per work item (a candidate pair or
+// a box near the ground): the manifold's points are made, sorted by feature,
+// and loaded at once, while the bodies' data is still in cache. Work items
+// come in increasing pair key (pairs sorted by (a, b), then ground contacts
+// by box), and so do the records of previous_: the history of each point is
+// found by a cursor that only moves forward (one binary search per chunk,
+// then a merge), with the same result as a search per point.
+std::size_t ContactSystem::process_item(const BodyStore& bodies, const StepInfo& step, std::size_t item,
+                                        std::size_t& cursor, ContactManifold& manifold,
+                                        std::vector<ContactPoint>& out) {
   const auto& pairs = broad_.pairs();
   const std::size_t n_pairs = pairs.size();
-  const std::size_t n_items = n_pairs + ground_candidates_.size();
-  const std::size_t n_chunks = (n_items + kChunkItems - 1) / kChunkItems;
-  if (chunk_buffers_.size() < n_chunks) chunk_buffers_.resize(n_chunks);
-
-  const std::int64_t chunks = std::int64_t(n_chunks);
-  parallel_for_dynamic(chunks, n_items >= std::size_t(settings_.parallel_threshold), [&](std::int64_t c) {
-    std::vector<ContactPoint>& buf = chunk_buffers_[std::size_t(c)];
-    buf.clear();
-    ContactManifold manifold;
-    const std::size_t begin = std::size_t(c) * kChunkItems;
-    const std::size_t end = std::min(n_items, begin + kChunkItems);
-    for (std::size_t item = begin; item < end; ++item) {
-      BodyId a, b;
-      std::uint64_t key;
-      int coeff;
-      double pair_mass;
-      if (item < n_pairs) {
-        a = pairs[item].a;
-        b = pairs[item].b;
-        // Bounding spheres first: most candidates inside the skin do not touch.
-        const double reach = bodies.half_extents_m[a].norm() + bodies.half_extents_m[b].norm();
-        if ((bodies.position_m[b] - bodies.position_m[a]).squaredNorm() > reach * reach) continue;
-        if (collide_box_box(box_of(bodies, a), box_of(bodies, b), manifold) == 0) continue;
-        key = pair_key(a, b);
-        coeff = pair_coeff_[item];
-        const double ma = bodies.mass_kg[a], mb = bodies.mass_kg[b];
-        pair_mass = bodies.is_fixed[a] ? mb : bodies.is_fixed[b] ? ma : ma * mb / (ma + mb);
-      } else {
-        b = ground_candidates_[item - n_pairs];
-        a = ground_body_;
-        const OrientedBox box = box_of(bodies, b);
-        if (!(box_lowest_z_m(box) < ground_level_m_)) continue;
-        if (collide_box_ground(box, ground_level_m_, manifold) == 0) continue;
-        key = kGroundKeyHigh | std::uint32_t(b);
-        coeff = ground_coeff_;
-        pair_mass = bodies.mass_kg[b];
-      }
-      auto first = manifold.points.begin();
-      auto last = first + manifold.count;
-      std::sort(first, last, [](const ContactPointGeometry& p, const ContactPointGeometry& q) {
-        return p.feature < q.feature;
-      });
-      // Features are unique by construction; drop any duplicate defensively.
-      last = std::unique(first, last, [](const ContactPointGeometry& p, const ContactPointGeometry& q) {
-        return p.feature == q.feature;
-      });
-      double weight_sum = 0.0;
-      for (auto it = first; it != last; ++it) weight_sum += it->weight;
-      const double mass_per_weight = pair_mass / weight_sum;
-      for (auto it = first; it != last; ++it) {
-        ContactPoint cp;
-        cp.body_a = a;
-        cp.body_b = b;
-        cp.feature = it->feature;
-        cp.position_m = it->position_m;
-        cp.normal = it->normal;
-        cp.depth_m = it->depth_m;
-        cp.pair_key = key;
-        cp.coeff_index = coeff;
-        cp.stiffness_scale = it->weight;
-        cp.effective_mass_kg = mass_per_weight * it->weight;
-        buf.push_back(cp);
-      }
-    }
-  });
-
-  std::size_t total = 0;
-  for (std::size_t c = 0; c < n_chunks; ++c) total += chunk_buffers_[c].size();
-  contacts_.resize(total);
-  std::size_t offset = 0;
-  for (std::size_t c = 0; c < n_chunks; ++c) {
-    std::copy(chunk_buffers_[c].begin(), chunk_buffers_[c].end(), contacts_.begin() + std::ptrdiff_t(offset));
-    offset += chunk_buffers_[c].size();
+  BodyId a, b;
+  std::uint64_t key;
+  int coeff;
+  double pair_mass;
+  if (item < n_pairs) {
+    a = pairs[item].a;
+    b = pairs[item].b;
+    // Bounding spheres first: most candidates inside the skin do not touch.
+    const double reach = bounding_radius_m_[std::size_t(a)] + bounding_radius_m_[std::size_t(b)];
+    if ((bodies.position_m[b] - bodies.position_m[a]).squaredNorm() > reach * reach) return 0;
+    if (collide_box_box(box_of(bodies, a), box_of(bodies, b), manifold, &pair_separating_axis_[item]) == 0) return 0;
+    key = pair_key(a, b);
+    coeff = pair_coeff_[item];
+    const double ma = bodies.mass_kg[a], mb = bodies.mass_kg[b];
+    pair_mass = bodies.is_fixed[a] ? mb : bodies.is_fixed[b] ? ma : ma * mb / (ma + mb);
+  } else {
+    b = ground_candidates_[item - n_pairs];
+    a = ground_body_;
+    // Lowest corner first (box_lowest_z_m without building the box).
+    const Mat3& r = bodies.rotation[b];
+    const Vec3& h = bodies.half_extents_m[b];
+    const double lowest_z =
+        bodies.position_m[b].z() - (std::fabs(r(2, 0)) * h.x() + std::fabs(r(2, 1)) * h.y() + std::fabs(r(2, 2)) * h.z());
+    if (!(lowest_z < ground_level_m_)) return 0;
+    if (collide_box_ground(box_of(bodies, b), ground_level_m_, manifold) == 0) return 0;
+    key = kGroundKeyHigh | std::uint32_t(b);
+    coeff = ground_coeff_;
+    pair_mass = bodies.mass_kg[b];
   }
-}
+  // Points in feature order (insertion sort of indices: at most 8 points).
+  std::array<int, kMaxManifoldPoints> order;
+  int count = 0;
+  for (int k = 0; k < manifold.count; ++k) {
+    const std::uint32_t f = manifold.points[std::size_t(k)].feature;
+    int pos = count;
+    while (pos > 0 && manifold.points[std::size_t(order[std::size_t(pos - 1)])].feature > f) {
+      order[std::size_t(pos)] = order[std::size_t(pos - 1)];
+      --pos;
+    }
+    // Features are unique by construction; drop any duplicate defensively.
+    if (pos > 0 && manifold.points[std::size_t(order[std::size_t(pos - 1)])].feature == f) {
+      for (int m = pos; m < count; ++m) order[std::size_t(m)] = order[std::size_t(m + 1)];
+      continue;
+    }
+    order[std::size_t(pos)] = k;
+    ++count;
+  }
+  double weight_sum = 0.0;
+  for (int k = 0; k < count; ++k) weight_sum += manifold.points[std::size_t(order[std::size_t(k)])].weight;
+  const double mass_per_weight = pair_mass / weight_sum;
 
-void ContactSystem::apply_law(const BodyStore& bodies, const StepInfo& step) {
-  const std::int64_t n = std::int64_t(contacts_.size());
-  parallel_for_static(n, n >= settings_.parallel_threshold, [&](std::int64_t k) {
-    ContactPoint& c = contacts_[std::size_t(k)];
+  // History cursor: first record of previous_ with a key not below this pair's.
+  if (cursor == kNoCursor) {
+    cursor = std::size_t(std::lower_bound(previous_.begin(), previous_.end(), key,
+                                          [](const ContactPoint& p, std::uint64_t k) { return p.pair_key < k; }) -
+                         previous_.begin());
+  }
+  ContactPoint* const previous_end = previous_.data() + previous_.size();
+  ContactPoint* history = previous_.data() + cursor;
+  while (history != previous_end && history->pair_key < key) ++history;
+  ContactPoint* history_end = history;  // end of this pair's records
+  while (history_end != previous_end && history_end->pair_key == key) ++history_end;
+  cursor = std::size_t(history_end - previous_.data());
+
+  const bool moving_a = item < n_pairs && a >= 0;
+  const Vec3 x_a = moving_a ? bodies.position_m[a] : Vec3(Vec3::Zero());
+  const Vec3 v_a = moving_a ? bodies.velocity_mps[a] : Vec3(Vec3::Zero());
+  const Vec3 w_a = moving_a ? bodies.angular_velocity_radps[a] : Vec3(Vec3::Zero());
+  const Vec3& x_b = bodies.position_m[b];
+  const Vec3& v_b = bodies.velocity_mps[b];
+  const Vec3& w_b = bodies.angular_velocity_radps[b];
+  const ContactCoefficients& coefficients = coeffs_[std::size_t(coeff)];
+  const bool soft_start_pair =
+      !soft_start_pairs_.empty() && std::binary_search(soft_start_pairs_.begin(), soft_start_pairs_.end(), key);
+  for (int k = 0; k < count; ++k) {
+    const ContactPointGeometry& g = manifold.points[std::size_t(order[std::size_t(k)])];
+    ContactPoint& c = out.emplace_back();
+    c.body_a = a;
+    c.body_b = b;
+    c.feature = g.feature;
+    c.position_m = g.position_m;
+    c.normal = g.normal;
+    c.depth_m = g.depth_m;
+    c.pair_key = key;
+    c.coeff_index = coeff;
+    c.stiffness_scale = g.weight;
+    c.effective_mass_kg = mass_per_weight * g.weight;
+
     // Tangential history of the same (pair, feature) at the previous step.
-    const auto it = std::lower_bound(previous_.begin(), previous_.end(), c, [](const ContactPoint& p, const ContactPoint& q) {
-      return key_less(p, q.pair_key, q.feature);
-    });
+    while (history != history_end && history->feature < c.feature) ++history;
     Vec3 shear = Vec3::Zero();
-    c.reference_depth_m = 0.0;
-    c.elastic_prev_J = 0.0;  // a new point starts with empty springs
-    c.elastic_tangential_prev_J = 0.0;
-    if (it != previous_.end() && it->pair_key == c.pair_key && it->feature == c.feature) {
-      shear = it->shear_spring_N;
-      c.reference_depth_m = std::min(it->reference_depth_m, c.depth_m);
-      c.elastic_prev_J = it->elastic_J;
-      c.elastic_tangential_prev_J = it->elastic_tangential_J;
+    if (history != history_end && history->feature == c.feature) {
+      ContactPoint& p = *history;
+      shear = p.shear_spring_N;
+      c.reference_depth_m = std::min(p.reference_depth_m, c.depth_m);
+      c.elastic_prev_J = p.elastic_J;
+      c.elastic_tangential_prev_J = p.elastic_tangential_J;
       // Keys are unique, so no two contacts write the same record.
-      previous_[std::size_t(it - previous_.begin())].history_carried = true;
-    } else if (!soft_start_pairs_.empty() &&
-               std::binary_search(soft_start_pairs_.begin(), soft_start_pairs_.end(), c.pair_key)) {
+      p.history_carried = true;
+    } else if (soft_start_pair) {
       c.reference_depth_m = c.depth_m;  // first touch of a pair released from a joint
     }
+    // (a new point starts with empty springs: elastic_prev_J = 0.)
 
     // Arms at n and the velocity at n-1/2, kept for finish_step's books.
-    const bool moving_a = c.body_a >= 0 && (c.pair_key & kGroundKeyHigh) != kGroundKeyHigh;
-    c.arm_a_m = moving_a ? Vec3(c.position_m - bodies.position_m[c.body_a]) : Vec3(Vec3::Zero());
-    c.arm_b_m = c.position_m - bodies.position_m[c.body_b];
-    const Vec3 va = moving_a ? Vec3(bodies.velocity_mps[c.body_a] + bodies.angular_velocity_radps[c.body_a].cross(c.arm_a_m))
-                             : Vec3(Vec3::Zero());
-    const Vec3 v_rel = bodies.velocity_mps[c.body_b] + bodies.angular_velocity_radps[c.body_b].cross(c.arm_b_m) - va;
+    c.arm_a_m = moving_a ? Vec3(c.position_m - x_a) : Vec3(Vec3::Zero());
+    c.arm_b_m = c.position_m - x_b;
+    const Vec3 va = moving_a ? Vec3(v_a + w_a.cross(c.arm_a_m)) : Vec3(Vec3::Zero());
+    const Vec3 v_rel = v_b + w_b.cross(c.arm_b_m) - va;
     c.velocity_prev_mps = v_rel;
     const double vn = c.normal.dot(v_rel);
     ContactLawInput in;
@@ -265,21 +277,52 @@ void ContactSystem::apply_law(const BodyStore& bodies, const StepInfo& step) {
     in.stiffness_scale = c.stiffness_scale;
     in.effective_mass_kg = c.effective_mass_kg;
     in.dt_s = step.dt_s;
-    const ContactLawOutput out = linear_contact_law(coeffs_[std::size_t(c.coeff_index)], in, shear);
-    c.normal_force_N = out.normal_force_N;
-    c.tangential_force_N = out.tangential_force_N;
+    const ContactLawOutput law = linear_contact_law(coefficients, in, shear);
+    c.normal_force_N = law.normal_force_N;
+    c.tangential_force_N = law.tangential_force_N;
     c.shear_spring_N = shear;
-    c.sliding = out.sliding;
-    c.elastic_J = out.elastic_J;
-    c.elastic_tangential_J = out.elastic_tangential_J;
+    c.sliding = law.sliding;
+    c.elastic_J = law.elastic_J;
+    c.elastic_tangential_J = law.elastic_tangential_J;
     if (step.step == 0) {
       // The ledger's initial stored energy already holds the springs at t = 0.
       c.elastic_prev_J = c.elastic_J;
       c.elastic_tangential_prev_J = c.elastic_tangential_J;
     }
-    c.viscous_J = 0.0;  // booked in finish_step
-    c.friction_J = 0.0;
-  });
+  }
+  return std::size_t(count);
+}
+
+void ContactSystem::narrow_phase(const BodyStore& bodies, const StepInfo& step) {
+  const std::size_t n_pairs = broad_.pairs().size();
+  const std::size_t n_items = n_pairs + ground_candidates_.size();
+  if (pair_separating_axis_.size() != n_pairs) pair_separating_axis_.assign(n_pairs, -1);
+  contacts_.clear();
+  if (n_items < std::size_t(settings_.parallel_threshold)) {
+    // One thread: straight into the contact list (same order as the chunks).
+    std::size_t cursor = kNoCursor;
+    for (std::size_t item = 0; item < n_items; ++item) process_item(bodies, step, item, cursor, manifold_, contacts_);
+  } else {
+    const std::size_t n_chunks = (n_items + kChunkItems - 1) / kChunkItems;
+    if (chunk_buffers_.size() < n_chunks) chunk_buffers_.resize(n_chunks);
+    parallel_for_dynamic(std::int64_t(n_chunks), true, [&](std::int64_t c) {
+      std::vector<ContactPoint>& buf = chunk_buffers_[std::size_t(c)];
+      buf.clear();
+      std::size_t cursor = kNoCursor;
+      ContactManifold manifold;
+      const std::size_t begin = std::size_t(c) * kChunkItems;
+      const std::size_t end = std::min(n_items, begin + kChunkItems);
+      for (std::size_t item = begin; item < end; ++item) process_item(bodies, step, item, cursor, manifold, buf);
+    });
+    std::size_t total = 0;
+    for (std::size_t c = 0; c < n_chunks; ++c) total += chunk_buffers_[c].size();
+    contacts_.resize(total);
+    std::size_t offset = 0;
+    for (std::size_t c = 0; c < n_chunks; ++c) {
+      std::copy(chunk_buffers_[c].begin(), chunk_buffers_[c].end(), contacts_.begin() + std::ptrdiff_t(offset));
+      offset += chunk_buffers_[c].size();
+    }
+  }
   // Elastic energy summed in contact order (deterministic).
   double elastic = 0.0, viscous = 0.0, friction = 0.0;
   for (const ContactPoint& c : contacts_) elastic += c.elastic_J;
@@ -335,6 +378,37 @@ void ContactSystem::finish_step(const BodyStore& bodies, const StepInfo& step, E
 
 void ContactSystem::gather(BodyStore& bodies) {
   const std::size_t n = bodies.size();
+  const bool parallel =
+      std::int64_t(n) >= settings_.parallel_threshold && contacts_.size() >= std::size_t(settings_.parallel_threshold);
+  if (!parallel) {
+    // One thread: each body's sums run over its contacts in contact order,
+    // from zero, exactly as the per-body lists below do them.
+    body_force_N_.resize(n);
+    body_torque_Nm_.resize(n);
+    body_touched_.assign(n, 0);
+    auto add = [&](std::size_t i, const Vec3& fi, const Vec3& p) {
+      const Vec3 ti = (p - bodies.position_m[i]).cross(fi);
+      if (body_touched_[i]) {
+        body_force_N_[i] += fi;
+        body_torque_Nm_[i] += ti;
+      } else {
+        body_touched_[i] = 1;
+        body_force_N_[i] = Vec3::Zero() + fi;
+        body_torque_Nm_[i] = Vec3::Zero() + ti;
+      }
+    };
+    for (const ContactPoint& c : contacts_) {
+      const Vec3 fb = c.force_N();
+      if (c.body_a >= 0) add(std::size_t(c.body_a), Vec3(-fb), c.position_m);
+      add(std::size_t(c.body_b), fb, c.position_m);
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!body_touched_[i]) continue;
+      bodies.force_N[i] += body_force_N_[i];
+      bodies.torque_Nm[i] += body_torque_Nm_[i];
+    }
+    return;
+  }
   body_start_.assign(n + 1, 0);
   for (const ContactPoint& c : contacts_) {
     if (c.body_a >= 0) ++body_start_[std::size_t(c.body_a) + 1];
@@ -356,9 +430,7 @@ void ContactSystem::gather(BodyStore& bodies) {
     body_start_[0] = 0;
   }
   const std::int64_t nb = std::int64_t(n);
-  const bool parallel =
-      nb >= settings_.parallel_threshold && contacts_.size() >= std::size_t(settings_.parallel_threshold);
-  parallel_for_static(nb, parallel, [&](std::int64_t i) {
+  parallel_for_static(nb, true, [&](std::int64_t i) {
     const std::int32_t s = body_start_[std::size_t(i)], e = body_start_[std::size_t(i) + 1];
     if (s == e) return;
     Vec3 f = Vec3::Zero(), t = Vec3::Zero();

@@ -32,12 +32,21 @@
 // They stay the same while the same features touch.
 #pragma once
 
+#include <cstdint>
+
 #include "contacts/contact_manifold.h"
 
 namespace fq {
 
 // Normal from a to b. Returns out.count (0 when separated).
 int collide_box_box(const OrientedBox& a, const OrientedBox& b, ContactManifold& out);
+
+// The same, with a memory of the separating axis for a pair tested at every
+// step (temporal coherence): *io_separating_axis (-1: none; else 0..2 face
+// of a, 3..5 face of b, 6 + 3 i + j edge a_i x b_j) is tried first, and set
+// to the axis that separated the boxes, or -1 when they touch. The result
+// is exactly that of the plain call whatever the hint holds.
+int collide_box_box(const OrientedBox& a, const OrientedBox& b, ContactManifold& out, std::int8_t* io_separating_axis);
 
 // Feature id layout (for tests and output).
 inline constexpr std::uint32_t kFeatureFaceContact = 1u << 30;

@@ -7,10 +7,13 @@
 //      items; each chunk writes its own buffer, buffers are joined in chunk
 //      order, so the contact list is the same for any thread count
 //   3. contact law per point (linear_contact_law.h) with tangential history
-//      looked up from the previous step's contact list
+//      looked up from the previous step's contact list; done in the same
+//      pass as 2, item by item, while the pair's data is in cache (a box
+//      pair that did not touch keeps its separating axis, which is tested
+//      first at the next step: collide_box_box.h)
 //   4. gather: each body sums the forces of its contacts in contact order
-//      (one CSR list per body), so forces are bitwise identical for any
-//      number of OpenMP threads
+//      (one CSR list per body; on one thread the same sums in one sweep),
+//      so forces are bitwise identical for any number of OpenMP threads
 //
 // Contact order and keys: pairs sorted by (a, b), then ground contacts
 // sorted by box; points of one manifold sorted by feature. The key of a
@@ -202,8 +205,13 @@ class ContactSystem : public ForceProvider {
 
  private:
   int coeff_index_for(int material_i, int material_j) const;
+  // Narrow phase and contact law of every work item (pairs, then boxes near
+  // the ground), into contacts_; books the energy of the springs that ended.
   void narrow_phase(const BodyStore& bodies, const StepInfo& step);
-  void apply_law(const BodyStore& bodies, const StepInfo& step);
+  // One work item: appends its points, with forces, to `out`; `cursor` is
+  // the position in previous_ of the history search (see the .cpp).
+  std::size_t process_item(const BodyStore& bodies, const StepInfo& step, std::size_t item, std::size_t& cursor,
+                           ContactManifold& manifold, std::vector<ContactPoint>& out);
   void gather(BodyStore& bodies);
 
   const BondedPairs* bonded_;
@@ -225,9 +233,15 @@ class ContactSystem : public ForceProvider {
   std::vector<BodyId> ground_candidates_;    // bodies that may touch the ground
   BroadPhase broad_;
   std::vector<int> pair_coeff_;              // per broad-phase pair
+  // Per broad-phase pair: the axis that separated it at its last test (-1:
+  // none), tried first at the next (collide_box_box.h). Only a shortcut:
+  // the result does not depend on it, so it is not part of the checkpoint.
+  std::vector<std::int8_t> pair_separating_axis_;
+  std::vector<double> bounding_radius_m_;    // per body: half-diagonal (m)
 
   // Per step.
   std::vector<std::vector<ContactPoint>> chunk_buffers_;
+  ContactManifold manifold_;  // scratch of the one-thread narrow phase
   std::vector<ContactPoint> contacts_;
   std::vector<ContactPoint> previous_;
   // Pairs released by a joint that have not yet separated (pair keys), and
@@ -236,6 +250,8 @@ class ContactSystem : public ForceProvider {
   std::size_t released_read_ = 0;
   std::vector<std::int32_t> body_start_;     // CSR of contacts per body
   std::vector<std::int32_t> body_entries_;   // contact index * 2 + (0: a side, 1: b side)
+  std::vector<Vec3> body_force_N_, body_torque_Nm_;  // one-thread gather: sums per body
+  std::vector<std::uint8_t> body_touched_;
   double elastic_J_ = 0.0;
   // Losses booked through the last finished step, its work term in full
   // (step 0's in half), and half the last step's work terms (J), which
