@@ -23,12 +23,11 @@
 #include <benchmark/benchmark.h>
 
 #include <chrono>
-#include <cstdio>
 #include <cstring>
-#include <ctime>
-#include <map>
 #include <memory>
+#include <string>
 
+#include "bench_support.h"
 #include "contacts/contact_system.h"
 #include "dem_core/simulation.h"
 #include "pile_scene.h"
@@ -38,19 +37,6 @@
 #endif
 
 namespace {
-
-std::map<std::pair<long, long>, std::uint64_t>& final_hashes() {
-  static std::map<std::pair<long, long>, std::uint64_t> hashes;
-  return hashes;
-}
-
-// CPU seconds of the whole process (all threads): on a shared machine the
-// wall time also counts time the process waited for a core.
-double process_cpu_s() {
-  timespec ts{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
-}
 
 std::uint64_t fnv1a(std::uint64_t h, const void* data, std::size_t bytes) {
   const auto* p = static_cast<const unsigned char*>(data);
@@ -104,10 +90,10 @@ void run_contact_benchmark(benchmark::State& state, int scene) {
     for (int k = 0; k < warm_up_steps; ++k) sim->step();
     const auto rebuilds0 = contacts_view->broad_phase_rebuilds();
     const auto t0 = std::chrono::steady_clock::now();
-    const double cpu0 = process_cpu_s();
+    const double cpu0 = fq::bench::process_cpu_s();
     for (int k = 0; k < timed_steps; ++k) sim->step();
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    cpu_ns_per_body_step = 1e9 * (process_cpu_s() - cpu0) / (double(bodies) * timed_steps);
+    cpu_ns_per_body_step = 1e9 * (fq::bench::process_cpu_s() - cpu0) / (double(bodies) * timed_steps);
     state.SetIterationTime(wall);
     ns_per_body_step = 1e9 * wall / (double(bodies) * timed_steps);
     rebuild_rate = double(contacts_view->broad_phase_rebuilds() - rebuilds0) / timed_steps;
@@ -119,7 +105,8 @@ void run_contact_benchmark(benchmark::State& state, int scene) {
   state.counters["rebuilds_per_step"] = rebuild_rate;
   state.counters["contacts"] = contacts;
   state.counters["state_hash"] = double(hash);
-  final_hashes()[{scene * 10000000L + bodies, threads}] = hash;
+  const std::string name = std::string(scene == 0 ? "pile" : "columns") + ", " + std::to_string(bodies) + " bodies";
+  fq::bench::thread_hashes().record(name, threads, hash);
 }
 
 void BM_ContactPile(benchmark::State& state) { run_contact_benchmark(state, 0); }
@@ -157,15 +144,5 @@ int main(int argc, char** argv) {
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
   // Same final state for 1 and 2 threads?
-  int status = 0;
-  for (const auto& [key, h] : final_hashes()) {
-    if (key.second != 1) continue;
-    const auto other = final_hashes().find({key.first, 2});
-    if (other == final_hashes().end()) continue;
-    const bool same = other->second == h;
-    std::printf("%s, %ld bodies: final state 1 thread vs 2 threads: %s\n", key.first >= 10000000L ? "columns" : "pile",
-                key.first % 10000000L, same ? "identical" : "DIFFERENT");
-    if (!same) status = 1;
-  }
-  return status;
+  return fq::bench::thread_hashes().compare_with_one_thread();
 }

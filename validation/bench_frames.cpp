@@ -38,12 +38,11 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <ctime>
 #include <filesystem>
-#include <map>
 #include <string>
 #include <vector>
 
+#include "bench_support.h"
 #include "io/case_file.h"
 #include "io/case_runner.h"
 
@@ -54,13 +53,6 @@
 namespace {
 
 double g_record_seconds = 0.0;  // 0: the case's own window
-std::map<std::pair<std::string, int>, std::uint64_t> g_hashes;
-
-double process_cpu_s() {
-  timespec ts{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
-}
 
 std::filesystem::path case_path(const std::string& frame) {
   const char* root = std::getenv("FQ_SOURCE_DIR");
@@ -97,20 +89,20 @@ void run_frame(benchmark::State& state, const std::string& frame, bool with_outp
       std::filesystem::remove_all(out_dir);
       fq::CaseRunOptions options;
       options.output_folder = out_dir;
-      const double cpu0 = process_cpu_s();
+      const double cpu0 = fq::bench::process_cpu_s();
       const auto t0 = std::chrono::steady_clock::now();
       const fq::CaseRunReport report = fq::run_case(def, options);
       wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      cpu = process_cpu_s() - cpu0;
+      cpu = fq::bench::process_cpu_s() - cpu0;
       steps = report.result.steps;
       hash = 0;
     } else {
       fq::Scene scene = fq::build_scene(def);
-      const double cpu0 = process_cpu_s();
+      const double cpu0 = fq::bench::process_cpu_s();
       const auto t0 = std::chrono::steady_clock::now();
       const fq::RunResult result = scene.simulation->run();
       wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      cpu = process_cpu_s() - cpu0;
+      cpu = fq::bench::process_cpu_s() - cpu0;
       steps = result.steps;
       profile = scene.simulation->profile();
       hash = scene.simulation->state_hash();
@@ -132,7 +124,7 @@ void run_frame(benchmark::State& state, const std::string& frame, bool with_outp
       state.counters["contacts_s"] = profile.provider_seconds[1];
     }
     state.counters["state_hash"] = double(hash & ((std::uint64_t(1) << 48) - 1));
-    g_hashes[{frame, threads}] = hash;
+    fq::bench::thread_hashes().record("frame " + frame, threads, hash);
   }
 }
 
@@ -187,15 +179,5 @@ int main(int argc, char** argv) {
   if (benchmark::ReportUnrecognizedArguments(rest_argc, rest.data())) return 1;
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
-  int status = 0;
-  for (const auto& [key, h] : g_hashes) {
-    if (key.second == 1) continue;
-    const auto one = g_hashes.find({key.first, 1});
-    if (one == g_hashes.end()) continue;
-    const bool same = one->second == h;
-    std::printf("frame %s: final state 1 thread vs %d threads: %s\n", key.first.c_str(), key.second,
-                same ? "identical" : "DIFFERENT");
-    if (!same) status = 1;
-  }
-  return status;
+  return fq::bench::thread_hashes().compare_with_one_thread();
 }

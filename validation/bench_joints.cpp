@@ -27,11 +27,10 @@
 
 #include <chrono>
 #include <cmath>
-#include <cstdio>
-#include <ctime>
-#include <map>
 #include <memory>
+#include <string>
 
+#include "bench_support.h"
 #include "dem_core/simulation.h"
 #include "joints/joint_system.h"
 
@@ -42,17 +41,6 @@
 namespace {
 
 constexpr int kElementsPerColumn = 10;
-
-std::map<std::pair<long, long>, std::uint64_t>& final_hashes() {
-  static std::map<std::pair<long, long>, std::uint64_t> hashes;
-  return hashes;
-}
-
-double process_cpu_s() {
-  timespec ts{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
-}
 
 fq::SpringDef frame_b_spring() {
   // cases/frame_B.yaml, joint type tenon_new.
@@ -141,11 +129,11 @@ void BM_JointLattice(benchmark::State& state) {
     l.sim->initialize();
     for (int k = 0; k < 64; ++k) l.sim->step();  // warm caches and the profile's phase
     const fq::StageProfile p0 = l.sim->profile();
-    const double cpu0 = process_cpu_s();
+    const double cpu0 = fq::bench::process_cpu_s();
     const auto t0 = std::chrono::steady_clock::now();
     for (int k = 0; k < timed_steps; ++k) l.sim->step();
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    const double cpu = process_cpu_s() - cpu0;
+    const double cpu = fq::bench::process_cpu_s() - cpu0;
     const fq::StageProfile& p1 = l.sim->profile();
     // Joint provider time: its force stage plus the finish stage (joints are
     // the only provider, so the whole finish stage is theirs).
@@ -166,7 +154,7 @@ void BM_JointLattice(benchmark::State& state) {
   state.counters["ns_per_step_total"] = ns_step;
   state.counters["cpu_ns_per_spring_step"] = cpu_ns_spring;
   state.counters["state_hash"] = double(hash & ((std::uint64_t(1) << 48) - 1));
-  final_hashes()[{bodies, threads}] = hash;
+  fq::bench::thread_hashes().record("joint lattice, " + std::to_string(bodies) + " bodies", threads, hash);
 }
 
 BENCHMARK(BM_JointLattice)
@@ -188,15 +176,5 @@ int main(int argc, char** argv) {
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
-  int status = 0;
-  for (const auto& [key, h] : final_hashes()) {
-    if (key.second != 1) continue;
-    const auto other = final_hashes().find({key.first, 2});
-    if (other == final_hashes().end()) continue;
-    const bool same = other->second == h;
-    std::printf("joint lattice, %ld bodies: final state 1 thread vs 2 threads: %s\n", key.first,
-                same ? "identical" : "DIFFERENT");
-    if (!same) status = 1;
-  }
-  return status;
+  return fq::bench::thread_hashes().compare_with_one_thread();
 }
