@@ -99,7 +99,7 @@ LawOutput evaluate_curee(const CureeLaw& law, CureeState& s, double delta) {
   s.force_prev_N = f;
   if (std::abs(delta) > law.delta0_m) s.yielded = true;
   out.force_N = f;
-  out.stored_J = 0.5 * f * f / (p.r3 * k0);
+  out.stored_J = curee_stored_energy_J(law, f);
   out.inelastic = s.yielded;
   return out;
 }

@@ -135,22 +135,16 @@ void JointSystem::prepare(const BodyStore& bodies) {
   delta_m_.assign(ns, 0.0);
   rate_mps_.assign(ns, 0.0);
   law_force_N_.assign(ns, 0.0);
-  dashpot_force_N_.assign(ns, 0.0);
   force_N_.assign(ns, 0.0);
+  spring_force_current_ = false;
   alive_.assign(ns, 1);
   yielded_.assign(ns, 0);
   pending_.assign(ns, 0);
   failure_force_N_.assign(ns, 0.0);
   failure_mode_.assign(ns, "");
-  delta_prev_m_.assign(ns, 0.0);
-  law_force_prev_N_.assign(ns, 0.0);
-  dashpot_power_prev_W_.assign(ns, 0.0);
   has_prev_.assign(ns, 0);
   work_J_.assign(ns, 0.0);
-  stored_J_.assign(ns, 0.0);
   plastic_J_.assign(ns, 0.0);
-  viscous_done_J_.assign(ns, 0.0);
-  viscous_half_J_.assign(ns, 0.0);
   // Points: consecutive springs of one joint with the same attachments (the
   // normal and two shear springs of a four-corner point) share their ends,
   // separation and relative velocity.
@@ -185,6 +179,9 @@ void JointSystem::prepare(const BodyStore& bodies) {
   point_end_a_m_.assign(np, Vec3::Zero());
   point_end_b_m_.assign(np, Vec3::Zero());
   point_dashpot_force_N_.assign(np, Vec3::Zero());
+  point_power_prev_W_.assign(np, 0.0);
+  point_viscous_done_J_.assign(np, 0.0);
+  point_viscous_half_J_.assign(np, 0.0);
   spring_geometry_current_ = false;
   slot_force_N_.assign(2 * nj, Vec3::Zero());
   slot_torque_Nm_.assign(2 * nj, Vec3::Zero());
@@ -209,6 +206,7 @@ void JointSystem::accumulate_forces(BodyStore& bodies, const StepInfo& /*step*/)
   parallel_for_static(std::int64_t(joint_body_a_.size()), parallel,
                       [&](std::int64_t j) { joint_step_(bodies, std::size_t(j)); });
   spring_geometry_current_ = false;
+  spring_force_current_ = false;
 
   // Gather per body in slot order.
   parallel_for_static(std::int64_t(body_count_), parallel, [&](std::int64_t bi) {
@@ -226,18 +224,49 @@ void JointSystem::accumulate_forces(BodyStore& bodies, const StepInfo& /*step*/)
   });
 }
 
-// Inlined into joint_step_, its only caller on the hot path.
-[[gnu::always_inline]] inline bool JointSystem::evaluate_spring_(std::size_t s, double delta, double rate) {
+double JointSystem::stored_energy_J_(std::size_t s, double law_force_N, double delta_m) const {
+  const auto k = std::size_t(law_index_[s]);
+  switch (law_kind_[s]) {
+    case SpringLawKind::Trilinear:
+      return trilinear_stored_energy_J(trilinear_.law[std::size_t(trilinear_.law_of[k])], law_force_N);
+    case SpringLawKind::LinearElastic:
+      return linear_elastic_stored_energy_J(linear_.law[std::size_t(linear_.law_of[k])], delta_m);
+    case SpringLawKind::Curee:
+      return curee_stored_energy_J(curee_.law[std::size_t(curee_.law_of[k])], law_force_N);
+    case SpringLawKind::Count:
+      break;
+  }
+  return 0.0;
+}
+
+double JointSystem::spring_elastic_J(std::size_t s) const {
+  if (alive_.empty() || !alive_[s] || !has_prev_[s]) return 0.0;
+  return stored_energy_J_(s, law_force_N_[s], delta_m_[s]);
+}
+
+// Inlined into joint_step_, its only caller on the hot path. Per spring and
+// step it writes the deformation, rate and law force and nothing else while
+// the spring stays on its initial linear branch.
+[[gnu::always_inline]] inline bool JointSystem::evaluate_spring_(std::size_t s, double delta, double rate,
+                                                                double& law_force_N, double& dashpot_force_N,
+                                                                bool& any_event) {
+  // The previous evaluation's values, read before they are overwritten.
+  const double delta_prev = delta_m_[s];
+  const double law_force_prev = law_force_N_[s];
+  delta_m_[s] = delta;
+  rate_mps_[s] = rate;
   const auto k = std::size_t(law_index_[s]);
   LawOutput out;
-  bool tracks_work = true;
+  // Work books: a trilinear spring on its initial linear branch, and a
+  // linear spring always, store exactly the work done on them (work =
+  // stored), so the trapezoid sum starts when a trilinear spring first
+  // yields; a CUREE spring keeps it from its first step.
+  bool tracks_work = true, tracked_before = true;
   switch (law_kind_[s]) {
     case SpringLawKind::Trilinear:
       out = evaluate_trilinear(trilinear_.law[std::size_t(trilinear_.law_of[k])], trilinear_.state[k], delta);
-      // Until it first yields a trilinear spring is on its initial linear
-      // branch, where the trapezoid work equals the stored energy exactly:
-      // no books to keep (work = stored below).
-      tracks_work = yielded_[s] || out.inelastic;
+      tracked_before = yielded_[s] != 0;
+      tracks_work = tracked_before || out.inelastic;
       break;
     case SpringLawKind::LinearElastic:
       out = evaluate_linear_elastic(linear_.law[std::size_t(linear_.law_of[k])], linear_.state[k], delta);
@@ -250,43 +279,43 @@ void JointSystem::accumulate_forces(BodyStore& bodies, const StepInfo& /*step*/)
       break;
   }
   if (out.failed) {
-    // Deleted: the force drops to zero now and forever.
+    // Deleted: the force drops to zero now and forever; what it stored is
+    // released as plastic work.
     pending_[s] |= kPendingDelete;
-    failure_force_N_[s] = law_force_prev_N_[s];
+    failure_force_N_[s] = law_force_prev;
     const bool tension = delta > 0.0;
     failure_mode_[s] = spring_role_[s] == SpringRole::Shear ? "shear" : (tension ? "tension" : "compression");
     if (!yielded_[s]) {
       yielded_[s] = 1;
       pending_[s] |= kPendingYield;
     }
+    if (has_prev_[s]) plastic_J_[s] += stored_energy_J_(s, law_force_prev, delta_prev);
     alive_[s] = 0;
-    plastic_J_[s] += stored_J_[s];  // release what was stored
-    stored_J_[s] = 0.0;
-    law_force_N_[s] = dashpot_force_N_[s] = force_N_[s] = 0.0;
+    law_force_N_[s] = 0.0;
     has_prev_[s] = 0;
+    any_event = true;
     return false;
   }
-  if (tracks_work && has_prev_[s]) {
-    work_J_[s] += 0.5 * (law_force_prev_N_[s] + out.force_N) * (delta - delta_prev_m_[s]);
-    plastic_J_[s] = work_J_[s] - out.stored_J;
-  } else {
-    // First evaluation (the rest state stores what the law says), or a
-    // linear branch from rest.
-    work_J_[s] = out.stored_J;
+  if (tracks_work) {
+    if (has_prev_[s]) {
+      // Leaving the linear branch now: the work so far is what it stored.
+      if (!tracked_before) work_J_[s] = stored_energy_J_(s, law_force_prev, delta_prev);
+      work_J_[s] += 0.5 * (law_force_prev + out.force_N) * (delta - delta_prev);
+      plastic_J_[s] = work_J_[s] - out.stored_J;
+    } else {
+      work_J_[s] = out.stored_J;  // first evaluation: the rest state stores what the law says
+    }
   }
-  stored_J_[s] = out.stored_J;
   if (out.inelastic && !yielded_[s]) {
     yielded_[s] = 1;
     pending_[s] |= kPendingYield;
     failure_force_N_[s] = out.force_N;
     failure_mode_[s] = spring_role_[s] == SpringRole::Shear ? "shear" : (delta > 0.0 ? "tension" : "compression");
+    any_event = true;
   }
-  const double fd = dashpot_Nspm_[s] * rate;
+  law_force_N = out.force_N;
+  dashpot_force_N = dashpot_Nspm_[s] * rate;
   law_force_N_[s] = out.force_N;
-  dashpot_force_N_[s] = fd;
-  force_N_[s] = out.force_N + fd;
-  delta_prev_m_[s] = delta;
-  law_force_prev_N_[s] = out.force_N;
   has_prev_[s] = 1;
   return true;
 }
@@ -325,15 +354,12 @@ void JointSystem::joint_step_(const BodyStore& bodies, std::size_t j) {
   const std::uint8_t* __restrict is_normal = spring_is_normal_.data();
   // Written by evaluate_spring_ as well: no __restrict.
   const std::uint8_t* alive = alive_.data();
-  const std::uint8_t* pending = pending_.data();
-  const double* force_N = force_N_.data();
-  const double* dashpot_force_N = dashpot_force_N_.data();
-  double* __restrict delta_m = delta_m_.data();
-  double* __restrict rate_mps = rate_mps_.data();
+  double* delta_m = delta_m_.data();
+  double* rate_mps = rate_mps_.data();
   Vec3* __restrict end_a = point_end_a_m_.data();
   Vec3* __restrict end_b = point_end_b_m_.data();
   Vec3* __restrict point_dashpot = point_dashpot_force_N_.data();
-  double* __restrict power_prev_W = dashpot_power_prev_W_.data();
+  double* __restrict power_prev_W = point_power_prev_W_.data();
 
   const bool strain_limit = joint_break_[j].criterion == BreakCriterion::StrainLimit;
   JointSpringSummary sum;
@@ -389,14 +415,15 @@ void JointSystem::joint_step_(const BodyStore& bodies, std::size_t j) {
       for (std::size_t s = first; s < last; ++s) {
         const int ax = axis[s];
         const double delta = d_axis[ax], rate = v_axis[ax];
-        delta_m[s] = delta;
-        rate_mps[s] = rate;
-        if (alive[s] && evaluate_spring_(s, delta, rate)) {
-          f_axis[ax] += force_N[s];
-          fd_axis[ax] += dashpot_force_N[s];
+        double f_law, f_dashpot;
+        if (!alive[s]) {
+          delta_m[s] = delta;
+          rate_mps[s] = rate;
+        } else if (evaluate_spring_(s, delta, rate, f_law, f_dashpot, any_pending)) {
+          f_axis[ax] += f_law + f_dashpot;
+          fd_axis[ax] += f_dashpot;
           count_alive(s, delta);
         }
-        any_pending = any_pending || pending[s] != 0;
       }
       for (int r = 0; r < 3; ++r) {
         force[r] = fr[r] * f_axis[0] + fr[3 + r] * f_axis[1] + fr[6 + r] * f_axis[2];
@@ -412,13 +439,15 @@ void JointSystem::joint_step_(const BodyStore& bodies, std::size_t j) {
       const double rate = e[0] * vrel[0] + e[1] * vrel[1] + e[2] * vrel[2];
       delta_m[s] = delta;
       rate_mps[s] = rate;
-      double f = 0.0, fd = 0.0;
-      if (alive[s] && evaluate_spring_(s, delta, rate)) {
-        f = force_N[s];
-        fd = dashpot_force_N[s];
+      double f = 0.0, fd = 0.0, f_law, f_dashpot;
+      if (!alive[s]) {
+        delta_m[s] = delta;
+        rate_mps[s] = rate;
+      } else if (evaluate_spring_(s, delta, rate, f_law, f_dashpot, any_pending)) {
+        f = f_law + f_dashpot;
+        fd = f_dashpot;
         count_alive(s, delta);
       }
-      any_pending = any_pending || pending[s] != 0;
       for (int r = 0; r < 3; ++r) {
         force[r] = f * e[r];
         dashpot[r] = fd * e[r];
@@ -429,7 +458,7 @@ void JointSystem::joint_step_(const BodyStore& bodies, std::size_t j) {
     for (int r = 0; r < 3; ++r) point_dashpot[p][r] = dashpot[r];
     const double dxf[3] = {d[1] * dashpot[2] - d[2] * dashpot[1], d[2] * dashpot[0] - d[0] * dashpot[2],
                            d[0] * dashpot[1] - d[1] * dashpot[0]};
-    power_prev_W[first] = (dashpot[0] * vrel[0] + dashpot[1] * vrel[1] + dashpot[2] * vrel[2]) -
+    power_prev_W[p] = (dashpot[0] * vrel[0] + dashpot[1] * vrel[1] + dashpot[2] * vrel[2]) -
                           0.5 * (dxf[0] * w_sum[0] + dxf[1] * w_sum[1] + dxf[2] * w_sum[2]);
     // F on a and -F on b, both at the mid-point (joint_system.h): torque on
     // a (arm_a + d/2) x F.
@@ -457,7 +486,9 @@ void JointSystem::joint_step_(const BodyStore& bodies, std::size_t j) {
   }
   const bool brk = joint_should_break(joint_break_[j], sum);
   joint_break_pending_[j] = brk ? 1 : 0;
-  joint_event_pending_[j] = (brk || any_pending) ? 1 : 0;
+  // Kept until finish_step emits the events (an evaluation without a
+  // finish_step in between must not lose them).
+  if (brk || any_pending) joint_event_pending_[j] = 1;
 }
 
 void JointSystem::materialise_spring_geometry_() const {
@@ -475,6 +506,16 @@ void JointSystem::materialise_spring_geometry_() const {
   spring_geometry_current_ = true;
 }
 
+const std::vector<double>& JointSystem::spring_force_N() const {
+  if (!spring_force_current_) {
+    force_N_.resize(spring_joint_.size(), 0.0);
+    for (std::size_t s = 0; s < force_N_.size() && !alive_.empty(); ++s)
+      force_N_[s] = alive_[s] ? law_force_N_[s] + dashpot_Nspm_[s] * rate_mps_[s] : 0.0;
+    spring_force_current_ = true;
+  }
+  return force_N_;
+}
+
 const std::vector<Vec3>& JointSystem::spring_end_a_m() const {
   materialise_spring_geometry_();
   return end_a_m_;
@@ -487,10 +528,10 @@ const std::vector<Vec3>& JointSystem::spring_end_b_m() const {
 
 void JointSystem::kill_spring_(std::size_t s) {
   if (!alive_[s]) return;
+  plastic_J_[s] += spring_elastic_J(s);
   alive_[s] = 0;
-  plastic_J_[s] += stored_J_[s];
-  stored_J_[s] = 0.0;
-  law_force_N_[s] = dashpot_force_N_[s] = force_N_[s] = 0.0;
+  law_force_N_[s] = 0.0;
+  spring_force_current_ = false;
 }
 
 void JointSystem::finish_step(const BodyStore& bodies, const StepInfo& step, EventLog& events) {
@@ -504,7 +545,8 @@ void JointSystem::finish_step(const BodyStore& bodies, const StepInfo& step, Eve
   parallel_for_static(nj_i, parallel_(spring_joint_.size()), [&](std::int64_t ji) {
     const auto j = std::size_t(ji);
     if (joint_broken_[j]) {  // its last dashpot term is now complete
-      for (auto s = std::size_t(joint_first_[j]); s < std::size_t(joint_first_[j + 1]); ++s) viscous_half_J_[s] = 0.0;
+      for (auto p = std::size_t(joint_first_point_[j]); p < std::size_t(joint_first_point_[j + 1]); ++p)
+        point_viscous_half_J_[p] = 0.0;
       return;
     }
     const BodyId a = joint_body_a_[j], b = joint_body_b_[j];
@@ -516,22 +558,21 @@ void JointSystem::finish_step(const BodyStore& bodies, const StepInfo& step, Eve
     const Vec3& wb = bodies.angular_velocity_radps[b];
     const Vec3 w_sum = wa + wb;
     for (auto p = std::size_t(joint_first_point_[j]); p < std::size_t(joint_first_point_[j + 1]); ++p) {
-      const auto first = std::size_t(point_first_[p]);
       const Vec3& dashpot = point_dashpot_force_N_[p];
       if (dashpot.isZero(0.0)) {
-        viscous_half_J_[first] = 0.0;
+        point_viscous_half_J_[p] = 0.0;
         continue;
       }
       const Vec3& pa = point_end_a_m_[p];
       const Vec3& pb = point_end_b_m_[p];
       const Vec3 vrel = (vb + wb.cross(pb - xb)) - (va + wa.cross(pa - xa));
       const double power_next = dashpot.dot(vrel) - 0.5 * (pb - pa).cross(dashpot).dot(w_sum);
-      const double term = dt * 0.5 * (dashpot_power_prev_W_[first] + power_next);
+      const double term = dt * 0.5 * (point_power_prev_W_[p] + power_next);
       // The ledger's kinetic energy at n is KE_0 + (t_0/2 + t_1 + ... +
       // t_{n-1} + t_n/2) (the start shifts v back half a step), so the
       // first step counts half.
-      viscous_done_J_[first] += step.step == 0 ? 0.5 * term : term;
-      viscous_half_J_[first] = 0.5 * term;
+      point_viscous_done_J_[p] += step.step == 0 ? 0.5 * term : term;
+      point_viscous_half_J_[p] = 0.5 * term;
     }
   });
   for (std::size_t j = 0; j < nj; ++j) {
@@ -553,7 +594,8 @@ void JointSystem::finish_step(const BodyStore& bodies, const StepInfo& step, Eve
       e.force_N = failure_force_N_[s];
       if (pending_[s] & kPendingYield) {
         e.kind = EventKind::SpringYielded;
-        if (pending_[s] & kPendingDelete) e.force_N = law_force_prev_N_[s];
+        // Deleted in the same step: the force before deletion (= failure force).
+        if (pending_[s] & kPendingDelete) e.force_N = failure_force_N_[s];
         events.add(e);
       }
       if (pending_[s] & kPendingDelete) {
@@ -592,10 +634,12 @@ void JointSystem::finish_step(const BodyStore& bodies, const StepInfo& step, Eve
 void JointSystem::report_energy(EnergyLedger& ledger) const {
   double elastic = 0.0, plastic = 0.0, viscous = 0.0;
   for (std::size_t s = 0; s < spring_joint_.size(); ++s) {
-    elastic += stored_J_[s];
+    elastic += spring_elastic_J(s);
     plastic += plastic_J_[s];
-    viscous += viscous_done_J_[s] - viscous_half_J_[s];  // through n: all of step n-1, half of step n
   }
+  // Through n: all of step n-1, half of step n.
+  for (std::size_t p = 0; p < point_viscous_done_J_.size(); ++p)
+    viscous += point_viscous_done_J_[p] - point_viscous_half_J_[p];
   ledger.elastic_J += elastic;
   ledger.dissipated_plastic_J += plastic;
   ledger.dissipated_viscous_J += viscous;

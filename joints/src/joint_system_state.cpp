@@ -14,7 +14,9 @@ namespace fq {
 namespace {
 
 // 2: force slots per joint (were per spring); dashpot books on a point's first spring.
-constexpr std::uint32_t kJointStateVersion = 2;
+// 3: no copies of what a spring's deformation and law force give (previous
+//    values, total and dashpot force, stored energy); dashpot books per point.
+constexpr std::uint32_t kJointStateVersion = 3;
 
 template <class T>
 void read_into(StateReader& in, std::vector<T>& out_values, const char* what) {
@@ -48,23 +50,18 @@ void JointSystem::save_state(StateWriter& out) const {
   out.vec(delta_m_);
   out.vec(rate_mps_);
   out.vec(law_force_N_);
-  out.vec(dashpot_force_N_);
-  out.vec(force_N_);
   out.vec(alive_);
   out.vec(yielded_);
   out.vec(pending_);
   out.vec(failure_force_N_);
   out.u64(failure_mode_.size());
   for (const char* mode : failure_mode_) out.str(mode ? mode : "");
-  out.vec(delta_prev_m_);
-  out.vec(law_force_prev_N_);
-  out.vec(dashpot_power_prev_W_);
   out.vec(has_prev_);
   out.vec(work_J_);
-  out.vec(stored_J_);
   out.vec(plastic_J_);
-  out.vec(viscous_done_J_);
-  out.vec(viscous_half_J_);
+  out.vec(point_power_prev_W_);
+  out.vec(point_viscous_done_J_);
+  out.vec(point_viscous_half_J_);
   out.vec3s(slot_force_N_);
   out.vec3s(slot_torque_Nm_);
 
@@ -116,8 +113,6 @@ void JointSystem::load_state(StateReader& in) {
   read_into(in, delta_m_, "spring deformations");
   read_into(in, rate_mps_, "spring rates");
   read_into(in, law_force_N_, "spring law forces");
-  read_into(in, dashpot_force_N_, "dashpot forces");
-  read_into(in, force_N_, "spring forces");
   read_into(in, alive_, "spring alive flags");
   read_into(in, yielded_, "spring yielded flags");
   read_into(in, pending_, "spring pending flags");
@@ -125,15 +120,12 @@ void JointSystem::load_state(StateReader& in) {
   const std::uint64_t modes = in.u64("spring failure modes");
   if (modes != failure_mode_.size()) in.fail("spring failure modes: count differs from the spring count");
   for (const char*& mode : failure_mode_) mode = intern_event_mode(in.str("spring failure mode"));
-  read_into(in, delta_prev_m_, "previous deformations");
-  read_into(in, law_force_prev_N_, "previous law forces");
-  read_into(in, dashpot_power_prev_W_, "dashpot powers");
   read_into(in, has_prev_, "history flags");
   read_into(in, work_J_, "spring work");
-  read_into(in, stored_J_, "spring stored energy");
   read_into(in, plastic_J_, "spring plastic energy");
-  read_into(in, viscous_done_J_, "spring viscous energy");
-  read_into(in, viscous_half_J_, "spring viscous half step");
+  read_into(in, point_power_prev_W_, "dashpot powers");
+  read_into(in, point_viscous_done_J_, "point viscous energy");
+  read_into(in, point_viscous_half_J_, "point viscous half step");
   read_into(in, slot_force_N_, "joint force slots");
   read_into(in, slot_torque_Nm_, "joint torque slots");
   // Point ends from the springs' (the springs of a point share them).
@@ -142,6 +134,7 @@ void JointSystem::load_state(StateReader& in) {
     point_end_b_m_[p] = end_b_m_[std::size_t(point_first_[p])];
   }
   spring_geometry_current_ = true;
+  spring_force_current_ = false;
 
   for (TrilinearState& st : trilinear_.state) st.plastic_offset_m = in.f64("trilinear plastic offset");
   for (CureeState& st : curee_.state) {

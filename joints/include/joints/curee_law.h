@@ -78,5 +78,9 @@ CureeLaw compile_curee(const CureeParams& p);
 // Envelope E(x) for x >= 0 (N); 0 beyond delta_f.
 double curee_envelope(const CureeLaw& law, double x_m);
 LawOutput evaluate_curee(const CureeLaw& law, CureeState& io_state, double delta_m);
+// Stored energy at law force f (J): what unloading at r3 K0 gives back.
+inline double curee_stored_energy_J(const CureeLaw& law, double f_N) {
+  return 0.5 * f_N * f_N / (law.p.r3 * law.p.K0_Npm);
+}
 
 }  // namespace fq

@@ -33,16 +33,19 @@
 // b. The springs of a point share p_a and p_b, so their forces are summed
 // first and the torques formed once per point.
 //
-// Energy: elastic = sum of stored energy (law); plastic = work done minus
-// stored (work by the trapezoid rule on each step's deformation increment,
-// exact on linear branches) plus energy released at deletion/breaking;
+// Energy: elastic = sum of stored energy, a function of the law force (or,
+// for a linear spring, of the deformation) formed when someone asks;
+// plastic = work done minus stored (work by the trapezoid rule on each
+// step's deformation increment, kept only once a spring has left its initial
+// linear branch -- until then work equals stored exactly) plus energy
+// released at deletion/breaking;
 // viscous = sum over steps of dt P_d(v_n), P_d the power the dashpot forces
 // (and their share of the frame torque) take from the bodies, evaluated on
 // the geometry of step n with v_n = (v(n-1/2) + v(n+1/2))/2 -- exactly the
 // work the ledger's leapfrog bookkeeping sees (completed in finish_step,
 // when v(n+1/2) is known). Per point, with F_d the sum of its dashpot
-// forces: P_d = F_d . v_rel - (1/2)(d x F_d) . (w_a + w_b); it is booked on
-// the point's first spring. Reported through step n as t_0/2 + t_1 + ... +
+// forces: P_d = F_d . v_rel - (1/2)(d x F_d) . (w_a + w_b); it is booked per
+// point. Reported through step n as t_0/2 + t_1 + ... +
 // t_{n-1} + t_n/2: the ledger's kinetic energy at n equals KE_0 plus exactly
 // that trapezoid sum of the work terms, because the start shifts v back
 // half a step.
@@ -110,9 +113,10 @@ class JointSystem final : public ForceProvider {
   // could break it at a trial state). Dashpot books are then approximate.
   bool supports_trial_states() const override;
   // Checkpoints (force_provider.h; joint_system_state.cpp): broken and
-  // pending flags, every spring's per-step values, history (law states,
-  // previous deformation and force, alive/yielded, failure force and mode)
-  // and energy books, and the force slots.
+  // pending flags, every spring's deformation, rate and law force (the
+  // previous values of the next step), history (law states, alive/yielded,
+  // failure force and mode), work books, the points' dashpot books, and the
+  // force slots.
   void save_state(StateWriter& out) const override;
   void load_state(StateReader& in) override;
 
@@ -121,7 +125,7 @@ class JointSystem final : public ForceProvider {
   std::size_t spring_count() const { return spring_joint_.size(); }
   const std::vector<Vec3>& spring_end_a_m() const;  // world (m)
   const std::vector<Vec3>& spring_end_b_m() const;  // world (m)
-  const std::vector<double>& spring_force_N() const { return force_N_; }  // law + dashpot, + = tension (N)
+  const std::vector<double>& spring_force_N() const;  // law + dashpot, + = tension (N)
   const std::vector<double>& spring_deformation_m() const { return delta_m_; }
   const std::vector<std::int32_t>& spring_joint() const { return spring_joint_; }
   const std::vector<SpringRole>& spring_role() const { return spring_role_; }
@@ -135,16 +139,22 @@ class JointSystem final : public ForceProvider {
   std::size_t joint_spring_count(std::size_t j) const { return std::size_t(joint_first_[j + 1] - joint_first_[j]); }
   JointCounts counts() const;
   // Stored / dissipated energy of one spring (J).
-  double spring_elastic_J(std::size_t s) const { return stored_J_[s]; }
+  double spring_elastic_J(std::size_t s) const;
   double spring_plastic_J(std::size_t s) const { return plastic_J_[s]; }
 
  private:
   void add_spring_(std::int32_t joint, SpringRole role, std::int8_t axis, const Vec3& attach_a_local,
                    const Vec3& attach_b_local, double rest_length_m, const SpringDef& def, double reduced_mass_kg);
   void joint_step_(const BodyStore& bodies, std::size_t j);
-  // Law of spring s at deformation delta: force, books and flags. Returns
-  // false when the spring was deleted now.
-  bool evaluate_spring_(std::size_t s, double delta, double rate);
+  // Law of spring s (alive) at deformation delta and rate: stores delta,
+  // rate and the law force, keeps the books and flags, and returns the law
+  // and dashpot forces (N). Returns false when the spring was deleted now;
+  // sets any_event when it raised a yield or deletion event.
+  bool evaluate_spring_(std::size_t s, double delta, double rate, double& law_force_N, double& dashpot_force_N,
+                        bool& any_event);
+  // Stored energy of live spring s at its last law force (deformation for
+  // linear springs) (J): the same expression the law evaluates.
+  double stored_energy_J_(std::size_t s, double law_force_N, double delta_m) const;
   void kill_spring_(std::size_t s);
   // Per-spring ends and directions from the per-point ones (output, checkpoints).
   void materialise_spring_geometry_() const;
@@ -185,23 +195,30 @@ class JointSystem final : public ForceProvider {
   std::vector<Vec3> point_attach_a_m_, point_attach_b_m_;  // body frames (m)
   std::vector<Vec3> point_end_a_m_, point_end_b_m_;        // world, this step (m)
   std::vector<Vec3> point_dashpot_force_N_;                // sum of its dashpot forces f_d e (N), on a
+  // Dashpot books per point: dissipated power at v(n-1/2) on the geometry of
+  // step n (W), and the trapezoid sums (J) (see Energy above).
+  std::vector<double> point_power_prev_W_, point_viscous_done_J_, point_viscous_half_J_;
   std::vector<std::int32_t> joint_spring_count_, joint_normal_count_;
   // Springs: per step. Ends and directions of springs are filled from the
   // points on demand (mutable cache), except link directions (their
-  // fallback when the ends coincide).
+  // fallback when the ends coincide); so is the total force law + dashpot.
   mutable std::vector<Vec3> end_a_m_, end_b_m_, direction_;
   mutable bool spring_geometry_current_ = false;
-  std::vector<double> delta_m_, rate_mps_;
-  std::vector<double> law_force_N_, dashpot_force_N_, force_N_;
+  mutable std::vector<double> force_N_;
+  mutable bool spring_force_current_ = false;
+  // Deformation, rate and law force of the last evaluation; at the next one
+  // they are the previous step's values the work books need.
+  std::vector<double> delta_m_, rate_mps_, law_force_N_;
   // Springs: history and books.
   std::vector<std::uint8_t> alive_, yielded_;
   std::vector<std::uint8_t> pending_;  // bit 1: yielded now, bit 2: deleted now
   std::vector<double> failure_force_N_;
   std::vector<const char*> failure_mode_;
-  std::vector<double> delta_prev_m_, law_force_prev_N_;
-  std::vector<double> dashpot_power_prev_W_;  // dissipated power at v(n-1/2), geometry n (W)
   std::vector<std::uint8_t> has_prev_;
-  std::vector<double> work_J_, stored_J_, plastic_J_, viscous_done_J_, viscous_half_J_;
+  // Work done on a spring (J), kept once it has left its initial linear
+  // branch (CUREE springs always); plastic = work - stored, plus what was
+  // stored when the spring was deleted.
+  std::vector<double> work_J_, plastic_J_;
   // Slots: 2 j for body a, 2 j + 1 for body b of joint j.
   std::vector<Vec3> slot_force_N_, slot_torque_Nm_;
   std::vector<std::int32_t> body_slot_first_, body_slots_;

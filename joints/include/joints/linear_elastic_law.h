@@ -12,11 +12,15 @@ struct LinearElasticParams {
 
 struct LinearElasticState {};
 
+inline double linear_elastic_stored_energy_J(const LinearElasticParams& p, double delta_m) {
+  return 0.5 * p.stiffness_Npm * delta_m * delta_m;
+}
+
 inline LawOutput evaluate_linear_elastic(const LinearElasticParams& p, LinearElasticState& /*io_state*/,
                                          double delta_m) {
   LawOutput out;
   out.force_N = p.stiffness_Npm * delta_m;
-  out.stored_J = 0.5 * p.stiffness_Npm * delta_m * delta_m;
+  out.stored_J = linear_elastic_stored_energy_J(p, delta_m);
   return out;
 }
 

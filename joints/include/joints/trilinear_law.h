@@ -58,6 +58,11 @@ struct TrilinearState {
 // inside [-d_Uc, d_Ut] (the elastic range would vanish).
 TrilinearLaw compile_trilinear(const TrilinearParams& p, double reference_length_m);
 
+// Stored energy at law force f (J): F^2 / (2 k_e), k_e on the side of f.
+inline double trilinear_stored_energy_J(const TrilinearLaw& law, double f_N) {
+  return 0.5 * f_N * f_N * (f_N >= 0.0 ? law.inv_k0_t_mpN : law.inv_k0_c_mpN);
+}
+
 inline LawOutput evaluate_trilinear(const TrilinearLaw& law, TrilinearState& io_state, double delta_m) {
   LawOutput out;
   if (delta_m > law.du_t_m || delta_m < -law.du_c_m) {
@@ -73,9 +78,8 @@ inline LawOutput evaluate_trilinear(const TrilinearLaw& law, TrilinearState& io_
     f = std::clamp(f, f_lo, f_hi);
     io_state.plastic_offset_m = delta_m - f / (f >= 0.0 ? law.k0_t_Npm : law.k0_c_Npm);
   }
-  const double inv_ke = f >= 0.0 ? law.inv_k0_t_mpN : law.inv_k0_c_mpN;
   out.force_N = f;
-  out.stored_J = 0.5 * f * f * inv_ke;
+  out.stored_J = trilinear_stored_energy_J(law, f);
   out.inelastic = io_state.plastic_offset_m != 0.0;
   return out;
 }
