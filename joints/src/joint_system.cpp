@@ -151,8 +151,8 @@ void JointSystem::prepare(const BodyStore& bodies) {
   const std::size_t nj = joint_body_a_.size();
   point_first_.clear();
   joint_first_point_.assign(1, 0);
-  point_attach_a_m_.clear();
-  point_attach_b_m_.clear();
+  point_attach_a_m_ = Vec3Columns{};
+  point_attach_b_m_ = Vec3Columns{};
   spring_point_.assign(ns, 0);
   spring_is_normal_.assign(ns, 0);
   joint_spring_count_.assign(nj, 0);
@@ -176,9 +176,9 @@ void JointSystem::prepare(const BodyStore& bodies) {
   }
   point_first_.push_back(std::int32_t(ns));
   const std::size_t np = point_attach_a_m_.size();
-  point_end_a_m_.assign(np, Vec3::Zero());
-  point_end_b_m_.assign(np, Vec3::Zero());
-  point_dashpot_force_N_.assign(np, Vec3::Zero());
+  point_end_a_m_.assign(np);
+  point_end_b_m_.assign(np);
+  point_dashpot_force_N_.assign(np);
   point_power_prev_W_.assign(np, 0.0);
   point_viscous_done_J_.assign(np, 0.0);
   point_viscous_half_J_.assign(np, 0.0);
@@ -344,11 +344,7 @@ void JointSystem::joint_step_(const BodyStore& bodies, std::size_t j) {
   const Vec3 va = bodies.velocity_mps[a], vb = bodies.velocity_mps[b];
   const Vec3 wa = bodies.angular_velocity_radps[a], wb = bodies.angular_velocity_radps[b];
   const Vec3 w_sum = wa + wb;
-  // Raw pointers: the compiler cannot tell that the vectors' own data
-  // pointers are not changed by the stores below, and would reload them.
   const std::int32_t* __restrict point_first = point_first_.data();
-  const Vec3* __restrict attach_a = point_attach_a_m_.data();
-  const Vec3* __restrict attach_b = point_attach_b_m_.data();
   const std::int8_t* __restrict axis = spring_axis_.data();
   const double* __restrict reference_length = reference_length_m_.data();
   const std::uint8_t* __restrict is_normal = spring_is_normal_.data();
@@ -356,18 +352,12 @@ void JointSystem::joint_step_(const BodyStore& bodies, std::size_t j) {
   const std::uint8_t* alive = alive_.data();
   double* delta_m = delta_m_.data();
   double* rate_mps = rate_mps_.data();
-  Vec3* __restrict end_a = point_end_a_m_.data();
-  Vec3* __restrict end_b = point_end_b_m_.data();
-  Vec3* __restrict point_dashpot = point_dashpot_force_N_.data();
-  double* __restrict power_prev_W = point_power_prev_W_.data();
 
   const bool strain_limit = joint_break_[j].criterion == BreakCriterion::StrainLimit;
   JointSpringSummary sum;
   sum.springs = joint_spring_count_[j];
   sum.normal_springs = joint_normal_count_[j];
   bool any_pending = false;
-  // The point loop is written in scalars: Eigen's packet code for 3-vectors
-  // (two lanes plus a tail) costs about twice the instructions here.
   // Matrices are column-major: m[3 c + r] is row r of column c.
   const double* ra_m = ra.data();
   const double* rb_m = rb.data();
@@ -379,96 +369,164 @@ void JointSystem::joint_step_(const BodyStore& bodies, std::size_t j) {
     // Only the strain-limit criterion reads it (fracture.h).
     if (strain_limit) sum.max_strain = std::max(sum.max_strain, std::abs(delta) / reference_length[s]);
   };
+
+  // The joint's points in chunks. Stages 1 and 3 are loops over points with
+  // no branch, on columns of doubles (structures of arrays), which the
+  // compiler turns into SIMD code: every lane does the same operations in
+  // the same order as one scalar point would, so results do not depend on
+  // the vector width. Stage 2 runs the springs' laws point by point; stage 4
+  // sums the points' forces and torques in point order.
+  constexpr std::size_t kChunk = 8;
   const auto first_point = std::size_t(joint_first_point_[j]), last_point = std::size_t(joint_first_point_[j + 1]);
-  for (std::size_t p = first_point; p < last_point; ++p) {
-    const double* la = attach_a[p].data();
-    const double* lb = attach_b[p].data();
-    double arm_a[3], arm_b[3], d[3], vrel[3];
-    for (int r = 0; r < 3; ++r) {
-      arm_a[r] = ra_m[r] * la[0] + ra_m[3 + r] * la[1] + ra_m[6 + r] * la[2];
-      arm_b[r] = rb_m[r] * lb[0] + rb_m[3 + r] * lb[1] + rb_m[6 + r] * lb[2];
-    }
-    // Element-wise stores: a Vec3 assembled from scalars goes through the
-    // stack and is re-read as a packet, which stalls store forwarding.
-    double* pa = end_a[p].data();
-    double* pb = end_b[p].data();
-    for (int r = 0; r < 3; ++r) {
-      pa[r] = xa[r] + arm_a[r];
-      pb[r] = xb[r] + arm_b[r];
-      d[r] = pb[r] - pa[r];
-    }
-    // v_rel = (v_b + w_b x arm_b) - (v_a + w_a x arm_a)
-    vrel[0] = (vb[0] + wb[1] * arm_b[2] - wb[2] * arm_b[1]) - (va[0] + wa[1] * arm_a[2] - wa[2] * arm_a[1]);
-    vrel[1] = (vb[1] + wb[2] * arm_b[0] - wb[0] * arm_b[2]) - (va[1] + wa[2] * arm_a[0] - wa[0] * arm_a[2]);
-    vrel[2] = (vb[2] + wb[0] * arm_b[1] - wb[1] * arm_b[0]) - (va[2] + wa[0] * arm_a[1] - wa[1] * arm_a[0]);
-    double d_axis[3], v_axis[3];  // components along the joint axes
-    // The point's springs summed into one force (on a) and one dashpot force.
-    double force[3], dashpot[3];
-    const auto first = std::size_t(point_first[p]), last = std::size_t(point_first[p + 1]);
-    if (axis[first] >= 0) {
-      // Point springs: one joint axis each, forces summed along the axes.
-      double f_axis[3] = {0.0, 0.0, 0.0}, fd_axis[3] = {0.0, 0.0, 0.0};
-      for (int c = 0; c < 3; ++c) {
-        d_axis[c] = fr[3 * c] * d[0] + fr[3 * c + 1] * d[1] + fr[3 * c + 2] * d[2];
-        v_axis[c] = fr[3 * c] * vrel[0] + fr[3 * c + 1] * vrel[1] + fr[3 * c + 2] * vrel[2];
+  for (std::size_t chunk = first_point; chunk < last_point; chunk += kChunk) {
+    const std::size_t n = std::min(kChunk, last_point - chunk);
+    // Per point of the chunk: arm of end a (m), separation d = p_b - p_a
+    // (m), relative velocity (m/s), and d and v_rel along the joint axes.
+    double arm_a[3][kChunk], d[3][kChunk], vrel[3][kChunk], d_axis[3][kChunk], v_axis[3][kChunk];
+    {
+      const double* __restrict la_x = point_attach_a_m_.x.data() + chunk;
+      const double* __restrict la_y = point_attach_a_m_.y.data() + chunk;
+      const double* __restrict la_z = point_attach_a_m_.z.data() + chunk;
+      const double* __restrict lb_x = point_attach_b_m_.x.data() + chunk;
+      const double* __restrict lb_y = point_attach_b_m_.y.data() + chunk;
+      const double* __restrict lb_z = point_attach_b_m_.z.data() + chunk;
+      double* __restrict pa_x = point_end_a_m_.x.data() + chunk;
+      double* __restrict pa_y = point_end_a_m_.y.data() + chunk;
+      double* __restrict pa_z = point_end_a_m_.z.data() + chunk;
+      double* __restrict pb_x = point_end_b_m_.x.data() + chunk;
+      double* __restrict pb_y = point_end_b_m_.y.data() + chunk;
+      double* __restrict pb_z = point_end_b_m_.z.data() + chunk;
+      // Loop invariants as plain scalars (the vectoriser does not see
+      // through loads from the Eigen objects).
+      double Ra[9], Rb[9], F[9], Xa[3], Xb[3], Va[3], Vb[3], Wa[3], Wb[3];
+      for (int k = 0; k < 9; ++k) Ra[k] = ra_m[k], Rb[k] = rb_m[k], F[k] = fr[k];
+      for (int k = 0; k < 3; ++k) Xa[k] = xa[k], Xb[k] = xb[k], Va[k] = va[k], Vb[k] = vb[k], Wa[k] = wa[k], Wb[k] = wb[k];
+      // No column written here is read here by another point.
+#pragma GCC ivdep
+      for (std::size_t i = 0; i < n; ++i) {
+        double am[3], bm[3], pa[3], pb[3];
+        for (int r = 0; r < 3; ++r) {
+          am[r] = Ra[r] * la_x[i] + Ra[3 + r] * la_y[i] + Ra[6 + r] * la_z[i];
+          bm[r] = Rb[r] * lb_x[i] + Rb[3 + r] * lb_y[i] + Rb[6 + r] * lb_z[i];
+          pa[r] = Xa[r] + am[r];
+          pb[r] = Xb[r] + bm[r];
+          d[r][i] = pb[r] - pa[r];
+          arm_a[r][i] = am[r];
+        }
+        pa_x[i] = pa[0];
+        pa_y[i] = pa[1];
+        pa_z[i] = pa[2];
+        pb_x[i] = pb[0];
+        pb_y[i] = pb[1];
+        pb_z[i] = pb[2];
+        // v_rel = (v_b + w_b x arm_b) - (v_a + w_a x arm_a)
+        const double v0 = (Vb[0] + Wb[1] * bm[2] - Wb[2] * bm[1]) - (Va[0] + Wa[1] * am[2] - Wa[2] * am[1]);
+        const double v1 = (Vb[1] + Wb[2] * bm[0] - Wb[0] * bm[2]) - (Va[1] + Wa[2] * am[0] - Wa[0] * am[2]);
+        const double v2 = (Vb[2] + Wb[0] * bm[1] - Wb[1] * bm[0]) - (Va[2] + Wa[0] * am[1] - Wa[1] * am[0]);
+        vrel[0][i] = v0;
+        vrel[1][i] = v1;
+        vrel[2][i] = v2;
+        for (int c = 0; c < 3; ++c) {
+          d_axis[c][i] = F[3 * c] * d[0][i] + F[3 * c + 1] * d[1][i] + F[3 * c + 2] * d[2][i];
+          v_axis[c][i] = F[3 * c] * v0 + F[3 * c + 1] * v1 + F[3 * c + 2] * v2;
+        }
       }
-      for (std::size_t s = first; s < last; ++s) {
-        const int ax = axis[s];
-        const double delta = d_axis[ax], rate = v_axis[ax];
-        double f_law, f_dashpot;
+    }
+
+    // Stage 2: the springs of each point. Point springs give their force
+    // along the joint axes (f_axis, fd_axis: total and dashpot part); a link
+    // gives it along its own direction, in world components (link_force).
+    double f_axis[3][kChunk], fd_axis[3][kChunk];
+    double link_force[3][kChunk], link_dashpot[3][kChunk];
+    bool any_link = false;
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::size_t p = chunk + i;
+      const auto first = std::size_t(point_first[p]), last = std::size_t(point_first[p + 1]);
+      for (int c = 0; c < 3; ++c) f_axis[c][i] = fd_axis[c][i] = 0.0;
+      if (axis[first] >= 0) {
+        for (std::size_t s = first; s < last; ++s) {
+          const int ax = axis[s];
+          const double delta = d_axis[ax][i], rate = v_axis[ax][i];
+          double f_law, f_dashpot;
+          if (!alive[s]) {
+            delta_m[s] = delta;
+            rate_mps[s] = rate;
+          } else if (evaluate_spring_(s, delta, rate, f_law, f_dashpot, any_pending)) {
+            f_axis[ax][i] += f_law + f_dashpot;
+            fd_axis[ax][i] += f_dashpot;
+            count_alive(s, delta);
+          }
+        }
+      } else {
+        // A link (its own point): along its current direction.
+        any_link = true;
+        const std::size_t s = first;
+        const double len = std::sqrt(d[0][i] * d[0][i] + d[1][i] * d[1][i] + d[2][i] * d[2][i]);
+        const Vec3 e = len > 0.0 ? Vec3(Vec3(d[0][i], d[1][i], d[2][i]) / len) : direction_[s];
+        direction_[s] = e;
+        const double delta = len - rest_length_m_[s];
+        const double rate = e[0] * vrel[0][i] + e[1] * vrel[1][i] + e[2] * vrel[2][i];
+        double f = 0.0, fd = 0.0, f_law, f_dashpot;
         if (!alive[s]) {
           delta_m[s] = delta;
           rate_mps[s] = rate;
         } else if (evaluate_spring_(s, delta, rate, f_law, f_dashpot, any_pending)) {
-          f_axis[ax] += f_law + f_dashpot;
-          fd_axis[ax] += f_dashpot;
+          f = f_law + f_dashpot;
+          fd = f_dashpot;
           count_alive(s, delta);
         }
-      }
-      for (int r = 0; r < 3; ++r) {
-        force[r] = fr[r] * f_axis[0] + fr[3 + r] * f_axis[1] + fr[6 + r] * f_axis[2];
-        dashpot[r] = fr[r] * fd_axis[0] + fr[3 + r] * fd_axis[1] + fr[6 + r] * fd_axis[2];
-      }
-    } else {
-      // A link (its own point): along its current direction.
-      const std::size_t s = first;
-      const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-      const Vec3 e = len > 0.0 ? Vec3(Vec3(d[0], d[1], d[2]) / len) : direction_[s];
-      direction_[s] = e;
-      const double delta = len - rest_length_m_[s];
-      const double rate = e[0] * vrel[0] + e[1] * vrel[1] + e[2] * vrel[2];
-      delta_m[s] = delta;
-      rate_mps[s] = rate;
-      double f = 0.0, fd = 0.0, f_law, f_dashpot;
-      if (!alive[s]) {
-        delta_m[s] = delta;
-        rate_mps[s] = rate;
-      } else if (evaluate_spring_(s, delta, rate, f_law, f_dashpot, any_pending)) {
-        f = f_law + f_dashpot;
-        fd = f_dashpot;
-        count_alive(s, delta);
-      }
-      for (int r = 0; r < 3; ++r) {
-        force[r] = f * e[r];
-        dashpot[r] = fd * e[r];
+        for (int r = 0; r < 3; ++r) {
+          link_force[r][i] = f * e[r];
+          link_dashpot[r][i] = fd * e[r];
+        }
       }
     }
-    // Dissipated power of the dashpot force system at n-1/2 (completed in
-    // finish_step): F_d . v_rel - (1/2) (d x F_d) . (w_a + w_b).
-    for (int r = 0; r < 3; ++r) point_dashpot[p][r] = dashpot[r];
-    const double dxf[3] = {d[1] * dashpot[2] - d[2] * dashpot[1], d[2] * dashpot[0] - d[0] * dashpot[2],
-                           d[0] * dashpot[1] - d[1] * dashpot[0]};
-    power_prev_W[p] = (dashpot[0] * vrel[0] + dashpot[1] * vrel[1] + dashpot[2] * vrel[2]) -
-                          0.5 * (dxf[0] * w_sum[0] + dxf[1] * w_sum[1] + dxf[2] * w_sum[2]);
-    // F on a and -F on b, both at the mid-point (joint_system.h): torque on
-    // a (arm_a + d/2) x F.
-    const double m[3] = {arm_a[0] + 0.5 * d[0], arm_a[1] + 0.5 * d[1], arm_a[2] + 0.5 * d[2]};
-    force_on_a[0] += force[0];
-    force_on_a[1] += force[1];
-    force_on_a[2] += force[2];
-    torque_on_a[0] += m[1] * force[2] - m[2] * force[1];
-    torque_on_a[1] += m[2] * force[0] - m[0] * force[2];
-    torque_on_a[2] += m[0] * force[1] - m[1] * force[0];
+
+    // Stage 3: per point its world force F (on a) and dashpot force, the
+    // dashpot power at n-1/2 (completed in finish_step), F_d . v_rel -
+    // (1/2) (d x F_d) . (w_a + w_b), and its torque on a about x_a:
+    // F on a and -F on b both act at the mid-point (joint_system.h), so the
+    // torque is (arm_a + d/2) x F.
+    double force[3][kChunk], dashpot[3][kChunk], torque[3][kChunk];
+    for (std::size_t i = 0; i < n; ++i)
+      for (int r = 0; r < 3; ++r) {
+        force[r][i] = fr[r] * f_axis[0][i] + fr[3 + r] * f_axis[1][i] + fr[6 + r] * f_axis[2][i];
+        dashpot[r][i] = fr[r] * fd_axis[0][i] + fr[3 + r] * fd_axis[1][i] + fr[6 + r] * fd_axis[2][i];
+      }
+    if (any_link)
+      for (std::size_t i = 0; i < n; ++i)
+        if (axis[std::size_t(point_first[chunk + i])] < 0)
+          for (int r = 0; r < 3; ++r) {
+            force[r][i] = link_force[r][i];
+            dashpot[r][i] = link_dashpot[r][i];
+          }
+    {
+      double* __restrict fd_x = point_dashpot_force_N_.x.data() + chunk;
+      double* __restrict fd_y = point_dashpot_force_N_.y.data() + chunk;
+      double* __restrict fd_z = point_dashpot_force_N_.z.data() + chunk;
+      double* __restrict power_prev_W = point_power_prev_W_.data() + chunk;
+#pragma GCC ivdep
+      for (std::size_t i = 0; i < n; ++i) {
+        const double dx = d[0][i], dy = d[1][i], dz = d[2][i];
+        const double f0 = dashpot[0][i], f1 = dashpot[1][i], f2 = dashpot[2][i];
+        fd_x[i] = f0;
+        fd_y[i] = f1;
+        fd_z[i] = f2;
+        const double dxf0 = dy * f2 - dz * f1, dxf1 = dz * f0 - dx * f2, dxf2 = dx * f1 - dy * f0;
+        power_prev_W[i] = (f0 * vrel[0][i] + f1 * vrel[1][i] + f2 * vrel[2][i]) -
+                          0.5 * (dxf0 * w_sum[0] + dxf1 * w_sum[1] + dxf2 * w_sum[2]);
+        const double m0 = arm_a[0][i] + 0.5 * dx, m1 = arm_a[1][i] + 0.5 * dy, m2 = arm_a[2][i] + 0.5 * dz;
+        torque[0][i] = m1 * force[2][i] - m2 * force[1][i];
+        torque[1][i] = m2 * force[0][i] - m0 * force[2][i];
+        torque[2][i] = m0 * force[1][i] - m1 * force[0][i];
+      }
+    }
+    // Stage 4: sums in point order.
+    for (std::size_t i = 0; i < n; ++i)
+      for (int r = 0; r < 3; ++r) {
+        force_on_a[r] += force[r][i];
+        torque_on_a[r] += torque[r][i];
+      }
   }
   // Torque on b: -(m - x_b) x F = -(m - x_a) x F + (x_b - x_a) x F, summed over points.
   const double* f = force_on_a;
@@ -558,13 +616,13 @@ void JointSystem::finish_step(const BodyStore& bodies, const StepInfo& step, Eve
     const Vec3& wb = bodies.angular_velocity_radps[b];
     const Vec3 w_sum = wa + wb;
     for (auto p = std::size_t(joint_first_point_[j]); p < std::size_t(joint_first_point_[j + 1]); ++p) {
-      const Vec3& dashpot = point_dashpot_force_N_[p];
+      const Vec3 dashpot = point_dashpot_force_N_[p];
       if (dashpot.isZero(0.0)) {
         point_viscous_half_J_[p] = 0.0;
         continue;
       }
-      const Vec3& pa = point_end_a_m_[p];
-      const Vec3& pb = point_end_b_m_[p];
+      const Vec3 pa = point_end_a_m_[p];
+      const Vec3 pb = point_end_b_m_[p];
       const Vec3 vrel = (vb + wb.cross(pb - xb)) - (va + wa.cross(pa - xa));
       const double power_next = dashpot.dot(vrel) - 0.5 * (pb - pa).cross(dashpot).dot(w_sum);
       const double term = dt * 0.5 * (point_power_prev_W_[p] + power_next);

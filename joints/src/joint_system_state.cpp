@@ -130,8 +130,8 @@ void JointSystem::load_state(StateReader& in) {
   read_into(in, slot_torque_Nm_, "joint torque slots");
   // Point ends from the springs' (the springs of a point share them).
   for (std::size_t p = 0; p + 1 < point_first_.size(); ++p) {
-    point_end_a_m_[p] = end_a_m_[std::size_t(point_first_[p])];
-    point_end_b_m_[p] = end_b_m_[std::size_t(point_first_[p])];
+    point_end_a_m_.set(p, end_a_m_[std::size_t(point_first_[p])]);
+    point_end_b_m_.set(p, end_b_m_[std::size_t(point_first_[p])]);
   }
   spring_geometry_current_ = true;
   spring_force_current_ = false;

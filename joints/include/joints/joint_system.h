@@ -192,9 +192,19 @@ class JointSystem final : public ForceProvider {
   // Points: springs [point_first_[p], point_first_[p+1]); joint j owns
   // points [joint_first_point_[j], joint_first_point_[j+1]).
   std::vector<std::int32_t> point_first_, joint_first_point_;
-  std::vector<Vec3> point_attach_a_m_, point_attach_b_m_;  // body frames (m)
-  std::vector<Vec3> point_end_a_m_, point_end_b_m_;        // world, this step (m)
-  std::vector<Vec3> point_dashpot_force_N_;                // sum of its dashpot forces f_d e (N), on a
+  // Per-point vectors as three columns of doubles, so that the point loops
+  // of joint_step_ run in SIMD lanes.
+  struct Vec3Columns {
+    std::vector<double> x, y, z;
+    void assign(std::size_t n) { x.assign(n, 0.0), y.assign(n, 0.0), z.assign(n, 0.0); }
+    void push_back(const Vec3& v) { x.push_back(v.x()), y.push_back(v.y()), z.push_back(v.z()); }
+    Vec3 operator[](std::size_t i) const { return Vec3(x[i], y[i], z[i]); }
+    void set(std::size_t i, const Vec3& v) { x[i] = v.x(), y[i] = v.y(), z[i] = v.z(); }
+    std::size_t size() const { return x.size(); }
+  };
+  Vec3Columns point_attach_a_m_, point_attach_b_m_;  // body frames (m)
+  Vec3Columns point_end_a_m_, point_end_b_m_;        // world, this step (m)
+  Vec3Columns point_dashpot_force_N_;                // sum of its dashpot forces f_d e (N), on a
   // Dashpot books per point: dissipated power at v(n-1/2) on the geometry of
   // step n (W), and the trapezoid sums (J) (see Energy above).
   std::vector<double> point_power_prev_W_, point_viscous_done_J_, point_viscous_half_J_;
