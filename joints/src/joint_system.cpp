@@ -608,29 +608,55 @@ void JointSystem::finish_step(const BodyStore& bodies, const StepInfo& step, Eve
       return;
     }
     const BodyId a = joint_body_a_[j], b = joint_body_b_[j];
-    const Vec3 xa = bodies.position_m[a] - dt * bodies.velocity_mps[a];
-    const Vec3 xb = bodies.position_m[b] - dt * bodies.velocity_mps[b];
-    const Vec3& va = bodies.velocity_mps[a];
-    const Vec3& vb = bodies.velocity_mps[b];
-    const Vec3& wa = bodies.angular_velocity_radps[a];
-    const Vec3& wb = bodies.angular_velocity_radps[b];
-    const Vec3 w_sum = wa + wb;
-    for (auto p = std::size_t(joint_first_point_[j]); p < std::size_t(joint_first_point_[j + 1]); ++p) {
-      const Vec3 dashpot = point_dashpot_force_N_[p];
-      if (dashpot.isZero(0.0)) {
-        point_viscous_half_J_[p] = 0.0;
-        continue;
-      }
-      const Vec3 pa = point_end_a_m_[p];
-      const Vec3 pb = point_end_b_m_[p];
-      const Vec3 vrel = (vb + wb.cross(pb - xb)) - (va + wa.cross(pa - xa));
-      const double power_next = dashpot.dot(vrel) - 0.5 * (pb - pa).cross(dashpot).dot(w_sum);
-      const double term = dt * 0.5 * (point_power_prev_W_[p] + power_next);
+    // Loop invariants as plain scalars, so that the point loop runs in SIMD
+    // lanes (as in joint_step_; every lane does what one point would).
+    double xa[3], xb[3], va[3], vb[3], wa[3], wb[3], w_sum[3];
+    for (int r = 0; r < 3; ++r) {
+      xa[r] = bodies.position_m[a][r] - dt * bodies.velocity_mps[a][r];
+      xb[r] = bodies.position_m[b][r] - dt * bodies.velocity_mps[b][r];
+      va[r] = bodies.velocity_mps[a][r];
+      vb[r] = bodies.velocity_mps[b][r];
+      wa[r] = bodies.angular_velocity_radps[a][r];
+      wb[r] = bodies.angular_velocity_radps[b][r];
+      w_sum[r] = wa[r] + wb[r];
+    }
+    const double first_step_share = step.step == 0 ? 0.5 : 1.0;
+    const double half_dt = dt * 0.5;  // a local: the closure's dt would be re-read after every store
+    const auto first_point = std::size_t(joint_first_point_[j]), last_point = std::size_t(joint_first_point_[j + 1]);
+    const double* __restrict fd_x = point_dashpot_force_N_.x.data() + first_point;
+    const double* __restrict fd_y = point_dashpot_force_N_.y.data() + first_point;
+    const double* __restrict fd_z = point_dashpot_force_N_.z.data() + first_point;
+    const double* __restrict pa_x = point_end_a_m_.x.data() + first_point;
+    const double* __restrict pa_y = point_end_a_m_.y.data() + first_point;
+    const double* __restrict pa_z = point_end_a_m_.z.data() + first_point;
+    const double* __restrict pb_x = point_end_b_m_.x.data() + first_point;
+    const double* __restrict pb_y = point_end_b_m_.y.data() + first_point;
+    const double* __restrict pb_z = point_end_b_m_.z.data() + first_point;
+    const double* __restrict power_prev = point_power_prev_W_.data() + first_point;
+    double* __restrict done = point_viscous_done_J_.data() + first_point;
+    double* __restrict half = point_viscous_half_J_.data() + first_point;
+    const std::size_t n = last_point - first_point;
+#pragma GCC ivdep
+    for (std::size_t p = 0; p < n; ++p) {
+      // A point without dashpot force (F_d = 0 at n-1/2 and n+1/2) books a
+      // term of exactly +-0, which changes no sum.
+      const double f0 = fd_x[p], f1 = fd_y[p], f2 = fd_z[p];
+      const double ra0 = pa_x[p] - xa[0], ra1 = pa_y[p] - xa[1], ra2 = pa_z[p] - xa[2];
+      const double rb0 = pb_x[p] - xb[0], rb1 = pb_y[p] - xb[1], rb2 = pb_z[p] - xb[2];
+      // v_rel = (v_b + w_b x r_b) - (v_a + w_a x r_a)
+      const double v0 = (vb[0] + (wb[1] * rb2 - wb[2] * rb1)) - (va[0] + (wa[1] * ra2 - wa[2] * ra1));
+      const double v1 = (vb[1] + (wb[2] * rb0 - wb[0] * rb2)) - (va[1] + (wa[2] * ra0 - wa[0] * ra2));
+      const double v2 = (vb[2] + (wb[0] * rb1 - wb[1] * rb0)) - (va[2] + (wa[0] * ra1 - wa[1] * ra0));
+      const double d0 = pb_x[p] - pa_x[p], d1 = pb_y[p] - pa_y[p], d2 = pb_z[p] - pa_z[p];
+      const double c0 = d1 * f2 - d2 * f1, c1 = d2 * f0 - d0 * f2, c2 = d0 * f1 - d1 * f0;
+      // P_d(n+1/2) = F_d . v_rel - (1/2) (d x F_d) . (w_a + w_b)
+      const double power_next = (f0 * v0 + f1 * v1 + f2 * v2) - 0.5 * (c0 * w_sum[0] + c1 * w_sum[1] + c2 * w_sum[2]);
+      const double term = half_dt * (power_prev[p] + power_next);
       // The ledger's kinetic energy at n is KE_0 + (t_0/2 + t_1 + ... +
       // t_{n-1} + t_n/2) (the start shifts v back half a step), so the
       // first step counts half.
-      point_viscous_done_J_[p] += step.step == 0 ? 0.5 * term : term;
-      point_viscous_half_J_[p] = 0.5 * term;
+      done[p] += first_step_share * term;
+      half[p] = 0.5 * term;
     }
   });
   for (std::size_t j = 0; j < nj; ++j) {
