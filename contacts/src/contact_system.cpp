@@ -107,6 +107,7 @@ void ContactSystem::prepare(const BodyStore& bodies) {
   if (!ground_enabled_) ground_candidates_.clear();
   const double skin = settings_.skin_m > 0.0 ? settings_.skin_m : (std::isfinite(thinnest_m) ? 0.4 * thinnest_m : 1.0);
   broad_.configure(skin, participates_);
+  broad_.set_parallel_min_bodies(settings_.broad_phase_parallel_bodies);
   contacts_.clear();
   previous_.clear();
   prepared_ = true;
@@ -118,8 +119,10 @@ void ContactSystem::accumulate_forces(BodyStore& bodies, const StepInfo& step) {
     const auto& pairs = broad_.pairs();
     pair_separating_axis_.assign(pairs.size(), -1);
     pair_coeff_.resize(pairs.size());
-    for (std::size_t p = 0; p < pairs.size(); ++p)
-      pair_coeff_[p] = coeff_index_for(body_material_[pairs[p].a], body_material_[pairs[p].b]);
+    const std::int64_t n_pairs = std::int64_t(pairs.size());
+    parallel_for_static(n_pairs, n_pairs >= std::int64_t(settings_.broad_phase_parallel_bodies), [&](std::int64_t p) {
+      pair_coeff_[std::size_t(p)] = coeff_index_for(body_material_[pairs[std::size_t(p)].a], body_material_[pairs[std::size_t(p)].b]);
+    });
   }
   if (bonded_) {
     const auto& released = bonded_->released();
@@ -297,9 +300,10 @@ void ContactSystem::narrow_phase(const BodyStore& bodies, const StepInfo& step) 
   const std::size_t n_pairs = broad_.pairs().size();
   const std::size_t n_items = n_pairs + ground_candidates_.size();
   if (pair_separating_axis_.size() != n_pairs) pair_separating_axis_.assign(n_pairs, -1);
-  contacts_.clear();
-  if (n_items < std::size_t(settings_.parallel_threshold)) {
+  const bool parallel = n_items >= std::size_t(settings_.parallel_threshold);
+  if (!parallel) {
     // One thread: straight into the contact list (same order as the chunks).
+    contacts_.clear();
     std::size_t cursor = kNoCursor;
     for (std::size_t item = 0; item < n_items; ++item) process_item(bodies, step, item, cursor, manifold_, contacts_);
   } else {
@@ -314,24 +318,46 @@ void ContactSystem::narrow_phase(const BodyStore& bodies, const StepInfo& step) 
       const std::size_t end = std::min(n_items, begin + kChunkItems);
       for (std::size_t item = begin; item < end; ++item) process_item(bodies, step, item, cursor, manifold, buf);
     });
+    // Join the chunk buffers in chunk order: offsets first (serial over
+    // chunks), then every chunk copies its own records. contacts_ keeps its
+    // old records (those of two steps ago) up to the new size, so only the
+    // growth is constructed and every record is written once, by its chunk.
+    chunk_offsets_.resize(n_chunks + 1);
     std::size_t total = 0;
-    for (std::size_t c = 0; c < n_chunks; ++c) total += chunk_buffers_[c].size();
-    contacts_.resize(total);
-    std::size_t offset = 0;
     for (std::size_t c = 0; c < n_chunks; ++c) {
-      std::copy(chunk_buffers_[c].begin(), chunk_buffers_[c].end(), contacts_.begin() + std::ptrdiff_t(offset));
-      offset += chunk_buffers_[c].size();
+      chunk_offsets_[c] = total;
+      total += chunk_buffers_[c].size();
     }
+    chunk_offsets_[n_chunks] = total;
+    contacts_.resize(total);
+    parallel_for_static(std::int64_t(n_chunks), true, [&](std::int64_t bc) {
+      const auto c = std::size_t(bc);
+      std::copy(chunk_buffers_[c].begin(), chunk_buffers_[c].end(), contacts_.begin() + std::ptrdiff_t(chunk_offsets_[c]));
+    });
   }
-  // Elastic energy summed in contact order (deterministic).
+  // Elastic energy summed in contact order (deterministic); springs of
+  // contacts that ended lose their energy (header): the shear spring's as
+  // friction, the normal spring's as viscous. The terms are first put into
+  // compact arrays (on threads for large lists), then added one by one in
+  // list order: the same sums, bit for bit, as one loop over the records,
+  // at a fraction of the serial memory traffic. A carried record adds +0.0,
+  // which leaves a sum that started at +0.0 unchanged.
+  const std::size_t n_now = contacts_.size(), n_prev = previous_.size();
+  sum_terms_.resize(std::max(n_now, 2 * n_prev));
+  parallel_for_static(std::int64_t(n_now), parallel && n_now >= std::size_t(settings_.parallel_threshold),
+                      [&](std::int64_t k) { sum_terms_[std::size_t(k)] = contacts_[std::size_t(k)].elastic_J; });
   double elastic = 0.0, viscous = 0.0, friction = 0.0;
-  for (const ContactPoint& c : contacts_) elastic += c.elastic_J;
-  // Springs of contacts that ended lose their energy (header): the shear
-  // spring's as friction, the normal spring's as viscous.
-  for (const ContactPoint& p : previous_) {
-    if (p.history_carried) continue;
-    friction += p.elastic_tangential_J;
-    viscous += p.elastic_J - p.elastic_tangential_J;
+  for (std::size_t k = 0; k < n_now; ++k) elastic += sum_terms_[k];
+  parallel_for_static(std::int64_t(n_prev), parallel && n_prev >= std::size_t(settings_.parallel_threshold),
+                      [&](std::int64_t bk) {
+                        const auto k = std::size_t(bk);
+                        const ContactPoint& p = previous_[k];
+                        sum_terms_[2 * k] = p.history_carried ? 0.0 : p.elastic_tangential_J;
+                        sum_terms_[2 * k + 1] = p.history_carried ? 0.0 : p.elastic_J - p.elastic_tangential_J;
+                      });
+  for (std::size_t k = 0; k < n_prev; ++k) {
+    friction += sum_terms_[2 * k];
+    viscous += sum_terms_[2 * k + 1];
   }
   elastic_J_ = elastic;
   viscous_J_ += viscous;
@@ -343,6 +369,11 @@ void ContactSystem::finish_step(const BodyStore& bodies, const StepInfo& step, E
   // The bodies hold v(n+1/2) and w(n+1/2); the arms are those of step n.
   const double dt = step.dt_s;
   const std::int64_t n = std::int64_t(contacts_.size());
+  // The ledger counts step 0's work from t = 0 only (its second half), and
+  // reports each step's work half at the step itself (energy_ledger.h);
+  // elastic changes count in full.
+  const double first_missing = step.step == 0 ? 0.5 : 0.0;
+  sum_terms_.resize(std::max(sum_terms_.size(), 4 * contacts_.size()));
   parallel_for_static(n, n >= settings_.parallel_threshold, [&](std::int64_t k) {
     ContactPoint& c = contacts_[std::size_t(k)];
     const bool moving_a = c.body_a >= 0 && (c.pair_key & kGroundKeyHigh) != kGroundKeyHigh;
@@ -358,17 +389,21 @@ void ContactSystem::finish_step(const BodyStore& bodies, const StepInfo& step, E
     c.friction_work_loss_J = c.sliding ? loss_tangential_J : 0.0;
     c.viscous_J = c.viscous_work_loss_J - d_elastic_n - (c.sliding ? 0.0 : d_elastic_t);
     c.friction_J = c.friction_work_loss_J - (c.sliding ? d_elastic_t : 0.0);
+    // The terms of the sums below, in a compact array (narrow_phase says why).
+    double* terms = sum_terms_.data() + 4 * std::size_t(k);
+    terms[0] = c.viscous_J - first_missing * c.viscous_work_loss_J;
+    terms[1] = c.friction_J - first_missing * c.friction_work_loss_J;
+    terms[2] = 0.5 * c.viscous_work_loss_J;
+    terms[3] = 0.5 * c.friction_work_loss_J;
   });
-  // Summed in contact order (deterministic). The ledger counts step 0's
-  // work from t = 0 only (its second half), and reports each step's work
-  // half at the step itself (energy_ledger.h); elastic changes count in full.
-  const double first_missing = step.step == 0 ? 0.5 : 0.0;
+  // Summed in contact order (deterministic).
   double viscous = 0.0, friction = 0.0, viscous_half = 0.0, friction_half = 0.0;
-  for (const ContactPoint& c : contacts_) {
-    viscous += c.viscous_J - first_missing * c.viscous_work_loss_J;
-    friction += c.friction_J - first_missing * c.friction_work_loss_J;
-    viscous_half += 0.5 * c.viscous_work_loss_J;
-    friction_half += 0.5 * c.friction_work_loss_J;
+  for (std::size_t k = 0; k < contacts_.size(); ++k) {
+    const double* terms = sum_terms_.data() + 4 * k;
+    viscous += terms[0];
+    friction += terms[1];
+    viscous_half += terms[2];
+    friction_half += terms[3];
   }
   viscous_J_ += viscous;
   friction_J_ += friction;
@@ -409,21 +444,30 @@ void ContactSystem::gather(BodyStore& bodies) {
     }
     return;
   }
+  // The two bodies of every contact, copied out of the records on threads,
+  // so that the serial passes building the CSR below read 8 bytes per
+  // contact instead of a whole record.
+  const std::int32_t cn = std::int32_t(contacts_.size());
+  contact_bodies_.resize(2 * std::size_t(cn));
+  parallel_for_static(cn, true, [&](std::int64_t k) {
+    contact_bodies_[2 * std::size_t(k)] = contacts_[std::size_t(k)].body_a;
+    contact_bodies_[2 * std::size_t(k) + 1] = contacts_[std::size_t(k)].body_b;
+  });
   body_start_.assign(n + 1, 0);
-  for (const ContactPoint& c : contacts_) {
-    if (c.body_a >= 0) ++body_start_[std::size_t(c.body_a) + 1];
-    ++body_start_[std::size_t(c.body_b) + 1];
+  for (std::int32_t k = 0; k < cn; ++k) {
+    const BodyId a = contact_bodies_[2 * std::size_t(k)], b = contact_bodies_[2 * std::size_t(k) + 1];
+    if (a >= 0) ++body_start_[std::size_t(a) + 1];
+    ++body_start_[std::size_t(b) + 1];
   }
   for (std::size_t i = 0; i < n; ++i) body_start_[i + 1] += body_start_[i];
   body_entries_.resize(std::size_t(body_start_[n]));
   {
     // Fill in contact order; a running cursor per body (reuses the CSR shape).
     std::vector<std::int32_t>& cursor = body_start_;
-    const std::int32_t cn = std::int32_t(contacts_.size());
     for (std::int32_t k = 0; k < cn; ++k) {
-      const ContactPoint& c = contacts_[std::size_t(k)];
-      if (c.body_a >= 0) body_entries_[std::size_t(cursor[std::size_t(c.body_a)]++)] = 2 * k;
-      body_entries_[std::size_t(cursor[std::size_t(c.body_b)]++)] = 2 * k + 1;
+      const BodyId a = contact_bodies_[2 * std::size_t(k)], b = contact_bodies_[2 * std::size_t(k) + 1];
+      if (a >= 0) body_entries_[std::size_t(cursor[std::size_t(a)]++)] = 2 * k;
+      body_entries_[std::size_t(cursor[std::size_t(b)]++)] = 2 * k + 1;
     }
     // Cursors now hold the ends; shift back to starts.
     for (std::size_t i = n; i > 0; --i) body_start_[i] = body_start_[i - 1];

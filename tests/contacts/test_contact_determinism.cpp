@@ -2,7 +2,8 @@
 // 200 boxes pressed together in columns, pushing each other about for 100
 // steps (short, because OpenMP barriers are slow on an oversubscribed CI
 // machine; every box is in contact from the first step), every parallel loop
-// of the contact system forced on (parallel_threshold = 1).
+// of the contact system forced on (parallel_threshold = 1), the broad
+// phase's too (broad_phase_parallel_bodies = 1).
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -34,6 +35,7 @@ Final run_pile(int threads) {
   s.duration_s = 0.01;
   fq::ContactSystemSettings cs;
   cs.parallel_threshold = 1;
+  cs.broad_phase_parallel_bodies = 1;
   auto scene = fq::test::make_scene(
       fq::test::make_pressed_columns(200), s,
       [](fq::ContactSystem& c) {

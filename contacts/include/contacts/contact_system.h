@@ -155,6 +155,10 @@ struct ContactSystemSettings {
   // Work below this many items (pairs, contacts, bodies) runs on one thread:
   // a 16-member frame must not pay for starting threads.
   int parallel_threshold = 128;
+  // Scenes with at least this many bodies run the broad phase (skin check
+  // every step, rebuilds) on threads (broad_phase.h). Its per-body work is
+  // short, so it pays only for large scenes.
+  int broad_phase_parallel_bodies = 4096;
 };
 
 // Two surfaces closer than this count as touching for the stable-time-step
@@ -241,6 +245,9 @@ class ContactSystem : public ForceProvider {
 
   // Per step.
   std::vector<std::vector<ContactPoint>> chunk_buffers_;
+  std::vector<std::size_t> chunk_offsets_;   // where each chunk's records go in contacts_
+  std::vector<double> sum_terms_;            // terms of the energy sums, in list order
+  std::vector<BodyId> contact_bodies_;       // gather: (body_a, body_b) per contact
   ContactManifold manifold_;  // scratch of the one-thread narrow phase
   std::vector<ContactPoint> contacts_;
   std::vector<ContactPoint> previous_;
