@@ -112,37 +112,10 @@ void run_contact_benchmark(benchmark::State& state, int scene) {
 void BM_ContactPile(benchmark::State& state) { run_contact_benchmark(state, 0); }
 void BM_ContactColumns(benchmark::State& state) { run_contact_benchmark(state, 1); }
 
-BENCHMARK(BM_ContactColumns)
-    ->ArgNames({"bodies", "threads"})
-    ->Args({1000, 1})
-    ->Args({1000, 2})
-    ->Args({10000, 1})
-    ->Args({10000, 2})
-    ->Args({100000, 1})
-    ->Args({100000, 2})
-    ->Iterations(1)
-    ->UseManualTime()
-    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ContactColumns)->Apply(fq::bench::large_scene_sizes);
 
-BENCHMARK(BM_ContactPile)
-    ->ArgNames({"bodies", "threads"})
-    ->Args({1000, 1})
-    ->Args({1000, 2})
-    ->Args({10000, 1})
-    ->Args({10000, 2})
-    ->Args({100000, 1})
-    ->Args({100000, 2})
-    ->Iterations(1)
-    ->UseManualTime()
-    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ContactPile)->Apply(fq::bench::large_scene_sizes);
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  // Same final state for 1 and 2 threads?
-  return fq::bench::thread_hashes().compare_with_one_thread();
-}
+int main(int argc, char** argv) { return fq::bench::run_and_compare_threads(argc, argv); }

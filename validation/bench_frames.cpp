@@ -174,10 +174,5 @@ int main(int argc, char** argv) {
         ->UseManualTime()
         ->Unit(benchmark::kSecond);
   }
-  int rest_argc = int(rest.size());
-  benchmark::Initialize(&rest_argc, rest.data());
-  if (benchmark::ReportUnrecognizedArguments(rest_argc, rest.data())) return 1;
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return fq::bench::thread_hashes().compare_with_one_thread();
+  return fq::bench::run_and_compare_threads(int(rest.size()), rest.data());
 }

@@ -157,24 +157,8 @@ void BM_JointLattice(benchmark::State& state) {
   fq::bench::thread_hashes().record("joint lattice, " + std::to_string(bodies) + " bodies", threads, hash);
 }
 
-BENCHMARK(BM_JointLattice)
-    ->ArgNames({"bodies", "threads"})
-    ->Args({1000, 1})
-    ->Args({1000, 2})
-    ->Args({10000, 1})
-    ->Args({10000, 2})
-    ->Args({100000, 1})
-    ->Args({100000, 2})
-    ->Iterations(1)
-    ->UseManualTime()
-    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_JointLattice)->Apply(fq::bench::large_scene_sizes);
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return fq::bench::thread_hashes().compare_with_one_thread();
-}
+int main(int argc, char** argv) { return fq::bench::run_and_compare_threads(argc, argv); }

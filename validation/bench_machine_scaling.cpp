@@ -31,6 +31,8 @@
 #include <utility>
 #include <vector>
 
+#include "bench_support.h"
+
 #if defined(_OPENMP)
 #include <omp.h>
 #endif
@@ -130,10 +132,7 @@ double median(std::vector<double> v) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
+  if (!fq::bench::run_selected_benchmarks(argc, argv)) return 1;
   for (const char* kernel : {"latency", "throughput", "memory"}) {
     const auto one = run_times().find({kernel, 1}), two = run_times().find({kernel, 2});
     if (one == run_times().end() || two == run_times().end()) continue;

@@ -1,7 +1,10 @@
-// Pieces the benchmark programs share: the process's CPU time, and the
-// final state hash of each scene per thread count, compared at the end of
-// the program (results must be bitwise the same for any thread count).
+// Pieces the benchmark programs share: the process's CPU time, the final
+// state hash of each scene per thread count, compared at the end of the
+// program (results must be bitwise the same for any thread count), the
+// scene sizes of the large-scene benchmarks, and the body of main().
 #pragma once
+
+#include <benchmark/benchmark.h>
 
 #include <cstdint>
 #include <cstdio>
@@ -46,6 +49,31 @@ class ThreadHashes {
 inline ThreadHashes& thread_hashes() {
   static ThreadHashes hashes;
   return hashes;
+}
+
+// Large scenes: 1e3, 1e4 and 1e5 bodies, each on 1 and 2 threads, one timed
+// run per repetition (the benchmark sets the time itself).
+inline void large_scene_sizes(benchmark::internal::Benchmark* b) {
+  b->ArgNames({"bodies", "threads"});
+  for (const std::int64_t bodies : {1000, 10000, 100000})
+    for (const std::int64_t threads : {1, 2}) b->Args({bodies, threads});
+  b->Iterations(1)->UseManualTime()->Unit(benchmark::kMillisecond);
+}
+
+// Runs the benchmarks the command line selects; false for an unknown option.
+inline bool run_selected_benchmarks(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return false;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return true;
+}
+
+// The body of main(): exit status 1 for an unknown option, else that of the
+// 1- vs 2-thread comparison.
+inline int run_and_compare_threads(int argc, char** argv) {
+  if (!run_selected_benchmarks(argc, argv)) return 1;
+  return thread_hashes().compare_with_one_thread();
 }
 
 }  // namespace fq::bench

@@ -4,58 +4,21 @@
 #include <cmath>
 #include <complex>
 #include <memory>
-#include <random>
 #include <string>
 
-#include "joints/joint_layout.h"
+#include "joint_test_util.h"
 
 namespace fq::stability {
 
+// The chain and its joints are the ones tests/joints/test_stable_time_step
+// checks the estimate on (joint_test_util.h), started moving.
 BodyStore chain_bodies(int links) {
-  BodyStore store;
-  BoxBodyDef base;
-  base.name = "base";
-  base.size_m = Vec3(0.05, 0.05, 0.02);
-  base.density_kg_per_m3 = 500;
-  base.position_m = Vec3(0, 0, -0.01);
-  base.fixed = true;
-  store.add_box(base);
-  double z = 0.0;
-  for (int i = 0; i < links; ++i) {
-    BoxBodyDef b;
-    b.name = "link_" + std::to_string(i);
-    const double h = 0.1 + 0.02 * i;
-    b.size_m = Vec3(0.02 + 0.002 * i, 0.03, h);
-    b.density_kg_per_m3 = 500;
-    b.position_m = Vec3(0, 0, z + 0.5 * h);
-    z += h;
-    store.add_box(b);
-  }
-  std::mt19937 rng(12345);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  store.update_rotations();
-  for (BodyId b = 1; b < BodyId(store.size()); ++b) {
-    store.velocity_mps[b] = 1e-4 * Vec3(u(rng), u(rng), u(rng));
-    const Vec3 w = 1e-3 * Vec3(u(rng), u(rng), u(rng));
-    const Mat3& r = store.rotation[b];
-    store.angular_velocity_radps[b] = w;
-    store.angular_momentum_Nms[b] = r * store.principal_inertia_kgm2[b].asDiagonal() * (r.transpose() * w);
-  }
+  BodyStore store = test::irregular_chain_bodies(links);
+  test::set_small_random_motion(store);
   return store;
 }
 
-void add_chain_joints(JointSystem& joints, const BodyStore& bodies) {
-  double z = 0.0;
-  for (BodyId b = 1; b < BodyId(bodies.size()); ++b) {
-    JointDef d;
-    d.body_a = b - 1;
-    d.body_b = b;
-    d.origin_m = Vec3(0, 0, z);
-    d.layout = four_corner_layout(0.01, 0.015, 1.0, linear_spring(2e4 * double(b), 0.0), linear_spring(5e4, 0.0));
-    joints.add_joint(bodies, d);
-    z += 2.0 * bodies.half_extents_m[b].z();
-  }
-}
+void add_chain_joints(JointSystem& joints, const BodyStore& bodies) { test::add_irregular_chain_joints(joints, bodies); }
 
 StiffestMode chain_stiffest_mode(int links) {
   const BodyStore store = chain_bodies(links);

@@ -4,6 +4,8 @@
 #pragma once
 
 #include <cmath>
+#include <random>
+#include <string>
 #include <vector>
 
 #include "dem_core/body_store.h"
@@ -119,6 +121,61 @@ void add_chain_joints(JointSystem& js, const BodyStore& store, const ChainSpec& 
     d.layout = layout_of(i);
     d.fracture = fracture;
     js.add_joint(store, d);
+  }
+}
+
+// An irregular vertical chain for stable-time-step studies: a fixed base
+// and `links` boxes whose proportions change from link to link (so that no
+// two modes coincide), joined by four-corner linear joints whose normal
+// stiffness grows along the chain (2e4 N/m times the joint number; shear
+// 5e4 N/m) with the given damping ratio.
+inline BodyStore irregular_chain_bodies(int links) {
+  BodyStore store;
+  BoxBodyDef base;
+  base.name = "base";
+  base.size_m = Vec3(0.05, 0.05, 0.02);
+  base.density_kg_per_m3 = 500;
+  base.position_m = Vec3(0, 0, -0.01);
+  base.fixed = true;
+  store.add_box(base);
+  double z = 0.0;
+  for (int i = 0; i < links; ++i) {
+    BoxBodyDef b;
+    b.name = "link_" + std::to_string(i);
+    const double h = 0.1 + 0.02 * i;
+    b.size_m = Vec3(0.02 + 0.002 * i, 0.03, h);
+    b.density_kg_per_m3 = 500;
+    b.position_m = Vec3(0, 0, z + 0.5 * h);
+    z += h;
+    store.add_box(b);
+  }
+  store.update_rotations();
+  return store;
+}
+inline void add_irregular_chain_joints(JointSystem& js, const BodyStore& store, double damping_ratio = 0.0) {
+  double z = 0.0;
+  for (BodyId b = 1; b < BodyId(store.size()); ++b) {
+    JointDef d;
+    d.body_a = b - 1;
+    d.body_b = b;
+    d.origin_m = Vec3(0, 0, z);
+    d.layout = four_corner_layout(0.01, 0.015, 1.0, linear_spring(2e4 * double(b), damping_ratio),
+                                  linear_spring(5e4, damping_ratio));
+    js.add_joint(store, d);
+    z += 2.0 * store.half_extents_m[b].z();
+  }
+}
+// Small random velocities and spins of every free body (fixed seed), to
+// excite all modes of a chain at once.
+inline void set_small_random_motion(BodyStore& store) {
+  std::mt19937 rng(12345);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (BodyId b = 1; b < BodyId(store.size()); ++b) {
+    store.velocity_mps[b] = 1e-4 * Vec3(u(rng), u(rng), u(rng));
+    const Vec3 w = 1e-3 * Vec3(u(rng), u(rng), u(rng));
+    const Mat3& r = store.rotation[b];
+    store.angular_velocity_radps[b] = w;
+    store.angular_momentum_Nms[b] = r * store.principal_inertia_kgm2[b].asDiagonal() * (r.transpose() * w);
   }
 }
 
