@@ -14,20 +14,50 @@
 // former half-against-half test, which saturation fooled.
 //
 // Usage: stability_limits [OUT_PREFIX]   (default validation/stability_limits)
-// writes OUT_PREFIX.csv and OUT_PREFIX.md and prints the markdown table.
+// writes OUT_PREFIX.csv and OUT_PREFIX.md and prints the markdown table;
+// --help prints the usage, any other option is refused (exit 2).
 #include <cmath>
-#include <fstream>
+#include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
 #include <string>
 
 #include "stability_limits_core.h"
+#include "study_files.h"
+
+namespace {
+
+constexpr const char* kUsage =
+    "usage: stability_limits [OUT_PREFIX]\n"
+    "  writes OUT_PREFIX.csv and OUT_PREFIX.md (default validation/stability_limits; the folder must exist)\n"
+    "  and prints the markdown table\n";
+
+int usage_error(const std::string& msg) {
+  std::cerr << "stability_limits: error: " << msg << "\n" << kUsage;
+  return 2;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace fq;
   using namespace fq::stability;
-  const std::string prefix = argc > 1 ? argv[1] : "validation/stability_limits";
+  std::string prefix = "validation/stability_limits";
+  if (argc > 1) {
+    const std::string a = argv[1];
+    if (a == "-h" || a == "--help") {
+      std::cout << kUsage;
+      return 0;
+    }
+    if (a.empty() || a[0] == '-') return usage_error("unknown option '" + a + "'");
+    if (argc > 2) return usage_error("one output prefix expected, got " + std::to_string(argc - 1) + " arguments");
+    prefix = a;
+  }
+  // Checked before the study runs, not after it.
+  const std::filesystem::path folder = std::filesystem::path(prefix).parent_path();
+  if (!folder.empty() && !std::filesystem::is_directory(folder))
+    return usage_error("output folder '" + folder.string() + "' (from OUT_PREFIX '" + prefix + "') does not exist");
   const StiffestMode mode = chain_stiffest_mode();
   const double omega = mode.omega_radps;
   const int steps = 4000;
@@ -84,8 +114,13 @@ int main(int argc, char** argv) {
     md << " | " << std::setprecision(3) << full.max_energy_ratio << " | " << full.max_displacement_m << " | "
        << (full.halves_ratio > 0.0 ? full.halves_ratio : HUGE_VAL) << " |\n";
   }
-  std::ofstream(prefix + ".csv") << csv.str();
-  std::ofstream(prefix + ".md") << md.str();
+  try {
+    fq::validation::write_study_file(prefix + ".csv", csv.str());
+    fq::validation::write_study_file(prefix + ".md", md.str());
+  } catch (const std::exception& e) {
+    std::cerr << "stability_limits: error: " << e.what() << "\n";
+    return 1;
+  }
   std::cout << md.str();
   return 0;
 }

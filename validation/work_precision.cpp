@@ -33,6 +33,7 @@
 #include <vector>
 
 #include "io/input_error.h"
+#include "study_files.h"
 #include "work_precision_core.h"
 
 namespace {
@@ -106,9 +107,16 @@ Reference make_reference(const Study& s, int finest_level) {
   return r;
 }
 
+constexpr const char* kUsage =
+    "usage: work_precision [--out DIR] [--repetitions N] [--case FILE] [--quick]\n"
+    "  --out DIR          folder for work_precision.csv and .md (default validation/results; must exist)\n"
+    "  --repetitions N    timed repetitions per point, the median is kept (default 3)\n"
+    "  --case FILE        frame case for the elastic frame problem (default cases/frame_B.yaml)\n"
+    "  --quick            two dt levels fewer per integrator, to try the program\n";
+
 int usage_error(const std::string& msg) {
   std::cerr << "work_precision: error: " << msg
-            << "\nusage: work_precision [--out DIR] [--repetitions N] [--case FILE] [--quick]\n";
+            << "\n" << kUsage;
   return 2;
 }
 
@@ -126,7 +134,10 @@ int main(int argc, char** argv) {
       return argv[++i];
     };
     try {
-      if (a == "--out") {
+      if (a == "-h" || a == "--help") {
+        std::cout << kUsage;
+        return 0;
+      } else if (a == "--out") {
         out_dir = value("a folder");
       } else if (a == "--case") {
         case_file = value("a case file");
@@ -321,10 +332,13 @@ int main(int argc, char** argv) {
   md << orders.str() << "\n" << cheapest.str();
   // Both files only after every run has finished: a failed study leaves the old results.
   const auto csv_path = out_dir / "work_precision.csv", md_path = out_dir / "work_precision.md";
-  std::ofstream(csv_path.string() + ".tmp") << csv.str();
-  std::ofstream(md_path.string() + ".tmp") << md.str();
-  std::filesystem::rename(csv_path.string() + ".tmp", csv_path);
-  std::filesystem::rename(md_path.string() + ".tmp", md_path);
+  try {
+    fq::validation::write_study_file(csv_path, csv.str());
+    fq::validation::write_study_file(md_path, md.str());
+  } catch (const std::exception& e) {
+    std::cerr << "work_precision: error: " << e.what() << "\n";
+    return 1;
+  }
   std::cout << md.str();
   return 0;
 }
