@@ -13,8 +13,9 @@
 #   scripts/sanitize.sh            (FQ_JOBS=N to change the parallelism, default 2)
 #
 # Build folder: build_asan (-DFQ_SANITIZE=address,undefined,
-# -DCMAKE_BUILD_TYPE=RelWithAsserts, compiled at -O1 by
-# cmake/FramequakeSanitizers.cmake; benchmarks are not built). Every report is
+# -DCMAKE_BUILD_TYPE=RelWithAsserts, the engine compiled at -O1 by
+# cmake/FramequakeSanitizers.cmake and the test code at -O0 by
+# tests/CMakeLists.txt; benchmarks are not built). Every report is
 # fatal: -fno-sanitize-recover=all (cmake/FramequakeSanitizers.cmake) makes
 # UBSan abort, ASan stops at the first error, and LeakSanitizer fails a
 # program that leaks at exit. Tests that start the `framequake` binary
