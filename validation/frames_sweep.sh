@@ -9,6 +9,10 @@
 #
 # Usage: bash validation/frames_sweep.sh [kobe|takatori|newhall|all]   (default kobe)
 set -euo pipefail
+usage="usage: bash validation/frames_sweep.sh [kobe|takatori|newhall|all]   (default kobe)"
+case ${1:-} in -h|--help) echo "$usage"; exit 0 ;; esac
+[[ $# -le 1 ]] || { echo "frames_sweep.sh: one record name expected, got $#: $*" >&2; echo "$usage" >&2; exit 2; }
+case ${1:-kobe} in kobe|takatori|newhall|all) ;; *) echo "frames_sweep.sh: unknown record '$1'" >&2; echo "$usage" >&2; exit 2 ;; esac
 cd "$(dirname "$0")/.."
 app=./build/apps/framequake
 [[ -x $app ]] || { echo "build first: bash scripts/build.sh" >&2; exit 2; }
@@ -26,5 +30,4 @@ case $which in
   takatori) run takatori --record "$shared/TAK000.AT2" ;;
   newhall) run newhall --record "$shared/RSN1044_NORTHR_NWH360.AT2" ;;
   all) run kobe; run takatori --record "$shared/TAK000.AT2"; run newhall --record "$shared/RSN1044_NORTHR_NWH360.AT2" ;;
-  *) echo "usage: bash validation/frames_sweep.sh [kobe|takatori|newhall|all]" >&2; exit 2 ;;
 esac

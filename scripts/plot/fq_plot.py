@@ -229,10 +229,16 @@ COMMANDS = {"compare": plot_compare, "sweep": plot_sweep, "work-precision": plot
             "stability": plot_stability}
 
 
+USAGE = "usage: fq_plot.py compare|sweep DIR, fq_plot.py work-precision DIR_OR_CSV, or fq_plot.py stability CSV"
+
+
 def main(argv):
+    if len(argv) == 2 and argv[1] in ("-h", "--help"):
+        print(USAGE)
+        return
     plt.rcParams.update(STYLE)
     if len(argv) != 3 or argv[1] not in COMMANDS:
-        fail("usage: fq_plot.py compare|sweep DIR, fq_plot.py work-precision DIR_OR_CSV, or fq_plot.py stability CSV")
+        fail(USAGE)
     COMMANDS[argv[1]](argv[2])
 
 

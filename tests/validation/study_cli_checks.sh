@@ -4,10 +4,13 @@
 # cannot be written ends with a message naming it and the documented exit
 # code (2 for usage errors, 1 for a failed write), never a crash or a stray
 # file.
-#   study_cli_checks.sh STABILITY_LIMITS_BIN WORK_PRECISION_BIN
+# The two study scripts check their arguments before anything starts: a
+# stray argument must not launch an hour of runs.
+#   study_cli_checks.sh STABILITY_LIMITS_BIN WORK_PRECISION_BIN SOURCE_DIR
 set -u
 stability=$1
 precision=$2
+source_dir=$3
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cd "$work"
@@ -48,6 +51,16 @@ only_io_files "work_precision --help"
 expect 2 "unknown option '--bogus'" err -- "$precision" --bogus
 expect 2 "--out folder '$work/missing' does not exist" err -- "$precision" --out "$work/missing"
 expect 2 "--repetitions expects a positive integer" err -- "$precision" --repetitions 0
+
+# Under `timeout`: a script that ignored its arguments would start its study
+# (an hour of runs); it is stopped after 60 s and fails the check instead,
+# before it could write any result (both write their tables when complete).
+expect 0 "usage: bash validation/frames_sensitivity.sh" out -- timeout 60 bash "$source_dir/validation/frames_sensitivity.sh" --help
+expect 2 "no arguments expected, got: 15" err -- timeout 60 bash "$source_dir/validation/frames_sensitivity.sh" 15
+expect 0 "usage: bash validation/frames_sweep.sh" out -- timeout 60 bash "$source_dir/validation/frames_sweep.sh" --help
+expect 2 "unknown record 'kobee'" err -- timeout 60 bash "$source_dir/validation/frames_sweep.sh" kobee
+expect 2 "one record name expected, got 2" err -- timeout 60 bash "$source_dir/validation/frames_sweep.sh" kobe takatori
+only_io_files "the study scripts' argument checks"
 
 if [ "$failures" -ne 0 ]; then echo "$failures check(s) failed"; exit 1; fi
 echo "all study command-line checks passed"
