@@ -309,7 +309,14 @@ void ContactSystem::narrow_phase(const BodyStore& bodies, const StepInfo& step) 
   } else {
     const std::size_t n_chunks = (n_items + kChunkItems - 1) / kChunkItems;
     if (chunk_buffers_.size() < n_chunks) chunk_buffers_.resize(n_chunks);
-    parallel_for_dynamic(std::int64_t(n_chunks), true, [&](std::int64_t c) {
+    // Static, not dynamic: the same thread then makes chunk c's records
+    // every step, copies them in the join below (also static) and reads
+    // them back as history, so they stay in its core's cache. Handed out
+    // dynamically they moved between the cores: on the 1e4-body pressed
+    // columns the two threads together spent 1.23-1.33x the one-thread CPU
+    // time per body-step, and 0.98-1.08x once static (docs/performance.md,
+    // change 15).
+    parallel_for_static(std::int64_t(n_chunks), true, [&](std::int64_t c) {
       std::vector<ContactPoint>& buf = chunk_buffers_[std::size_t(c)];
       buf.clear();
       std::size_t cursor = kNoCursor;

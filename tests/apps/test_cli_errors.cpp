@@ -165,7 +165,14 @@ void check_row(const Row& row, const Outcome& o) {
   EXPECT_EQ(o.app.code, 2) << o.app.err;
   EXPECT_FALSE(o.out_folder_exists) << "an output folder was created for bad input";
   // file:line: field 'path': message (input_error.h); line 0 prints no line.
-  const std::string where = std::string(row.file) + (row.line > 0 ? ":" + std::to_string(row.line) : "") + ": ";
+  // Appended piece by piece: gcc 12 at -O3 warns falsely
+  // (-Wstringop-overflow) about the inlined concatenation of temporaries.
+  std::string where = row.file;
+  if (row.line > 0) {
+    where += ':';
+    where += std::to_string(row.line);
+  }
+  where += ": ";
   EXPECT_NE(o.app.err.find(where), std::string::npos) << "expected '" << where << "' in: " << o.app.err;
   if (*row.field) {
     const std::string field = "field '" + std::string(row.field) + "'";
