@@ -9,7 +9,11 @@ namespace fq::detail {
 namespace fs = std::filesystem;
 
 fs::path temporary_path_for(const fs::path& target) {
-  return target.parent_path() / ("." + target.filename().string() + ".tmp");
+  // Appended, not "." + name: gcc 12 at -O3 warns falsely (-Wrestrict).
+  std::string hidden_name(1, '.');
+  hidden_name += target.filename().string();
+  hidden_name += ".tmp";
+  return target.parent_path() / hidden_name;
 }
 
 void commit_file(const fs::path& temporary, const fs::path& target) {

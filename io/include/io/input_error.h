@@ -24,11 +24,21 @@ class InputError : public std::runtime_error {
 
  private:
   static std::string format(const std::string& file, int line, const std::string& field, const std::string& message) {
+    // Appended piece by piece: gcc 12 at -O3 warns falsely (-Wrestrict,
+    // -Wstringop-overflow) about inlined concatenations of temporaries.
     std::string s = file;
-    if (line > 0) s += ":" + std::to_string(line);
+    if (line > 0) {
+      s += ':';
+      s += std::to_string(line);
+    }
     s += ": ";
-    if (!field.empty()) s += "field '" + field + "': ";
-    return s + message;
+    if (!field.empty()) {
+      s += "field '";
+      s += field;
+      s += "': ";
+    }
+    s += message;
+    return s;
   }
   std::string file_;
   int line_;
