@@ -23,8 +23,8 @@
 #include <sstream>
 #include <string>
 
+#include "io/atomic_file.h"
 #include "stability_limits_core.h"
-#include "study_files.h"
 
 namespace {
 
@@ -115,8 +115,8 @@ int main(int argc, char** argv) {
        << (full.halves_ratio > 0.0 ? full.halves_ratio : HUGE_VAL) << " |\n";
   }
   try {
-    fq::validation::write_study_file(prefix + ".csv", csv.str());
-    fq::validation::write_study_file(prefix + ".md", md.str());
+    fq::detail::write_file_atomically(prefix + ".csv", csv.str());
+    fq::detail::write_file_atomically(prefix + ".md", md.str());
   } catch (const std::exception& e) {
     std::cerr << "stability_limits: error: " << e.what() << "\n";
     return 1;

@@ -32,8 +32,8 @@
 #include <string>
 #include <vector>
 
+#include "io/atomic_file.h"
 #include "io/input_error.h"
-#include "study_files.h"
 #include "work_precision_core.h"
 
 namespace {
@@ -333,8 +333,8 @@ int main(int argc, char** argv) {
   // Both files only after every run has finished: a failed study leaves the old results.
   const auto csv_path = out_dir / "work_precision.csv", md_path = out_dir / "work_precision.md";
   try {
-    fq::validation::write_study_file(csv_path, csv.str());
-    fq::validation::write_study_file(md_path, md.str());
+    fq::detail::write_file_atomically(csv_path, csv.str());
+    fq::detail::write_file_atomically(md_path, md.str());
   } catch (const std::exception& e) {
     std::cerr << "work_precision: error: " << e.what() << "\n";
     return 1;

@@ -24,14 +24,28 @@ void commit_file(const fs::path& temporary, const fs::path& target) {
 
 void write_file_atomically(const fs::path& target, std::string_view content) {
   const fs::path tmp = temporary_path_for(target);
+  // A write or rename that fails leaves no temporary behind: the caller
+  // reports the error and the target keeps its previous content.
+  const auto drop_temporary = [&tmp] {
+    std::error_code ignored;
+    fs::remove(tmp, ignored);
+  };
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     if (!out) throw std::runtime_error("cannot create '" + tmp.string() + "'");
     out.write(content.data(), static_cast<std::streamsize>(content.size()));
     out.close();
-    if (!out) throw std::runtime_error("cannot write '" + tmp.string() + "' (disk full?)");
+    if (!out) {
+      drop_temporary();
+      throw std::runtime_error("cannot write '" + tmp.string() + "' (disk full?)");
+    }
   }
-  commit_file(tmp, target);
+  try {
+    commit_file(tmp, target);
+  } catch (const std::runtime_error&) {
+    drop_temporary();
+    throw;
+  }
 }
 
 }  // namespace fq::detail

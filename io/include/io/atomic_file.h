@@ -1,4 +1,5 @@
-// Private to io: files that a reader sees either whole or not at all.
+// Files that a reader sees either whole or not at all (used by io, the
+// command line and the validation studies).
 //
 // A file is written under a temporary name in the same folder (so the rename
 // never crosses a file system), closed, and then renamed over the target.
@@ -29,7 +30,9 @@ std::filesystem::path temporary_path_for(const std::filesystem::path& target);
 // std::runtime_error naming both files on failure.
 void commit_file(const std::filesystem::path& temporary, const std::filesystem::path& target);
 
-// Writes `content` to a temporary file and commits it to `target`.
+// Writes `content` to a temporary file and commits it to `target`. Throws
+// std::runtime_error naming the file when it cannot; the temporary is then
+// removed and `target` is left as it was.
 void write_file_atomically(const std::filesystem::path& target, std::string_view content);
 
 }  // namespace fq::detail
