@@ -22,6 +22,15 @@ namespace {
 // Work items per narrow-phase chunk: large enough to amortise the chunk
 // bookkeeping, small enough to balance two threads on a few hundred pairs.
 constexpr std::size_t kChunkItems = 64;
+// What a narrow-phase chunk costs, in units of one item rejected by the
+// bounding-sphere test (two positions and radii loaded, about 20
+// instructions): an item that goes on to a full box test (separating-axis
+// test over up to 15 axes, some 400 instructions) adds about 20; each
+// contact point made (its share of the clipping, the history search and the
+// contact law, some 200 instructions) about 10. Only the split of the work
+// between threads depends on these, never a result.
+constexpr double kCostPerBoxTest = 20.0;
+constexpr double kCostPerPoint = 10.0;
 constexpr std::uint64_t kGroundKeyHigh = 0xFFFFFFFFull << 32;
 // History cursor not yet placed (process_item).
 constexpr std::size_t kNoCursor = ~std::size_t(0);
@@ -158,7 +167,7 @@ void ContactSystem::accumulate_forces(BodyStore& bodies, const StepInfo& step) {
 // then a merge), with the same result as a search per point.
 std::size_t ContactSystem::process_item(const BodyStore& bodies, const StepInfo& step, std::size_t item,
                                         std::size_t& cursor, ContactManifold& manifold,
-                                        std::vector<ContactPoint>& out) {
+                                        std::vector<ContactPoint>& out, std::size_t& box_tests) {
   const auto& pairs = broad_.pairs();
   const std::size_t n_pairs = pairs.size();
   BodyId a, b;
@@ -171,6 +180,7 @@ std::size_t ContactSystem::process_item(const BodyStore& bodies, const StepInfo&
     // Bounding spheres first: most candidates inside the skin do not touch.
     const double reach = bounding_radius_m_[std::size_t(a)] + bounding_radius_m_[std::size_t(b)];
     if ((bodies.position_m[b] - bodies.position_m[a]).squaredNorm() > reach * reach) return 0;
+    ++box_tests;
     if (collide_box_box(box_of(bodies, a), box_of(bodies, b), manifold, &pair_separating_axis_[item]) == 0) return 0;
     key = pair_key(a, b);
     coeff = pair_coeff_[item];
@@ -185,6 +195,7 @@ std::size_t ContactSystem::process_item(const BodyStore& bodies, const StepInfo&
     const double lowest_z =
         bodies.position_m[b].z() - (std::fabs(r(2, 0)) * h.x() + std::fabs(r(2, 1)) * h.y() + std::fabs(r(2, 2)) * h.z());
     if (!(lowest_z < ground_level_m_)) return 0;
+    ++box_tests;
     if (collide_box_ground(box_of(bodies, b), ground_level_m_, manifold) == 0) return 0;
     key = kGroundKeyHigh | std::uint32_t(b);
     coeff = ground_coeff_;
@@ -305,25 +316,37 @@ void ContactSystem::narrow_phase(const BodyStore& bodies, const StepInfo& step) 
     // One thread: straight into the contact list (same order as the chunks).
     contacts_.clear();
     std::size_t cursor = kNoCursor;
-    for (std::size_t item = 0; item < n_items; ++item) process_item(bodies, step, item, cursor, manifold_, contacts_);
+    std::size_t box_tests = 0;
+    for (std::size_t item = 0; item < n_items; ++item)
+      process_item(bodies, step, item, cursor, manifold_, contacts_, box_tests);
   } else {
     const std::size_t n_chunks = (n_items + kChunkItems - 1) / kChunkItems;
     if (chunk_buffers_.size() < n_chunks) chunk_buffers_.resize(n_chunks);
-    // Static, not dynamic: the same thread then makes chunk c's records
-    // every step, copies them in the join below (also static) and reads
-    // them back as history, so they stay in its core's cache. Handed out
-    // dynamically they moved between the cores: on the 1e4-body pressed
-    // columns the two threads together spent 1.23-1.33x the one-thread CPU
-    // time per body-step, and 0.98-1.08x once static (docs/performance.md,
-    // change 15).
-    parallel_for_static(std::int64_t(n_chunks), true, [&](std::int64_t c) {
+    // One contiguous run of chunks per thread, not chunks handed out
+    // dynamically: the same thread then makes chunk c's records every step,
+    // copies them in the join below (same runs) and reads them back as
+    // history, so they stay in its core's cache. Handed out dynamically they
+    // moved between the cores: on the 1e4-body pressed columns the two
+    // threads together spent 1.23-1.33x the one-thread CPU time per
+    // body-step, and 0.98-1.08x with fixed runs (docs/performance.md,
+    // change 15). The runs are cut at equal cost, as the chunks cost at the
+    // last step, not at equal counts: the touching pairs of a falling pile
+    // sit among its lowest bodies, and in equal halves one thread got
+    // nearly all of them (change 16).
+    if (chunk_cost_.size() != n_chunks) chunk_cost_.resize(n_chunks, double(kChunkItems));
+    split_by_cost(chunk_cost_.data(), std::int64_t(n_chunks), std::min(worker_count(), int(n_chunks)), chunk_runs_);
+    parallel_for_parts(chunk_runs_, true, [&](std::int64_t c) {
       std::vector<ContactPoint>& buf = chunk_buffers_[std::size_t(c)];
       buf.clear();
       std::size_t cursor = kNoCursor;
       ContactManifold manifold;
       const std::size_t begin = std::size_t(c) * kChunkItems;
       const std::size_t end = std::min(n_items, begin + kChunkItems);
-      for (std::size_t item = begin; item < end; ++item) process_item(bodies, step, item, cursor, manifold, buf);
+      std::size_t box_tests = 0;
+      for (std::size_t item = begin; item < end; ++item)
+        process_item(bodies, step, item, cursor, manifold, buf, box_tests);
+      chunk_cost_[std::size_t(c)] =
+          double(end - begin) + kCostPerBoxTest * double(box_tests) + kCostPerPoint * double(buf.size());
     });
     // Join the chunk buffers in chunk order: offsets first (serial over
     // chunks), then every chunk copies its own records. contacts_ keeps its
@@ -337,7 +360,7 @@ void ContactSystem::narrow_phase(const BodyStore& bodies, const StepInfo& step) 
     }
     chunk_offsets_[n_chunks] = total;
     contacts_.resize(total);
-    parallel_for_static(std::int64_t(n_chunks), true, [&](std::int64_t bc) {
+    parallel_for_parts(chunk_runs_, true, [&](std::int64_t bc) {
       const auto c = std::size_t(bc);
       std::copy(chunk_buffers_[c].begin(), chunk_buffers_[c].end(), contacts_.begin() + std::ptrdiff_t(chunk_offsets_[c]));
     });

@@ -212,10 +212,12 @@ class ContactSystem : public ForceProvider {
   // Narrow phase and contact law of every work item (pairs, then boxes near
   // the ground), into contacts_; books the energy of the springs that ended.
   void narrow_phase(const BodyStore& bodies, const StepInfo& step);
-  // One work item: appends its points, with forces, to `out`; `cursor` is
-  // the position in previous_ of the history search (see the .cpp).
+  // One work item: appends its points, with forces, to `out`, and returns
+  // how many; `cursor` is the position in previous_ of the history search
+  // (see the .cpp); `box_tests` counts the items that got past the cheap
+  // bounding test to a full box test.
   std::size_t process_item(const BodyStore& bodies, const StepInfo& step, std::size_t item, std::size_t& cursor,
-                           ContactManifold& manifold, std::vector<ContactPoint>& out);
+                           ContactManifold& manifold, std::vector<ContactPoint>& out, std::size_t& box_tests);
   void gather(BodyStore& bodies);
 
   const BondedPairs* bonded_;
@@ -246,6 +248,8 @@ class ContactSystem : public ForceProvider {
   // Per step.
   std::vector<std::vector<ContactPoint>> chunk_buffers_;
   std::vector<std::size_t> chunk_offsets_;   // where each chunk's records go in contacts_
+  std::vector<double> chunk_cost_;           // narrow-phase cost of each chunk at the last step (kCost* units)
+  std::vector<std::int64_t> chunk_runs_;     // first chunk of each thread's run (split_by_cost)
   std::vector<double> sum_terms_;            // terms of the energy sums, in list order
   std::vector<BodyId> contact_bodies_;       // gather: (body_a, body_b) per contact
   ContactManifold manifold_;  // scratch of the one-thread narrow phase

@@ -14,6 +14,11 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
+
+#if defined(_OPENMP)
+#include <omp.h>
+#endif
 
 namespace fq {
 
@@ -29,6 +34,58 @@ inline void parallel_for_static(std::int64_t n, bool parallel, Body&& body) {
   (void)parallel;
 #endif
   for (std::int64_t i = 0; i < n; ++i) body(i);
+}
+
+// Threads a parallel region would get (1 without OpenMP).
+inline int worker_count() {
+#if defined(_OPENMP)
+  return omp_get_max_threads();
+#else
+  return 1;
+#endif
+}
+
+// Indices 0 .. n-1 of cost cost[i] (any unit, >= 0) cut into `parts`
+// contiguous ranges of about equal total cost: part p is [first[p],
+// first[p+1]). A range may be empty.
+inline void split_by_cost(const double* cost, std::int64_t n, int parts, std::vector<std::int64_t>& first) {
+  first.assign(std::size_t(parts) + 1, n);
+  first[0] = 0;
+  double total = 0.0;
+  for (std::int64_t i = 0; i < n; ++i) total += cost[i];
+  if (!(total > 0.0)) {  // no costs known: equal counts
+    for (int q = 1; q < parts; ++q) first[std::size_t(q)] = n * q / parts;
+    return;
+  }
+  double done = 0.0;
+  int p = 1;
+  for (std::int64_t i = 0; i < n && p < parts; ++i) {
+    // Cut before i once the cost so far reaches p shares.
+    while (p < parts && done >= total * double(p) / double(parts)) first[std::size_t(p++)] = i;
+    done += cost[i];
+  }
+}
+
+// Contiguous ranges of uneven cost (split_by_cost): part p runs on thread p
+// in every call, so, as with parallel_for_static, the same thread handles
+// the same indices from one step to the next while the ranges stay put.
+template <class Body>
+inline void parallel_for_parts(const std::vector<std::int64_t>& first, bool parallel, Body&& body) {
+  const int parts = int(first.size()) - 1;
+#if defined(_OPENMP)
+  if (parallel && parts > 1) {
+#pragma omp parallel num_threads(parts)
+    {
+      const int nt = omp_get_num_threads();
+      for (int p = omp_get_thread_num(); p < parts; p += nt)
+        for (std::int64_t i = first[std::size_t(p)]; i < first[std::size_t(p) + 1]; ++i) body(i);
+    }
+    return;
+  }
+#else
+  (void)parallel;
+#endif
+  for (std::int64_t i = first.front(); i < first.back(); ++i) body(i);
 }
 
 // Dynamic schedule, one index at a time (chunks of uneven cost).
