@@ -6,6 +6,11 @@
 // Reports per run (Google Benchmark counters):
 //   ns_per_body_step   wall time of the timed steps / (bodies * steps)
 //   cpu_ns_per_body_step  the same with the process CPU time (all threads)
+//   busy_ns_per_body_step  the same with the busiest thread's CPU time
+//                      (bench_support.h: about the wall time on free cores;
+//                      needs OMP_WAIT_POLICY=passive). The parallel
+//                      efficiency on 2 threads, free of the host's noise,
+//                      is busy(1 thread) / (2 busy(2 threads)).
 //   rebuilds_per_step  broad-phase rebuilds per timed step
 //   contacts           contact points at the end
 //   state_hash         48-bit FNV-1a hash of the final positions, orientations
@@ -71,7 +76,8 @@ void run_contact_benchmark(benchmark::State& state, int scene) {
   }
 #endif
   const int timed_steps = bodies <= 1000 ? 1000 : bodies <= 10000 ? 200 : 50;
-  double ns_per_body_step = 0.0, cpu_ns_per_body_step = 0.0, rebuild_rate = 0.0, contacts = 0.0;
+  double ns_per_body_step = 0.0, cpu_ns_per_body_step = 0.0, busy_ns_per_body_step = 0.0, rebuild_rate = 0.0,
+         contacts = 0.0;
   std::uint64_t hash = 0;
   for (auto _ : state) {
     fq::SimulationSettings s;
@@ -91,9 +97,12 @@ void run_contact_benchmark(benchmark::State& state, int scene) {
     const auto rebuilds0 = contacts_view->broad_phase_rebuilds();
     const auto t0 = std::chrono::steady_clock::now();
     const double cpu0 = fq::bench::process_cpu_s();
+    const std::vector<double> busy0 = fq::bench::thread_cpu_s(threads);
     for (int k = 0; k < timed_steps; ++k) sim->step();
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double busy = fq::bench::busiest_thread_s(busy0, fq::bench::thread_cpu_s(threads));
     cpu_ns_per_body_step = 1e9 * (fq::bench::process_cpu_s() - cpu0) / (double(bodies) * timed_steps);
+    busy_ns_per_body_step = 1e9 * busy / (double(bodies) * timed_steps);
     state.SetIterationTime(wall);
     ns_per_body_step = 1e9 * wall / (double(bodies) * timed_steps);
     rebuild_rate = double(contacts_view->broad_phase_rebuilds() - rebuilds0) / timed_steps;
@@ -102,6 +111,7 @@ void run_contact_benchmark(benchmark::State& state, int scene) {
   }
   state.counters["ns_per_body_step"] = ns_per_body_step;
   state.counters["cpu_ns_per_body_step"] = cpu_ns_per_body_step;
+  state.counters["busy_ns_per_body_step"] = busy_ns_per_body_step;
   state.counters["rebuilds_per_step"] = rebuild_rate;
   state.counters["contacts"] = contacts;
   state.counters["state_hash"] = double(hash);

@@ -18,6 +18,11 @@
 //   cpu_ns_per_spring_step  process CPU time per spring-step (all threads,
 //                        all stages: on a shared machine the wall time also
 //                        counts waiting for a core)
+//   busy_ns_per_step     CPU time of the busiest thread per step
+//                        (bench_support.h: about the wall time on free
+//                        cores, needs OMP_WAIT_POLICY=passive); the parallel
+//                        efficiency free of the host's noise is
+//                        busy(1 thread) / (2 busy(2 threads))
 //   state_hash           48-bit hash of the final state; the last lines of
 //                        the output compare 1 and 2 threads (bitwise)
 //
@@ -122,7 +127,7 @@ void BM_JointLattice(benchmark::State& state) {
   }
 #endif
   const int timed_steps = bodies <= 1000 ? 2000 : bodies <= 10000 ? 256 : 64;
-  double ns_spring = 0.0, ns_body = 0.0, ns_step = 0.0, cpu_ns_spring = 0.0;
+  double ns_spring = 0.0, ns_body = 0.0, ns_step = 0.0, cpu_ns_spring = 0.0, busy_ns_step = 0.0;
   std::uint64_t hash = 0;
   for (auto _ : state) {
     Lattice l = make_lattice(bodies);
@@ -130,9 +135,11 @@ void BM_JointLattice(benchmark::State& state) {
     for (int k = 0; k < 64; ++k) l.sim->step();  // warm caches and the profile's phase
     const fq::StageProfile p0 = l.sim->profile();
     const double cpu0 = fq::bench::process_cpu_s();
+    const std::vector<double> busy0 = fq::bench::thread_cpu_s(threads);
     const auto t0 = std::chrono::steady_clock::now();
     for (int k = 0; k < timed_steps; ++k) l.sim->step();
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double busy = fq::bench::busiest_thread_s(busy0, fq::bench::thread_cpu_s(threads));
     const double cpu = fq::bench::process_cpu_s() - cpu0;
     const fq::StageProfile& p1 = l.sim->profile();
     // Joint provider time: its force stage plus the finish stage (joints are
@@ -146,6 +153,7 @@ void BM_JointLattice(benchmark::State& state) {
     ns_body = 1e9 * integrate_s / (double(l.free_bodies) * timed_steps);
     ns_step = 1e9 * wall / timed_steps;
     cpu_ns_spring = 1e9 * cpu / spring_steps;
+    busy_ns_step = 1e9 * busy / timed_steps;
     hash = l.sim->state_hash();
     state.counters["springs"] = double(l.springs);
   }
@@ -153,6 +161,7 @@ void BM_JointLattice(benchmark::State& state) {
   state.counters["ns_per_body_step"] = ns_body;
   state.counters["ns_per_step_total"] = ns_step;
   state.counters["cpu_ns_per_spring_step"] = cpu_ns_spring;
+  state.counters["busy_ns_per_step"] = busy_ns_step;
   state.counters["state_hash"] = double(hash & ((std::uint64_t(1) << 48) - 1));
   fq::bench::thread_hashes().record("joint lattice, " + std::to_string(bodies) + " bodies", threads, hash);
 }

@@ -1,4 +1,5 @@
-// Pieces the benchmark programs share: the process's CPU time, the final
+// Pieces the benchmark programs share: the process's CPU time and each
+// thread's, the final
 // state hash of each scene per thread count, compared at the end of the
 // program (results must be bitwise the same for any thread count), the
 // scene sizes of the large-scene benchmarks, and the body of main().
@@ -6,12 +7,18 @@
 
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <ctime>
 #include <map>
 #include <string>
 #include <utility>
+#include <vector>
+
+#if defined(_OPENMP)
+#include <omp.h>
+#endif
 
 namespace fq::bench {
 
@@ -21,6 +28,41 @@ inline double process_cpu_s() {
   timespec ts{};
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
   return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+
+// CPU seconds each of `threads` OpenMP threads has run so far (index =
+// thread number; 0 is the main thread). libgomp keeps the same threads from
+// one parallel region to the next, so two readings around the timed steps
+// give each thread's busy time; with OMP_WAIT_POLICY=passive a thread that
+// waits at a barrier sleeps and adds nothing. The busiest thread's time is
+// then about what the run takes on free cores: it holds the serial parts
+// (thread 0) and any imbalance, but not the time the host gave the cores to
+// other jobs, which on a shared machine makes the wall time of two threads
+// vary by tens of percent from one minute to the next.
+inline std::vector<double> thread_cpu_s(int threads) {
+  std::vector<double> t(std::size_t(threads > 0 ? threads : 1), 0.0);
+  auto read = [](double& out) {
+    timespec ts{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    out = double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+  };
+#if defined(_OPENMP)
+#pragma omp parallel num_threads(threads)
+  {
+    const int i = omp_get_thread_num();
+    if (i < int(t.size())) read(t[std::size_t(i)]);
+  }
+#else
+  read(t[0]);
+#endif
+  return t;
+}
+
+// Largest per-thread difference of two thread_cpu_s readings (s).
+inline double busiest_thread_s(const std::vector<double>& before, const std::vector<double>& after) {
+  double most = 0.0;
+  for (std::size_t i = 0; i < before.size() && i < after.size(); ++i) most = std::max(most, after[i] - before[i]);
+  return most;
 }
 
 class ThreadHashes {
