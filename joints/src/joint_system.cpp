@@ -250,6 +250,30 @@ double JointSystem::spring_elastic_J(std::size_t s) const {
 [[gnu::always_inline]] inline bool JointSystem::evaluate_spring_(std::size_t s, double delta, double rate,
                                                                 double& law_force_N, double& dashpot_force_N,
                                                                 bool& any_event) {
+  // Most springs of a frame stay on their initial linear branch for most of
+  // a run. For a trilinear spring there that stays there, the general path
+  // below reduces to force = k0 delta, no books and no flags: the same
+  // expressions as evaluate_trilinear, so the same bits, without the
+  // switch, the law's output record and the work-book tests.
+  if (law_kind_[s] == SpringLawKind::Trilinear && !yielded_[s] && has_prev_[s]) {
+    const auto k = std::size_t(law_index_[s]);
+    const TrilinearLaw& law = trilinear_.law[std::size_t(trilinear_.law_of[k])];
+    const double offset = trilinear_.state[k].plastic_offset_m;
+    if (offset == 0.0 && !(delta > law.du_t_m || delta < -law.du_c_m)) {
+      const double e = delta - offset;
+      const double f = (e >= 0.0 ? law.k0_t_Npm : law.k0_c_Npm) * e;
+      const double f_hi = law.fy_t_N + law.k1_t_Npm * (delta - law.dy_t_m);
+      const double f_lo = -law.fy_c_N + law.k1_c_Npm * (delta + law.dy_c_m);
+      if (!(f > f_hi || f < f_lo)) {
+        delta_m_[s] = delta;
+        rate_mps_[s] = rate;
+        law_force_N_[s] = f;
+        law_force_N = f;
+        dashpot_force_N = dashpot_Nspm_[s] * rate;
+        return true;
+      }
+    }
+  }
   // The previous evaluation's values, read before they are overwritten.
   const double delta_prev = delta_m_[s];
   const double law_force_prev = law_force_N_[s];

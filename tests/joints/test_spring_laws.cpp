@@ -210,6 +210,51 @@ TEST(TrilinearLaw, ElasticUnloadingAndKinematicReyield) {
   EXPECT_NEAR(f, -1000.0 + k1 * (-1e-3), 1e-9);
 }
 
+TEST(TrilinearLaw, JointForceIsTheLawsAtEveryStepAcrossYieldUnloadingAndDeletion) {
+  // The joint system evaluates a trilinear spring that has never left its
+  // initial linear branch by a shortcut (joint_system.cpp,
+  // evaluate_spring_). Reference for the force: the law itself
+  // (evaluate_trilinear, whose closed forms the tests above check) on its
+  // own state, fed the joint's deformation at every step. The path loads
+  // past yield (1 mm), unloads back inside the initial elastic range with a
+  // plastic offset, reverses past compression yield, and ends past the
+  // ultimate deformation (5 mm). While the spring is on its initial branch
+  // its books must hold what an elastic spring stores, k0 delta^2 / 2, and
+  // no plastic work (CyclicDissipationEqualsLoopArea checks them after).
+  const TrilinearParams p = symmetric_trilinear();
+  Rig rig(trilinear_spring(p, kRefLen), linear_spring(1e6), BreakCriterion::Never);
+  const TrilinearLaw law = compile_trilinear(p, kRefLen);
+  TrilinearState reference;
+  bool reference_deleted = false;
+  std::vector<double> path;
+  for (int k = 0; k <= 30; ++k) path.push_back(1e-4 * k);     // 0 -> 3 mm
+  for (int k = 29; k >= -30; --k) path.push_back(1e-4 * k);   // -> -3 mm
+  for (int k = -29; k <= 60; ++k) path.push_back(1e-4 * k);   // -> 6 mm
+  std::int64_t step = 0;
+  int deleted_at = -1;
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    rig.force(Vec3(0, 0, path[i]), 2, step++);
+    const double delta = rig.js.spring_deformation_m()[0];
+    double expected = 0.0;
+    if (!reference_deleted) {
+      const LawOutput out = evaluate_trilinear(law, reference, delta);
+      reference_deleted = out.failed;
+      expected = out.failed ? 0.0 : out.force_N;
+      if (out.failed) deleted_at = int(i);
+    }
+    // Bit for bit: the same expressions on the same inputs.
+    ASSERT_EQ(rig.js.spring_force_N()[0], expected) << "step " << i << ", delta " << delta;
+    if (i > 0 && i < 10) {  // 0.1-0.9 mm, below yield
+      EXPECT_NEAR(rig.js.spring_elastic_J(0), 0.5 * law.k0_t_Npm * delta * delta, 1e-12) << "step " << i;
+      EXPECT_EQ(rig.js.spring_plastic_J(0), 0.0) << "step " << i;
+    }
+  }
+  // The path did reach every branch: yield, and deletion past 5 mm.
+  EXPECT_NE(reference.plastic_offset_m, 0.0);
+  ASSERT_GE(deleted_at, 0);
+  EXPECT_GT(path[std::size_t(deleted_at)], 5e-3);
+}
+
 TEST(TrilinearLaw, CyclicDissipationEqualsLoopArea) {
   // Symmetric law cycled between +-dm after a first loading to dm. The
   // steady loop is the parallelogram bounded by the hardening lines (slope
