@@ -251,24 +251,22 @@ double JointSystem::spring_elastic_J(std::size_t s) const {
                                                                 double& law_force_N, double& dashpot_force_N,
                                                                 bool& any_event) {
   // Most springs of a frame stay on their initial linear branch for most of
-  // a run. For a trilinear spring there that stays there, the general path
-  // below reduces to force = k0 delta, no books and no flags: the same
-  // expressions as evaluate_trilinear, so the same bits, without the
-  // switch, the law's output record and the work-book tests.
+  // a run. For a trilinear spring that has not yielded and stays on that
+  // branch this step, the general path below reduces to force = k0 delta,
+  // with no books and no flags. It is computed here by the law's own
+  // functions (trilinear_law.h), so with the same bits, without the switch,
+  // the law's output record and the work-book tests.
   if (law_kind_[s] == SpringLawKind::Trilinear && !yielded_[s] && has_prev_[s]) {
     const auto k = std::size_t(law_index_[s]);
     const TrilinearLaw& law = trilinear_.law[std::size_t(trilinear_.law_of[k])];
     const double offset = trilinear_.state[k].plastic_offset_m;
-    if (offset == 0.0 && !(delta > law.du_t_m || delta < -law.du_c_m)) {
-      const double e = delta - offset;
-      const double f = (e >= 0.0 ? law.k0_t_Npm : law.k0_c_Npm) * e;
-      const double f_hi = law.fy_t_N + law.k1_t_Npm * (delta - law.dy_t_m);
-      const double f_lo = -law.fy_c_N + law.k1_c_Npm * (delta + law.dy_c_m);
-      if (!(f > f_hi || f < f_lo)) {
+    if (offset == 0.0 && !trilinear_past_ultimate(law, delta)) {
+      const TrilinearTrial trial = trilinear_trial(law, offset, delta);
+      if (trial.inside()) {
         delta_m_[s] = delta;
         rate_mps_[s] = rate;
-        law_force_N_[s] = f;
-        law_force_N = f;
+        law_force_N_[s] = trial.force_N;
+        law_force_N = trial.force_N;
         dashpot_force_N = dashpot_Nspm_[s] * rate;
         return true;
       }

@@ -63,18 +63,34 @@ inline double trilinear_stored_energy_J(const TrilinearLaw& law, double f_N) {
   return 0.5 * f_N * f_N * (f_N >= 0.0 ? law.inv_k0_t_mpN : law.inv_k0_c_mpN);
 }
 
+// Past the ultimate deformation on either side: the spring is deleted.
+inline bool trilinear_past_ultimate(const TrilinearLaw& law, double delta_m) {
+  return delta_m > law.du_t_m || delta_m < -law.du_c_m;
+}
+
+// The elastic trial force F* = k_e (delta - delta_p) and the two hardening
+// bounds at delta (N).
+struct TrilinearTrial {
+  double force_N, lower_N, upper_N;
+  bool inside() const { return !(force_N > upper_N || force_N < lower_N); }
+};
+inline TrilinearTrial trilinear_trial(const TrilinearLaw& law, double plastic_offset_m, double delta_m) {
+  const double e = delta_m - plastic_offset_m;
+  return {(e >= 0.0 ? law.k0_t_Npm : law.k0_c_Npm) * e, -law.fy_c_N + law.k1_c_Npm * (delta_m + law.dy_c_m),
+          law.fy_t_N + law.k1_t_Npm * (delta_m - law.dy_t_m)};
+}
+
 inline LawOutput evaluate_trilinear(const TrilinearLaw& law, TrilinearState& io_state, double delta_m) {
   LawOutput out;
-  if (delta_m > law.du_t_m || delta_m < -law.du_c_m) {
+  if (trilinear_past_ultimate(law, delta_m)) {
     out.failed = true;
     out.inelastic = true;
     return out;
   }
-  const double e = delta_m - io_state.plastic_offset_m;
-  double f = (e >= 0.0 ? law.k0_t_Npm : law.k0_c_Npm) * e;
-  const double f_hi = law.fy_t_N + law.k1_t_Npm * (delta_m - law.dy_t_m);
-  const double f_lo = -law.fy_c_N + law.k1_c_Npm * (delta_m + law.dy_c_m);
-  if (f > f_hi || f < f_lo) {
+  const TrilinearTrial trial = trilinear_trial(law, io_state.plastic_offset_m, delta_m);
+  double f = trial.force_N;
+  const double f_hi = trial.upper_N, f_lo = trial.lower_N;
+  if (!trial.inside()) {
     f = std::clamp(f, f_lo, f_hi);
     io_state.plastic_offset_m = delta_m - f / (f >= 0.0 ? law.k0_t_Npm : law.k0_c_Npm);
   }
