@@ -198,13 +198,19 @@ void JointSystem::prepare(const BodyStore& bodies) {
     body_slots_[std::size_t(fill[std::size_t(joint_body_a_[j])]++)] = std::int32_t(2 * j);
     body_slots_[std::size_t(fill[std::size_t(joint_body_b_[j])]++)] = std::int32_t(2 * j + 1);
   }
+  prepare_lanes_();
 }
 
 void JointSystem::accumulate_forces(BodyStore& bodies, const StepInfo& /*step*/) {
   if (!prepared_) prepare(bodies);
   const bool parallel = parallel_(spring_joint_.size());
-  parallel_for_static(std::int64_t(joint_body_a_.size()), parallel,
-                      [&](std::int64_t j) { joint_step_(bodies, std::size_t(j)); });
+  parallel_for_static(std::int64_t(joint_body_a_.size()), parallel, [&](std::int64_t ji) {
+    const auto j = std::size_t(ji);
+    if (joint_lanes_[j] && !joint_broken_[j])
+      joint_step_lanes_(bodies, j);
+    else
+      joint_step_(bodies, j);
+  });
   spring_geometry_current_ = false;
   spring_force_current_ = false;
 
@@ -342,6 +348,64 @@ double JointSystem::spring_elastic_J(std::size_t s) const {
   return true;
 }
 
+void JointSystem::point_springs_general_(std::size_t p, const double d_axis[3], const double v_axis[3],
+                                         double f_axis[3], double fd_axis[3], JointSpringSummary& sum,
+                                         bool strain_limit, bool& any_event) {
+  for (int c = 0; c < 3; ++c) f_axis[c] = fd_axis[c] = 0.0;
+  const auto first = std::size_t(point_first_[p]), last = std::size_t(point_first_[p + 1]);
+  for (std::size_t s = first; s < last; ++s) {
+    const int ax = spring_axis_[s];
+    const double delta = d_axis[ax], rate = v_axis[ax];
+    double f_law, f_dashpot;
+    if (!alive_[s]) {
+      delta_m_[s] = delta;
+      rate_mps_[s] = rate;
+    } else if (evaluate_spring_(s, delta, rate, f_law, f_dashpot, any_event)) {
+      f_axis[ax] += f_law + f_dashpot;
+      fd_axis[ax] += f_dashpot;
+      ++sum.springs_alive;
+      if (spring_is_normal_[s]) ++sum.normal_springs_alive;
+      // Only the strain-limit criterion reads it (fracture.h).
+      if (strain_limit) sum.max_strain = std::max(sum.max_strain, std::abs(delta) / reference_length_m_[s]);
+    }
+  }
+}
+
+Mat3 JointSystem::update_joint_frame_(const BodyStore& bodies, std::size_t j) {
+  const Quat qa = bodies.orientation[joint_body_a_[j]] * joint_frame_a_[j];
+  Quat qb = bodies.orientation[joint_body_b_[j]] * joint_frame_b_[j];
+  if (qa.dot(qb) < 0.0) qb.coeffs() = -qb.coeffs();
+  Quat qm;
+  qm.coeffs() = qa.coeffs() + qb.coeffs();
+  qm.normalize();
+  const Mat3 frame = qm.toRotationMatrix();
+  joint_frame_world_[j] = frame;
+  return frame;
+}
+
+void JointSystem::finish_joint_(std::size_t j, const double xa[3], const double xb[3], const double force_on_a[3],
+                                const double torque_on_a[3], const JointSpringSummary& sum, bool any_event) {
+  // Torque on b: -(m - x_b) x F = -(m - x_a) x F + (x_b - x_a) x F, summed over points.
+  const double* f = force_on_a;
+  const double ab[3] = {xb[0] - xa[0], xb[1] - xa[1], xb[2] - xa[2]};
+  const double ab_x_f[3] = {ab[1] * f[2] - ab[2] * f[1], ab[2] * f[0] - ab[0] * f[2], ab[0] * f[1] - ab[1] * f[0]};
+  double* slot_fa = slot_force_N_[2 * j].data();
+  double* slot_fb = slot_force_N_[2 * j + 1].data();
+  double* slot_ta = slot_torque_Nm_[2 * j].data();
+  double* slot_tb = slot_torque_Nm_[2 * j + 1].data();
+  for (int r = 0; r < 3; ++r) {
+    slot_fa[r] = f[r];
+    slot_fb[r] = -f[r];
+    slot_ta[r] = torque_on_a[r];
+    slot_tb[r] = ab_x_f[r] - torque_on_a[r];
+  }
+  const bool brk = joint_should_break(joint_break_[j], sum);
+  joint_break_pending_[j] = brk ? 1 : 0;
+  // Kept until finish_step emits the events (an evaluation without a
+  // finish_step in between must not lose them).
+  if (brk || any_event) joint_event_pending_[j] = 1;
+}
+
 // One joint, one pass (joint_system.h). Writes only what joint j owns: its
 // springs, its points, its two slots and its flags.
 void JointSystem::joint_step_(const BodyStore& bodies, std::size_t j) {
@@ -353,14 +417,7 @@ void JointSystem::joint_step_(const BodyStore& bodies, std::size_t j) {
     return;
   }
   const BodyId a = joint_body_a_[j], b = joint_body_b_[j];
-  const Quat qa = bodies.orientation[a] * joint_frame_a_[j];
-  Quat qb = bodies.orientation[b] * joint_frame_b_[j];
-  if (qa.dot(qb) < 0.0) qb.coeffs() = -qb.coeffs();
-  Quat qm;
-  qm.coeffs() = qa.coeffs() + qb.coeffs();
-  qm.normalize();
-  const Mat3 frame = qm.toRotationMatrix();
-  joint_frame_world_[j] = frame;
+  const Mat3 frame = update_joint_frame_(bodies, j);
   const Mat3 ra = bodies.rotation[a], rb = bodies.rotation[b];
   const Vec3 xa = bodies.position_m[a], xb = bodies.position_m[b];
   const Vec3 va = bodies.velocity_mps[a], vb = bodies.velocity_mps[b];
@@ -463,22 +520,14 @@ void JointSystem::joint_step_(const BodyStore& bodies, std::size_t j) {
     bool any_link = false;
     for (std::size_t i = 0; i < n; ++i) {
       const std::size_t p = chunk + i;
-      const auto first = std::size_t(point_first[p]), last = std::size_t(point_first[p + 1]);
+      const auto first = std::size_t(point_first[p]);
       for (int c = 0; c < 3; ++c) f_axis[c][i] = fd_axis[c][i] = 0.0;
       if (axis[first] >= 0) {
-        for (std::size_t s = first; s < last; ++s) {
-          const int ax = axis[s];
-          const double delta = d_axis[ax][i], rate = v_axis[ax][i];
-          double f_law, f_dashpot;
-          if (!alive[s]) {
-            delta_m[s] = delta;
-            rate_mps[s] = rate;
-          } else if (evaluate_spring_(s, delta, rate, f_law, f_dashpot, any_pending)) {
-            f_axis[ax][i] += f_law + f_dashpot;
-            fd_axis[ax][i] += f_dashpot;
-            count_alive(s, delta);
-          }
-        }
+        const double point_d[3] = {d_axis[0][i], d_axis[1][i], d_axis[2][i]};
+        const double point_v[3] = {v_axis[0][i], v_axis[1][i], v_axis[2][i]};
+        double point_f[3], point_fd[3];
+        point_springs_general_(p, point_d, point_v, point_f, point_fd, sum, strain_limit, any_pending);
+        for (int c = 0; c < 3; ++c) f_axis[c][i] = point_f[c], fd_axis[c][i] = point_fd[c];
       } else {
         // A link (its own point): along its current direction.
         any_link = true;
@@ -550,25 +599,7 @@ void JointSystem::joint_step_(const BodyStore& bodies, std::size_t j) {
         torque_on_a[r] += torque[r][i];
       }
   }
-  // Torque on b: -(m - x_b) x F = -(m - x_a) x F + (x_b - x_a) x F, summed over points.
-  const double* f = force_on_a;
-  const double ab[3] = {xb[0] - xa[0], xb[1] - xa[1], xb[2] - xa[2]};
-  const double ab_x_f[3] = {ab[1] * f[2] - ab[2] * f[1], ab[2] * f[0] - ab[0] * f[2], ab[0] * f[1] - ab[1] * f[0]};
-  double* slot_fa = slot_force_N_[2 * j].data();
-  double* slot_fb = slot_force_N_[2 * j + 1].data();
-  double* slot_ta = slot_torque_Nm_[2 * j].data();
-  double* slot_tb = slot_torque_Nm_[2 * j + 1].data();
-  for (int r = 0; r < 3; ++r) {
-    slot_fa[r] = f[r];
-    slot_fb[r] = -f[r];
-    slot_ta[r] = torque_on_a[r];
-    slot_tb[r] = ab_x_f[r] - torque_on_a[r];
-  }
-  const bool brk = joint_should_break(joint_break_[j], sum);
-  joint_break_pending_[j] = brk ? 1 : 0;
-  // Kept until finish_step emits the events (an evaluation without a
-  // finish_step in between must not lose them).
-  if (brk || any_pending) joint_event_pending_[j] = 1;
+  finish_joint_(j, xa.data(), xb.data(), force_on_a, torque_on_a, sum, any_pending);
 }
 
 void JointSystem::materialise_spring_geometry_() const {
@@ -612,6 +643,7 @@ void JointSystem::kill_spring_(std::size_t s) {
   alive_[s] = 0;
   law_force_N_[s] = 0.0;
   spring_force_current_ = false;
+  point_plain_[std::size_t(spring_point_[s])] = 0;
 }
 
 void JointSystem::finish_step(const BodyStore& bodies, const StepInfo& step, EventLog& events) {

@@ -148,6 +148,8 @@ void JointSystem::load_state(StateReader& in) {
     st.has_reversal = in.boolean("CUREE state");
     st.yielded = in.boolean("CUREE state");
   }
+  // Which points the lane kernel may take follows from the springs' state.
+  for (std::size_t p = 0; p < point_plain_.size(); ++p) refresh_point_plain_(p);
 }
 
 }  // namespace fq

@@ -3,13 +3,17 @@
 // prescribing the free body's pose and reading the force on it.
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <cmath>
+#include <cstring>
 #include <random>
 #include <string>
 #include <vector>
 
 #include "dem_core/body_store.h"
 #include "dem_core/bonded_pairs.h"
+#include "dem_core/simulation.h"
 #include "joints/joint_system.h"
 
 namespace fq::test {
@@ -224,6 +228,74 @@ inline Eigen::MatrixXd system_stiffness(JointSystem& js, BodyStore& store, doubl
   store.orientation = q0;
   store.update_rotations();
   return k;
+}
+
+}  // namespace fq::test
+
+namespace fq::test {
+
+// What a run with joints leaves behind, for tests that require two runs to
+// agree bit for bit (thread counts, the lane kernel against the general code).
+struct JointRunOutcome {
+  std::vector<Event> events;
+  std::vector<Vec3> position, velocity, angular_velocity;
+  std::vector<Quat> orientation;
+  std::vector<double> spring_delta, spring_force;
+  std::vector<SpringStatus> spring_status;
+  double elastic_J = 0.0, plastic_J = 0.0, viscous_J = 0.0;
+  JointCounts counts;
+};
+
+inline JointRunOutcome capture_outcome(const Simulation& sim, const JointSystem& joints) {
+  JointRunOutcome o;
+  o.events = sim.events().all();
+  o.position = sim.bodies().position_m;
+  o.velocity = sim.bodies().velocity_mps;
+  o.angular_velocity = sim.bodies().angular_velocity_radps;
+  o.orientation = sim.bodies().orientation;
+  o.spring_delta = joints.spring_deformation_m();
+  o.spring_force = joints.spring_force_N();
+  for (std::size_t s = 0; s < joints.spring_count(); ++s) o.spring_status.push_back(joints.spring_status(s));
+  EnergyLedger books;
+  joints.report_energy(books);
+  o.elastic_J = books.elastic_J;
+  o.plastic_J = books.dissipated_plastic_J;
+  o.viscous_J = books.dissipated_viscous_J;
+  o.counts = joints.counts();
+  return o;
+}
+
+template <class T>
+bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), sizeof(T) * a.size()) == 0;
+}
+inline bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof(double)) == 0; }
+
+// Same events (every field), body states, spring states and energy books, bit for bit.
+inline void expect_identical(const JointRunOutcome& a, const JointRunOutcome& b) {
+  ASSERT_EQ(a.events.size(), b.events.size());
+  for (std::size_t i = 0; i < a.events.size(); ++i) {
+    const Event &x = a.events[i], &y = b.events[i];
+    EXPECT_EQ(x.step, y.step);
+    EXPECT_EQ(x.kind, y.kind);
+    EXPECT_EQ(x.joint_id, y.joint_id);
+    EXPECT_EQ(x.spring_index, y.spring_index);
+    EXPECT_STREQ(x.mode, y.mode);
+    EXPECT_TRUE(same_bits(x.force_N, y.force_N)) << "event " << i;
+    EXPECT_EQ(std::memcmp(x.position_m.data(), y.position_m.data(), sizeof(double) * 3), 0) << "event " << i;
+  }
+  EXPECT_TRUE(same_bits(a.position, b.position));
+  EXPECT_TRUE(same_bits(a.velocity, b.velocity));
+  EXPECT_TRUE(same_bits(a.angular_velocity, b.angular_velocity));
+  EXPECT_TRUE(same_bits(a.orientation, b.orientation));
+  EXPECT_TRUE(same_bits(a.spring_delta, b.spring_delta));
+  EXPECT_TRUE(same_bits(a.spring_force, b.spring_force));
+  EXPECT_TRUE(a.spring_status == b.spring_status);
+  EXPECT_TRUE(same_bits(a.elastic_J, b.elastic_J));
+  EXPECT_TRUE(same_bits(a.plastic_J, b.plastic_J));
+  EXPECT_TRUE(same_bits(a.viscous_J, b.viscous_J));
+  EXPECT_EQ(a.counts.broken, b.counts.broken);
+  EXPECT_EQ(a.counts.yielded, b.counts.yielded);
 }
 
 }  // namespace fq::test

@@ -6,8 +6,6 @@
 // slots and each body gathers them in a fixed order (joint_system.h).
 #include <gtest/gtest.h>
 
-#include <cstring>
-
 #include "dem_core/simulation.h"
 #include "joint_test_util.h"
 #if defined(_OPENMP)
@@ -17,15 +15,7 @@
 namespace fq {
 namespace {
 
-struct Outcome {
-  std::vector<Event> events;
-  std::vector<Vec3> position, velocity;
-  std::vector<Quat> orientation;
-  JointCounts counts;
-  double elastic_J = 0.0, plastic_J = 0.0;
-};
-
-Outcome run(int threads) {
+test::JointRunOutcome run(int threads) {
 #if defined(_OPENMP)
   omp_set_num_threads(threads);
 #else
@@ -76,33 +66,13 @@ Outcome run(int threads) {
   sim.add_force_provider(std::move(js));
   const RunResult rr = sim.run();
   EXPECT_EQ(rr.status, RunStatus::Completed);
-  Outcome o;
-  o.events = sim.events().all();
-  o.position = sim.bodies().position_m;
-  o.velocity = sim.bodies().velocity_mps;
-  o.orientation = sim.bodies().orientation;
-  o.counts = joints->counts();
-  EnergyLedger books;
-  joints->report_energy(books);
-  o.elastic_J = books.elastic_J;
-  o.plastic_J = books.dissipated_plastic_J;
-  return o;
+  return test::capture_outcome(sim, *joints);
 }
 
 TEST(JointThreads, BreakingIsIdenticalWithOneAndTwoThreads) {
-  const Outcome a = run(1), b = run(2);
+  const test::JointRunOutcome a = run(1), b = run(2);
   EXPECT_GT(a.counts.broken, 0);  // the scenario does break joints
-  ASSERT_EQ(a.events.size(), b.events.size());
-  for (std::size_t i = 0; i < a.events.size(); ++i) {
-    const Event &x = a.events[i], &y = b.events[i];
-    EXPECT_EQ(x.step, y.step);
-    EXPECT_EQ(x.kind, y.kind);
-    EXPECT_EQ(x.joint_id, y.joint_id);
-    EXPECT_EQ(x.spring_index, y.spring_index);
-    EXPECT_STREQ(x.mode, y.mode);
-    EXPECT_EQ(std::memcmp(&x.force_N, &y.force_N, sizeof(double)), 0);
-    EXPECT_EQ(std::memcmp(x.position_m.data(), y.position_m.data(), sizeof(double) * 3), 0);
-  }
+  test::expect_identical(a, b);
   // Events come out in ascending (step, joint, spring) order.
   for (std::size_t i = 1; i < a.events.size(); ++i) {
     const Event &p = a.events[i - 1], &q = a.events[i];
@@ -110,12 +80,6 @@ TEST(JointThreads, BreakingIsIdenticalWithOneAndTwoThreads) {
       EXPECT_LE(p.joint_id, q.joint_id);
     }
   }
-  ASSERT_EQ(a.position.size(), b.position.size());
-  EXPECT_EQ(std::memcmp(a.position.data(), b.position.data(), sizeof(Vec3) * a.position.size()), 0);
-  EXPECT_EQ(std::memcmp(a.velocity.data(), b.velocity.data(), sizeof(Vec3) * a.velocity.size()), 0);
-  EXPECT_EQ(std::memcmp(a.orientation.data(), b.orientation.data(), sizeof(Quat) * a.orientation.size()), 0);
-  EXPECT_EQ(a.counts.broken, b.counts.broken);
-  EXPECT_EQ(std::memcmp(&a.plastic_J, &b.plastic_J, sizeof(double)), 0);
   std::printf("threads: %zu events, %d joints broken, %d yielded, last event at step %ld\n", a.events.size(),
               a.counts.broken, a.counts.yielded, a.events.empty() ? -1L : long(a.events.back().step));
 }

@@ -90,6 +90,9 @@ struct JointSystemSettings {
   // Loops run on OpenMP threads only when they have at least this many
   // items: a 16-body frame must not pay for thread start-up (DESIGN.md).
   int parallel_min_items = 2048;
+  // Joints of the right shape run the lane kernel ("Lane kernel" below);
+  // false sends every joint through the general code (tests compare the two).
+  bool lane_kernel = true;
 };
 
 class JointSystem final : public ForceProvider {
@@ -138,6 +141,8 @@ class JointSystem final : public ForceProvider {
   std::size_t joint_first_spring(std::size_t j) const { return std::size_t(joint_first_[j]); }
   std::size_t joint_spring_count(std::size_t j) const { return std::size_t(joint_first_[j + 1] - joint_first_[j]); }
   JointCounts counts() const;
+  // Joints that run the lane kernel (known after the first step).
+  std::size_t lane_joint_count() const;
   // Stored / dissipated energy of one spring (J).
   double spring_elastic_J(std::size_t s) const;
   double spring_plastic_J(std::size_t s) const { return plastic_J_[s]; }
@@ -146,6 +151,12 @@ class JointSystem final : public ForceProvider {
   void add_spring_(std::int32_t joint, SpringRole role, std::int8_t axis, const Vec3& attach_a_local,
                    const Vec3& attach_b_local, double rest_length_m, const SpringDef& def, double reduced_mass_kg);
   void joint_step_(const BodyStore& bodies, std::size_t j);
+  // The current frame of joint j (stored in joint_frame_world_ and returned).
+  Mat3 update_joint_frame_(const BodyStore& bodies, std::size_t j);
+  // The end of a joint's step: its summed force and torque on a (about x_a)
+  // into its two slots, the fracture test and the event flag.
+  void finish_joint_(std::size_t j, const double xa[3], const double xb[3], const double force_on_a[3],
+                     const double torque_on_a[3], const JointSpringSummary& sum, bool any_event);
   // Law of spring s (alive) at deformation delta and rate: stores delta,
   // rate and the law force, keeps the books and flags, and returns the law
   // and dashpot forces (N). Returns false when the spring was deleted now;
@@ -159,6 +170,34 @@ class JointSystem final : public ForceProvider {
   // Per-spring ends and directions from the per-point ones (output, checkpoints).
   void materialise_spring_geometry_() const;
   bool parallel_(std::size_t n) const { return n >= std::size_t(settings_.parallel_min_items); }
+
+  // Lane kernel (joint_lanes.cpp). A joint whose points each carry a normal
+  // spring and two shear springs (in that order), with one law and one
+  // dashpot for all its normal springs and one for all its shear springs,
+  // trilinear or linear elastic, runs its points four at a time in SIMD
+  // lanes, laws included: a point whose three springs are "plain" (alive,
+  // evaluated before, never yielded, no plastic offset; point_plain_) and
+  // stay on their initial linear branch this step gets force = k0 delta in
+  // its lane, with the bits the scalar law gives; any other point runs the
+  // general spring code (point_springs_general_) for its lane. Other joints
+  // (links, mixed laws, CUREE springs) run joint_step_.
+  struct LaneLaw {  // a trilinear law's initial branch; a linear law has infinite bounds
+    double k0_t_Npm, k0_c_Npm, k1_t_Npm, k1_c_Npm, fy_t_N, fy_c_N, dy_t_m, dy_c_m, du_t_m, du_c_m;
+  };
+  void prepare_lanes_();
+  void joint_step_lanes_(const BodyStore& bodies, std::size_t j);
+  bool spring_is_plain_(std::size_t s) const;
+  void refresh_point_plain_(std::size_t p);
+  // Stage 2 of joint_step_ for point p (its springs along the joint axes):
+  // deformations d_axis[c] and rates v_axis[c] along axis c in, the point's
+  // total and dashpot forces along the axes out.
+  void point_springs_general_(std::size_t p, const double d_axis[3], const double v_axis[3], double f_axis[3],
+                              double fd_axis[3], JointSpringSummary& sum, bool strain_limit, bool& any_event);
+  std::vector<std::uint8_t> joint_lanes_;        // joint j runs joint_step_lanes_
+  std::vector<std::int32_t> joint_lane_law_;     // 2 j: its normal springs' law, 2 j + 1: shear (lane_laws_)
+  std::vector<double> joint_lane_dashpot_Nspm_;  // 2 j: normal, 2 j + 1: shear (N s/m)
+  std::vector<LaneLaw> lane_laws_;
+  std::vector<std::uint8_t> point_plain_;  // every spring of point p is plain (see above)
 
   BondedPairs* bonded_;
   JointSystemSettings settings_;

@@ -1,0 +1,93 @@
+// Four doubles in SIMD lanes, for the point loops of the joint system
+// (joint_lanes.cpp): one lane holds one point of a joint, so a four-corner
+// joint is one v4d. Written with SSE2 intrinsics (the x86-64 baseline; two
+// registers per v4d), because GCC's generic vectors wider than the target
+// build their scalar broadcasts and lane masks through the stack, where
+// mismatched store and load widths stall the pipeline.
+//
+// Every operation is the IEEE operation of one lane, and comparisons are
+// the ordered ones of C (false when either side is NaN), so a lane gives
+// the bits that the scalar code gives for one point, written in the same
+// order (FMA contraction is off, top-level CMakeLists.txt).
+#pragma once
+
+#include <emmintrin.h>
+
+#include <cstdint>
+
+namespace fq::lanes {
+
+constexpr int kWidth = 4;
+
+struct v4d {
+  __m128d lo, hi;
+  double operator[](int i) const {
+    const __m128d h = i < 2 ? lo : hi;
+    return (i & 1) ? _mm_cvtsd_f64(_mm_unpackhi_pd(h, h)) : _mm_cvtsd_f64(h);
+  }
+};
+// Lane masks: all bits set (true) or clear (false) per lane.
+struct v4m {
+  __m128d lo, hi;
+};
+
+#define FQ_LANES_INLINE [[gnu::always_inline]] inline
+
+FQ_LANES_INLINE v4d splat(double x) {
+  const __m128d v = _mm_set1_pd(x);
+  return {v, v};
+}
+FQ_LANES_INLINE v4d load(const double* p) { return {_mm_loadu_pd(p), _mm_loadu_pd(p + 2)}; }
+FQ_LANES_INLINE void store(double* p, v4d v) {
+  _mm_storeu_pd(p, v.lo);
+  _mm_storeu_pd(p + 2, v.hi);
+}
+// n (< kWidth) values from p, zeros in the other lanes; and back.
+FQ_LANES_INLINE v4d load_partial(const double* p, int n) {
+  double tmp[kWidth] = {0.0, 0.0, 0.0, 0.0};
+  for (int i = 0; i < n; ++i) tmp[i] = p[i];
+  return load(tmp);
+}
+FQ_LANES_INLINE void store_partial(double* p, v4d v, int n) {
+  double tmp[kWidth];
+  store(tmp, v);
+  for (int i = 0; i < n; ++i) p[i] = tmp[i];
+}
+
+FQ_LANES_INLINE v4d operator+(v4d a, v4d b) { return {_mm_add_pd(a.lo, b.lo), _mm_add_pd(a.hi, b.hi)}; }
+FQ_LANES_INLINE v4d operator-(v4d a, v4d b) { return {_mm_sub_pd(a.lo, b.lo), _mm_sub_pd(a.hi, b.hi)}; }
+FQ_LANES_INLINE v4d operator*(v4d a, v4d b) { return {_mm_mul_pd(a.lo, b.lo), _mm_mul_pd(a.hi, b.hi)}; }
+FQ_LANES_INLINE v4d operator+(double a, v4d b) { return splat(a) + b; }
+FQ_LANES_INLINE v4d operator-(double a, v4d b) { return splat(a) - b; }
+FQ_LANES_INLINE v4d operator*(double a, v4d b) { return splat(a) * b; }
+FQ_LANES_INLINE v4d operator+(v4d a, double b) { return a + splat(b); }
+FQ_LANES_INLINE v4d operator-(v4d a, double b) { return a - splat(b); }
+FQ_LANES_INLINE v4d operator*(v4d a, double b) { return a * splat(b); }
+
+FQ_LANES_INLINE v4m operator>(v4d a, v4d b) { return {_mm_cmpgt_pd(a.lo, b.lo), _mm_cmpgt_pd(a.hi, b.hi)}; }
+FQ_LANES_INLINE v4m operator<(v4d a, v4d b) { return {_mm_cmplt_pd(a.lo, b.lo), _mm_cmplt_pd(a.hi, b.hi)}; }
+FQ_LANES_INLINE v4m operator>=(v4d a, v4d b) { return {_mm_cmpge_pd(a.lo, b.lo), _mm_cmpge_pd(a.hi, b.hi)}; }
+FQ_LANES_INLINE v4m operator>(v4d a, double b) { return a > splat(b); }
+FQ_LANES_INLINE v4m operator<(v4d a, double b) { return a < splat(b); }
+FQ_LANES_INLINE v4m operator>=(v4d a, double b) { return a >= splat(b); }
+FQ_LANES_INLINE v4m operator|(v4m a, v4m b) { return {_mm_or_pd(a.lo, b.lo), _mm_or_pd(a.hi, b.hi)}; }
+// a and not b
+FQ_LANES_INLINE v4m and_not(v4m a, v4m b) { return {_mm_andnot_pd(b.lo, a.lo), _mm_andnot_pd(b.hi, a.hi)}; }
+// m ? a : b, per lane
+FQ_LANES_INLINE v4d select(v4m m, v4d a, v4d b) {
+  return {_mm_or_pd(_mm_and_pd(m.lo, a.lo), _mm_andnot_pd(m.lo, b.lo)),
+          _mm_or_pd(_mm_and_pd(m.hi, a.hi), _mm_andnot_pd(m.hi, b.hi))};
+}
+FQ_LANES_INLINE v4m mask(bool l0, bool l1, bool l2, bool l3) {
+  auto bits = [](bool x) { return x ? std::int64_t(-1) : std::int64_t(0); };
+  return {_mm_castsi128_pd(_mm_set_epi64x(bits(l1), bits(l0))),
+          _mm_castsi128_pd(_mm_set_epi64x(bits(l3), bits(l2)))};
+}
+FQ_LANES_INLINE bool all_of(v4m m) { return (_mm_movemask_pd(m.lo) & _mm_movemask_pd(m.hi)) == 3; }
+FQ_LANES_INLINE bool lane(v4m m, int i) {
+  return ((i < 2 ? _mm_movemask_pd(m.lo) : _mm_movemask_pd(m.hi)) >> (i & 1)) & 1;
+}
+
+#undef FQ_LANES_INLINE
+
+}  // namespace fq::lanes
