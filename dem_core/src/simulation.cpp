@@ -256,28 +256,49 @@ void Simulation::integrate() {
     const auto c = std::size_t(ci);
     ChunkSums s{};
     const std::size_t end = std::min(n, (c + 1) * kReductionChunk);
+    // Free bodies in groups of four: the rotation drift runs in SIMD lanes
+    // (free_rotor_drift4, bitwise the scalar drift), and the sums are
+    // then taken body by body in index order, as before.
+    std::size_t group[4];
+    Quat q_old[4];
+    Vec3 v_old[4], l_new[4], inverse_inertia[4];
+    double rot_old[4];
+    int count = 0;
+    auto drift_group = [&]() {
+      FreeRotorDrift drift[4];
+      free_rotor_drift4(q_old, l_new, inverse_inertia, dt, count, drift);
+      for (int k = 0; k < count; ++k) {
+        const std::size_t i = group[k];
+        const double m = bodies_.mass_kg[i];
+        const Vec3& v_new = bodies_.velocity_mps[i];
+        s.momentum_old += m * v_old[k];
+        s.momentum_new += m * v_new;
+        bodies_.angular_momentum_Nms[i] = l_new[k];
+        bodies_.orientation[i] = drift[k].orientation_end;
+        bodies_.angular_velocity_radps[i] = drift[k].angular_velocity_mid_world;
+        const double rot_new = 0.5 * l_new[k].dot(drift[k].angular_velocity_mid_world);
+        s.kinetic_old_J += 0.5 * m * v_old[k].squaredNorm() + rot_old[k];
+        s.kinetic_new_J += 0.5 * m * v_new.squaredNorm() + rot_new;
+        s.rotational_old_J += rot_old[k];
+        s.rotational_new_J += rot_new;
+      }
+      count = 0;
+    };
     for (std::size_t i = c * kReductionChunk; i < end; ++i) {
       if (bodies_.is_fixed[i]) continue;
-      const double m = bodies_.mass_kg[i];
-      const Vec3 v_old = bodies_.velocity_mps[i];
-      const Vec3 v_new = v_old + (dt * bodies_.inverse_mass_per_kg[i]) * bodies_.force_N[i];
+      const Vec3 v = bodies_.velocity_mps[i];
+      const Vec3 v_new = v + (dt * bodies_.inverse_mass_per_kg[i]) * bodies_.force_N[i];
       bodies_.velocity_mps[i] = v_new;
       bodies_.position_m[i] += dt * v_new;
-      s.momentum_old += m * v_old;
-      s.momentum_new += m * v_new;
-      const double rot_old = 0.5 * bodies_.angular_momentum_Nms[i].dot(bodies_.angular_velocity_radps[i]);
-      const Vec3 l_new = bodies_.angular_momentum_Nms[i] + dt * bodies_.torque_Nm[i];
-      const FreeRotorDrift drift =
-          free_rotor_drift(bodies_.orientation[i], l_new, bodies_.inverse_inertia_per_kgm2[i], dt);
-      bodies_.angular_momentum_Nms[i] = l_new;
-      bodies_.orientation[i] = drift.orientation_end;
-      bodies_.angular_velocity_radps[i] = drift.angular_velocity_mid_world;
-      const double rot_new = 0.5 * l_new.dot(drift.angular_velocity_mid_world);
-      s.kinetic_old_J += 0.5 * m * v_old.squaredNorm() + rot_old;
-      s.kinetic_new_J += 0.5 * m * v_new.squaredNorm() + rot_new;
-      s.rotational_old_J += rot_old;
-      s.rotational_new_J += rot_new;
+      group[count] = i;
+      v_old[count] = v;
+      rot_old[count] = 0.5 * bodies_.angular_momentum_Nms[i].dot(bodies_.angular_velocity_radps[i]);
+      l_new[count] = bodies_.angular_momentum_Nms[i] + dt * bodies_.torque_Nm[i];
+      q_old[count] = bodies_.orientation[i];
+      inverse_inertia[count] = bodies_.inverse_inertia_per_kgm2[i];
+      if (++count == 4) drift_group();
     }
+    if (count > 0) drift_group();
     s.finite = std::isfinite(s.kinetic_new_J) && s.momentum_new.allFinite();
     sums[c] = s;
   });

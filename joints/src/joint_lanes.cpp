@@ -1,5 +1,5 @@
 // The lane kernel of the joint system (joint_system.h, "Lane kernel"): a
-// joint's points four at a time in SIMD lanes (lanes.h), their springs'
+// joint's points four at a time in SIMD lanes (dem_core/lanes.h), their springs'
 // laws included, for joints whose points each carry a normal and two shear
 // springs with one law per kind (the four-corner joints of the frames).
 //
@@ -15,7 +15,7 @@
 #include <limits>
 
 #include "joints/joint_system.h"
-#include "lanes.h"
+#include "dem_core/lanes.h"
 
 namespace fq {
 

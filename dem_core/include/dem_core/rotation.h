@@ -31,6 +31,13 @@ struct FreeRotorDrift {
 FreeRotorDrift free_rotor_drift(const Quat& q, const Vec3& angular_momentum_world, const Vec3& inverse_inertia_body,
                                 double dt_s);
 
+// The drifts of n <= 4 bodies at once (body k in lane k, dem_core/lanes.h),
+// each bitwise what free_rotor_drift gives for that body: the same
+// operations in the same order per lane. A lane whose sub-rotation angle
+// leaves the range of fast_sincos's series is redone by free_rotor_drift.
+void free_rotor_drift4(const Quat q[4], const Vec3 angular_momentum_world[4], const Vec3 inverse_inertia_body[4],
+                       double dt_s, int n, FreeRotorDrift out[4]);
+
 // cos and sin of `angle` (rad); a Taylor series for small angles, where it is
 // exact to double precision and several times faster than std::sin/cos.
 void fast_sincos(double angle, double& out_cos, double& out_sin);

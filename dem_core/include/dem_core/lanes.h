@@ -1,13 +1,14 @@
-// Four doubles in SIMD lanes, for the point loops of the joint system
-// (joint_lanes.cpp): one lane holds one point of a joint, so a four-corner
-// joint is one v4d. Written with SSE2 intrinsics (the x86-64 baseline; two
+// Four doubles in SIMD lanes, for loops whose items are independent and
+// alike: the points of a joint (joints/src/joint_lanes.cpp; a four-corner
+// joint is one v4d) and the rotation drift of four bodies
+// (rotation.cpp). Written with SSE2 intrinsics (the x86-64 baseline; two
 // registers per v4d), because GCC's generic vectors wider than the target
 // build their scalar broadcasts and lane masks through the stack, where
 // mismatched store and load widths stall the pipeline.
 //
 // Every operation is the IEEE operation of one lane, and comparisons are
 // the ordered ones of C (false when either side is NaN), so a lane gives
-// the bits that the scalar code gives for one point, written in the same
+// the bits that the scalar code gives for one item, written in the same
 // order (FMA contraction is off, top-level CMakeLists.txt).
 #pragma once
 
@@ -64,6 +65,18 @@ FQ_LANES_INLINE v4d operator+(v4d a, double b) { return a + splat(b); }
 FQ_LANES_INLINE v4d operator-(v4d a, double b) { return a - splat(b); }
 FQ_LANES_INLINE v4d operator*(v4d a, double b) { return a * splat(b); }
 
+FQ_LANES_INLINE v4d operator/(v4d a, v4d b) { return {_mm_div_pd(a.lo, b.lo), _mm_div_pd(a.hi, b.hi)}; }
+FQ_LANES_INLINE v4d operator/(v4d a, double b) { return a / splat(b); }
+// -a: the sign bit flipped, as the scalar unary minus does.
+FQ_LANES_INLINE v4d operator-(v4d a) {
+  const __m128d sign = _mm_set1_pd(-0.0);
+  return {_mm_xor_pd(a.lo, sign), _mm_xor_pd(a.hi, sign)};
+}
+FQ_LANES_INLINE v4d abs(v4d a) {
+  const __m128d sign = _mm_set1_pd(-0.0);
+  return {_mm_andnot_pd(sign, a.lo), _mm_andnot_pd(sign, a.hi)};
+}
+FQ_LANES_INLINE v4d sqrt(v4d a) { return {_mm_sqrt_pd(a.lo), _mm_sqrt_pd(a.hi)}; }
 FQ_LANES_INLINE v4m operator>(v4d a, v4d b) { return {_mm_cmpgt_pd(a.lo, b.lo), _mm_cmpgt_pd(a.hi, b.hi)}; }
 FQ_LANES_INLINE v4m operator<(v4d a, v4d b) { return {_mm_cmplt_pd(a.lo, b.lo), _mm_cmplt_pd(a.hi, b.hi)}; }
 FQ_LANES_INLINE v4m operator>=(v4d a, v4d b) { return {_mm_cmpge_pd(a.lo, b.lo), _mm_cmpge_pd(a.hi, b.hi)}; }
@@ -71,6 +84,7 @@ FQ_LANES_INLINE v4m operator>(v4d a, double b) { return a > splat(b); }
 FQ_LANES_INLINE v4m operator<(v4d a, double b) { return a < splat(b); }
 FQ_LANES_INLINE v4m operator>=(v4d a, double b) { return a >= splat(b); }
 FQ_LANES_INLINE v4m operator|(v4m a, v4m b) { return {_mm_or_pd(a.lo, b.lo), _mm_or_pd(a.hi, b.hi)}; }
+FQ_LANES_INLINE v4m operator&(v4m a, v4m b) { return {_mm_and_pd(a.lo, b.lo), _mm_and_pd(a.hi, b.hi)}; }
 // a and not b
 FQ_LANES_INLINE v4m and_not(v4m a, v4m b) { return {_mm_andnot_pd(b.lo, a.lo), _mm_andnot_pd(b.hi, a.hi)}; }
 // m ? a : b, per lane
