@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "dem_core/lanes.h"
+#include "dem_core/quat_lanes.h"
 
 namespace fq {
 
@@ -131,19 +131,20 @@ using lanes::v4m;
 void free_rotor_drift4(const Quat q0[4], const Vec3 angular_momentum_world[4], const Vec3 inverse_inertia_body[4],
                        double dt_s, int n, FreeRotorDrift out[4]) {
   // Lanes past n hold the identity at rest (harmless, and never written out).
-  double in[10][lanes::kWidth];
+  const Quat* qp[lanes::kWidth];
+  static const Vec3 zero = Vec3::Zero();
+  const Vec3 *lp[lanes::kWidth], *ip[lanes::kWidth];
   for (int k = 0; k < lanes::kWidth; ++k) {
-    const bool used = k < n;
-    const Quat& q = used ? q0[k] : Quat::Identity();
-    in[0][k] = q.x(), in[1][k] = q.y(), in[2][k] = q.z(), in[3][k] = q.w();
-    for (int r = 0; r < 3; ++r) {
-      in[4 + r][k] = used ? angular_momentum_world[k][r] : 0.0;
-      in[7 + r][k] = used ? inverse_inertia_body[k][r] : 0.0;
-    }
+    qp[k] = &q0[k < n ? k : 0];
+    lp[k] = k < n ? &angular_momentum_world[k] : &zero;
+    ip[k] = k < n ? &inverse_inertia_body[k] : &zero;
   }
-  v4d q[4], momentum[3], inverse_inertia[3];
-  for (int c = 0; c < 4; ++c) q[c] = lanes::load(in[c]);
-  for (int r = 0; r < 3; ++r) momentum[r] = lanes::load(in[4 + r]), inverse_inertia[r] = lanes::load(in[7 + r]);
+  const lanes::QuatLanes start = lanes::load_quats(qp, n);
+  v4d q[4] = {start.x, start.y, start.z, start.w}, momentum[3], inverse_inertia[3];
+  for (int r = 0; r < 3; ++r) {
+    momentum[r] = lanes::make((*lp[0])[r], (*lp[1])[r], (*lp[2])[r], (*lp[3])[r]);
+    inverse_inertia[r] = lanes::make((*ip[0])[r], (*ip[1])[r], (*ip[2])[r], (*ip[3])[r]);
+  }
 
   // pi = q^-1 L (the conjugate's vector part negated, exactly as Eigen's conjugate()).
   const v4d conj_vec[3] = {-q[0], -q[1], -q[2]};
@@ -160,13 +161,9 @@ void free_rotor_drift4(const Quat q0[4], const Vec3 angular_momentum_world[4], c
   rotate_about_body_axis(2, 0.5 * h, inverse_inertia, q, pi, valid);
   rotate_about_body_axis(1, 0.5 * h, inverse_inertia, q, pi, valid);
   rotate_about_body_axis(0, 0.5 * h, inverse_inertia, q, pi, valid);
-  // q.normalize(): Eigen's squared norm of the coefficients (x, y, z, w)
-  // sums them in two SSE2 pairs, (x^2 + z^2) + (y^2 + w^2); then each
-  // coefficient is divided by the norm when it is positive.
-  const v4d norm2 = (q[0] * q[0] + q[2] * q[2]) + (q[1] * q[1] + q[3] * q[3]);
-  const v4d norm = lanes::sqrt(norm2);
-  const v4m positive = norm2 > 0.0;
-  for (int c = 0; c < 4; ++c) q[c] = lanes::select(positive, q[c] / norm, q[c]);
+  // q.normalize()
+  const lanes::QuatLanes unit = lanes::normalized({q[0], q[1], q[2], q[3]});
+  q[0] = unit.x, q[1] = unit.y, q[2] = unit.z, q[3] = unit.w;
 
   double res[7][lanes::kWidth];
   for (int c = 0; c < 4; ++c) lanes::store(res[c], q[c]);

@@ -15,7 +15,8 @@
 #include <limits>
 
 #include "joints/joint_system.h"
-#include "dem_core/lanes.h"
+#include "dem_core/parallel_for.h"
+#include "dem_core/quat_lanes.h"
 
 namespace fq {
 
@@ -116,6 +117,47 @@ std::size_t JointSystem::lane_joint_count() const {
   return std::size_t(std::count(joint_lanes_.begin(), joint_lanes_.end(), std::uint8_t(1)));
 }
 
+// The frames of the lane joints, four joints at a time: update_joint_frame_
+// in lanes (dem_core/quat_lanes.h gives Eigen's bits per lane).
+void JointSystem::update_lane_frames_(const BodyStore& bodies) {
+  const auto nj = std::int64_t(joint_body_a_.size());
+  constexpr std::int64_t kJointsPerItem = 1024;
+  const std::int64_t items = (nj + kJointsPerItem - 1) / kJointsPerItem;
+  parallel_for_static(items, parallel_(spring_joint_.size()), [&](std::int64_t item) {
+    std::size_t group[lanes::kWidth];
+    int n = 0;
+    auto frames = [&]() {
+      const Quat *qa[lanes::kWidth], *ja[lanes::kWidth], *qb[lanes::kWidth], *jb[lanes::kWidth];
+      for (int k = 0; k < n; ++k) {
+        const std::size_t j = group[k];
+        qa[k] = &bodies.orientation[joint_body_a_[j]];
+        qb[k] = &bodies.orientation[joint_body_b_[j]];
+        ja[k] = &joint_frame_a_[j];
+        jb[k] = &joint_frame_b_[j];
+      }
+      const lanes::QuatLanes fa = lanes::product(lanes::load_quats(qa, n), lanes::load_quats(ja, n));
+      lanes::QuatLanes fb = lanes::product(lanes::load_quats(qb, n), lanes::load_quats(jb, n));
+      const v4m flip = lanes::dot(fa, fb) < 0.0;
+      fb = {lanes::select(flip, -fb.x, fb.x), lanes::select(flip, -fb.y, fb.y), lanes::select(flip, -fb.z, fb.z),
+            lanes::select(flip, -fb.w, fb.w)};
+      v4d m[9];
+      lanes::to_rotation_matrix(lanes::normalized({fa.x + fb.x, fa.y + fb.y, fa.z + fb.z, fa.w + fb.w}), m);
+      double columns[9][lanes::kWidth];
+      for (int i = 0; i < 9; ++i) lanes::store(columns[i], m[i]);
+      for (int k = 0; k < n; ++k)
+        for (int i = 0; i < 9; ++i) joint_frame_world_[group[k]].data()[i] = columns[i][k];
+      n = 0;
+    };
+    const std::int64_t last = std::min(nj, (item + 1) * kJointsPerItem);
+    for (auto j = std::size_t(item * kJointsPerItem); j < std::size_t(last); ++j) {
+      if (!joint_lanes_[j] || joint_broken_[j]) continue;
+      group[n++] = j;
+      if (n == lanes::kWidth) frames();
+    }
+    if (n > 0) frames();
+  });
+}
+
 namespace {
 
 // A spring on the initial linear branch of its law, in lanes: the law
@@ -139,7 +181,7 @@ namespace {
 // same order per point, four points per vector.
 void JointSystem::joint_step_lanes_(const BodyStore& bodies, std::size_t j) {
   const BodyId a = joint_body_a_[j], b = joint_body_b_[j];
-  const Mat3 frame = update_joint_frame_(bodies, j);
+  const Mat3& frame = joint_frame_world_[j];  // update_lane_frames_
   // Loop invariants as plain scalars; matrices column-major (m[3 c + r] is
   // row r of column c), the frame's columns t1, t2, n.
   double Ra[9], Rb[9], F[9], Xa[3], Xb[3], Va[3], Vb[3], Wa[3], Wb[3], w_sum[3];

@@ -204,6 +204,7 @@ void JointSystem::prepare(const BodyStore& bodies) {
 void JointSystem::accumulate_forces(BodyStore& bodies, const StepInfo& /*step*/) {
   if (!prepared_) prepare(bodies);
   const bool parallel = parallel_(spring_joint_.size());
+  update_lane_frames_(bodies);
   parallel_for_static(std::int64_t(joint_body_a_.size()), parallel, [&](std::int64_t ji) {
     const auto j = std::size_t(ji);
     if (joint_lanes_[j] && !joint_broken_[j])

@@ -39,6 +39,9 @@ FQ_LANES_INLINE v4d splat(double x) {
   return {v, v};
 }
 FQ_LANES_INLINE v4d load(const double* p) { return {_mm_loadu_pd(p), _mm_loadu_pd(p + 2)}; }
+// Lanes from four scalars. Built in registers: four 8-byte stores read back
+// by a 16-byte load would miss store-to-load forwarding and stall.
+FQ_LANES_INLINE v4d make(double l0, double l1, double l2, double l3) { return {_mm_set_pd(l1, l0), _mm_set_pd(l3, l2)}; }
 FQ_LANES_INLINE void store(double* p, v4d v) {
   _mm_storeu_pd(p, v.lo);
   _mm_storeu_pd(p + 2, v.hi);
