@@ -224,14 +224,48 @@ double face_b_overlap(const SatFrame& f, int j) {
 
 // Edge axis a_i x b_j (a's frame): overlap times |l| in `scaled`, |l| in
 // `len`; the overlap is scaled / len (len < kParallelSine: axis skipped).
+[[gnu::always_inline]] inline double edge_scaled_overlap(const SatFrame& f, const Vec3& l) {
+  const double ra_l = f.ha.dot(l.cwiseAbs());
+  const double rb_l = std::fabs(f.hb[0] * l.dot(f.r.col(0))) + std::fabs(f.hb[1] * l.dot(f.r.col(1))) +
+                      std::fabs(f.hb[2] * l.dot(f.r.col(2)));
+  return ra_l + rb_l - std::fabs(f.t.dot(l));
+}
 [[gnu::always_inline]] inline void edge_overlap(const SatFrame& f, int i, int j, Vec3& l, double& len, double& scaled) {
   l = Vec3::Unit(i).cross(f.r.col(j));
   len = l.norm();
   if (len < kParallelSine) return;
-  const double ra_l = f.ha.dot(l.cwiseAbs());
-  const double rb_l = std::fabs(f.hb[0] * l.dot(f.r.col(0))) + std::fabs(f.hb[1] * l.dot(f.r.col(1))) +
-                      std::fabs(f.hb[2] * l.dot(f.r.col(2)));
-  scaled = ra_l + rb_l - std::fabs(f.t.dot(l));
+  scaled = edge_scaled_overlap(f, l);
+}
+
+// The edge axes without square roots and divisions, for the usual case of
+// boxes in face contact, where every edge axis overlaps by more than the
+// face axes and so neither separates nor is chosen. Returns
+//   -1  every edge axis is parallel or overlaps by at least `threshold`
+//       (the full search would find no separation and no edge contact);
+//   k   edge axis k (6 + 3 i + j) is the first that separates;
+//   -2  undecided: some axis is too close to a boundary for a bound
+//       without the square root; the full search must run.
+// Every decision is one the full search makes with the rounded len and
+// scaled / len: scaled is computed by the same expression, len^2 is
+// compared with margins far wider than the few ulps between the two
+// roundings of |l|, so the answer is the full search's, bit for bit.
+int edge_axes_without_roots(const SatFrame& f, double threshold) {
+  constexpr double kParallelSine2 = kParallelSine * kParallelSine;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      const Vec3 l = Vec3::Unit(i).cross(f.r.col(j));
+      const double len2 = l.squaredNorm();
+      if (len2 < 0.99 * kParallelSine2) continue;  // len < kParallelSine: skipped by the full search too
+      if (!(len2 > 1.01 * kParallelSine2)) return -2;
+      const double scaled = edge_scaled_overlap(f, l);
+      // scaled / len < 0 exactly when scaled < 0 (len > 0), unless the
+      // quotient underflows to -0.
+      if (scaled < 0.0) return scaled < -1e-290 ? 6 + 3 * i + j : -2;
+      if (!(scaled >= 0.0)) return -2;  // NaN
+      if (threshold > 0.0 && !(scaled * scaled >= threshold * threshold * len2 * (1.0 + 1e-9))) return -2;
+    }
+  }
+  return -1;
 }
 
 // True when axis k (0..2 faces of a, 3..5 faces of b, 6 + 3 i + j edge
@@ -245,6 +279,11 @@ bool separates(const SatFrame& f, int k) {
   return len >= kParallelSine && scaled / len < 0.0;
 }
 
+// The search; `shortcuts` enables the remembered separating axis and the
+// root-free pass over the edge axes, which never change its result.
+int collide_box_box_(const OrientedBox& a, const OrientedBox& b, ContactManifold& out, std::int8_t* io_separating_axis,
+                     bool shortcuts);
+
 }  // namespace
 
 int collide_box_box(const OrientedBox& a, const OrientedBox& b, ContactManifold& out) {
@@ -252,6 +291,19 @@ int collide_box_box(const OrientedBox& a, const OrientedBox& b, ContactManifold&
 }
 
 int collide_box_box(const OrientedBox& a, const OrientedBox& b, ContactManifold& out, std::int8_t* io_separating_axis) {
+  return collide_box_box_(a, b, out, io_separating_axis, true);
+}
+
+int collide_box_box_full_search(const OrientedBox& a, const OrientedBox& b, ContactManifold& out,
+                                std::int8_t* out_separating_axis) {
+  if (out_separating_axis) *out_separating_axis = -1;
+  return collide_box_box_(a, b, out, out_separating_axis, false);
+}
+
+namespace {
+
+int collide_box_box_(const OrientedBox& a, const OrientedBox& b, ContactManifold& out, std::int8_t* io_separating_axis,
+                     bool shortcuts) {
   out.count = 0;
   const Mat3& ra = a.rotation;
   const Mat3& rb = b.rotation;
@@ -266,7 +318,7 @@ int collide_box_box(const OrientedBox& a, const OrientedBox& b, ContactManifold&
 
   // The axis that separated the pair last time usually still does (any
   // separating axis gives the same answer: no contact).
-  if (io_separating_axis && *io_separating_axis >= 0 && separates(f, *io_separating_axis)) return 0;
+  if (shortcuts && io_separating_axis && *io_separating_axis >= 0 && separates(f, *io_separating_axis)) return 0;
   auto separated_by = [&](int k) {
     if (io_separating_axis) *io_separating_axis = std::int8_t(k);
     return 0;
@@ -291,7 +343,14 @@ int collide_box_box(const OrientedBox& a, const OrientedBox& b, ContactManifold&
       axis_b = j;
     }
   }
-  for (int i = 0; i < 3; ++i) {
+  // An edge axis wins only by overlapping less than this.
+  const bool use_b_face = best_b < kRelativeTolerance * best_a;
+  const double best_face = use_b_face ? best_b : best_a;
+  const double scale = ha.maxCoeff() + hb.maxCoeff();
+  const double edge_threshold = kRelativeTolerance * best_face - 1e-9 * scale;
+  const int edges = shortcuts ? edge_axes_without_roots(f, edge_threshold) : -2;
+  if (edges >= 0) return separated_by(edges);
+  for (int i = 0; i < 3 && edges == -2; ++i) {
     for (int j = 0; j < 3; ++j) {
       Vec3 l;
       double len = 0.0, scaled = 0.0;
@@ -309,10 +368,7 @@ int collide_box_box(const OrientedBox& a, const OrientedBox& b, ContactManifold&
   }
   if (io_separating_axis) *io_separating_axis = -1;
 
-  const bool use_b_face = best_b < kRelativeTolerance * best_a;
-  const double best_face = use_b_face ? best_b : best_a;
-  const double scale = ha.maxCoeff() + hb.maxCoeff();
-  if (edge_i >= 0 && best_e < kRelativeTolerance * best_face - 1e-9 * scale) {
+  if (edge_i >= 0 && best_e < edge_threshold) {
     Vec3 axis = ra * edge_axis_local;
     if (axis.dot(b.center_m - a.center_m) < 0.0) axis = -axis;
     return edge_contact(a, b, edge_i, edge_j, axis, best_e, out);
@@ -324,5 +380,7 @@ int collide_box_box(const OrientedBox& a, const OrientedBox& b, ContactManifold&
   const double s = t.dot(r.col(axis_b)) >= 0.0 ? -1.0 : 1.0;  // b's face pointing towards a
   return face_contact(b, a, axis_b, s, true, out);
 }
+
+}  // namespace
 
 }  // namespace fq

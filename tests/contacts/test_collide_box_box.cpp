@@ -3,7 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <cstring>
 #include <numbers>
+#include <random>
 
 #include "contacts/collide_box_box.h"
 
@@ -226,6 +229,73 @@ TEST(CollideBoxBox, SeparatingAxisHintNeverChangesTheResult) {
   // The sweep must cover both outcomes for the check to mean anything.
   EXPECT_GT(separated, 30);
   EXPECT_GT(touching, 30);
+}
+
+}  // namespace
+
+namespace {
+
+bool same_bits(double x, double y) { return std::memcmp(&x, &y, sizeof(double)) == 0; }
+bool same_bits(const Vec3& x, const Vec3& y) { return std::memcmp(x.data(), y.data(), 3 * sizeof(double)) == 0; }
+
+TEST(CollideBoxBox, ShortcutsNeverChangeTheFullSearchsResult) {
+  // collide_box_box's shortcuts (collide_box_box.h) must give bitwise the
+  // manifold and the separating axis of collide_box_box_full_search. Four
+  // families of poses: members resting face to face with tiny tilts and
+  // overlaps (the frames' case, where the root-free edge pass decides),
+  // crossed boxes in edge contact, arbitrary poses, and boxes turned by
+  // about 1e-6 rad, where edge axes sit at the parallel cut-off.
+  std::mt19937 rng(31);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  auto random_axis = [&]() -> Vec3 { return Vec3(u(rng), u(rng), u(rng)) + Vec3(0, 0, 1e-3); };
+  int face = 0, edge = 0, apart = 0;
+  for (int k = 0; k < 40000; ++k) {
+    const int family = k % 4;
+    const Vec3 ha(0.005 + 0.01 * std::abs(u(rng)), 0.005 + 0.01 * std::abs(u(rng)), 0.05 + 0.2 * std::abs(u(rng)));
+    const Vec3 hb(0.005 + 0.01 * std::abs(u(rng)), 0.05 + 0.2 * std::abs(u(rng)), 0.005 + 0.01 * std::abs(u(rng)));
+    OrientedBox a{Vec3(u(rng), u(rng), u(rng)), rot(1e-3 * u(rng), random_axis()), ha};
+    OrientedBox b{a.center_m, a.rotation, hb};
+    if (family == 0) {  // b on a face of a, overlap within +-1e-4 of the box size
+      const int axis = k % 3;
+      const double side = u(rng) > 0 ? 1.0 : -1.0;
+      Vec3 offset(0.5 * ha.x() * u(rng), 0.5 * ha.y() * u(rng), 0.5 * ha.z() * u(rng));
+      offset[axis] = side * (ha[axis] + hb[axis]) * (1.0 + 1e-4 * u(rng));
+      b.center_m = a.center_m + a.rotation * offset;
+      b.rotation = rot(1e-3 * u(rng), random_axis()) * a.rotation;
+    } else if (family == 1) {  // crossed at right angles about a random axis, edges meeting
+      b.rotation = rot(0.25 * std::numbers::pi * (1.0 + 0.2 * u(rng)), random_axis()) * a.rotation;
+      b.center_m = a.center_m + 0.9 * (ha.norm() + hb.norm()) * random_axis().normalized();
+    } else if (family == 2) {  // anywhere near a
+      b.rotation = rot(3.0 * u(rng), random_axis());
+      b.center_m = a.center_m + 0.8 * (ha.norm() + hb.norm()) * Vec3(u(rng), u(rng), u(rng));
+    } else {  // nearly parallel: turned by ~1e-6 rad, touching or just apart
+      b.rotation = rot(1e-6 * (1.0 + 0.05 * u(rng)), random_axis()) * a.rotation;
+      b.center_m = a.center_m + a.rotation * Vec3(ha.x() + hb.x() * (1.0 + 1e-3 * u(rng)), 0.3 * ha.y() * u(rng), 0.0);
+    }
+    ContactManifold with, without;
+    std::int8_t axis_with = -1, axis_without = -1;
+    const int n = fq::collide_box_box(a, b, with, &axis_with);
+    ASSERT_EQ(fq::collide_box_box_full_search(a, b, without, &axis_without), n) << "pose " << k;
+    ASSERT_EQ(axis_with, axis_without) << "pose " << k;
+    for (int p = 0; p < n; ++p) {
+      const auto& x = with.points[std::size_t(p)];
+      const auto& y = without.points[std::size_t(p)];
+      ASSERT_EQ(x.feature, y.feature) << "pose " << k;
+      ASSERT_TRUE(same_bits(x.depth_m, y.depth_m) && same_bits(x.weight, y.weight) &&
+                  same_bits(x.position_m, y.position_m) && same_bits(x.normal, y.normal))
+          << "pose " << k;
+    }
+    if (n == 0)
+      ++apart;
+    else if ((with.points[0].feature & fq::kFeatureKindMask) == fq::kFeatureEdgeContact)
+      ++edge;
+    else
+      ++face;
+  }
+  std::printf("face contacts %d, edge contacts %d, apart %d\n", face, edge, apart);
+  EXPECT_GT(face, 5000);
+  EXPECT_GT(edge, 500);
+  EXPECT_GT(apart, 5000);
 }
 
 }  // namespace

@@ -49,6 +49,15 @@ int collide_box_box(const OrientedBox& a, const OrientedBox& b, ContactManifold&
 int collide_box_box(const OrientedBox& a, const OrientedBox& b, ContactManifold& out, std::int8_t* io_separating_axis);
 
 // Feature id layout (for tests and output).
+// The same test without its two shortcuts (the remembered separating axis
+// above, and a first pass over the edge axes that compares squared lengths
+// instead of taking square roots and quotients, and falls back to the full
+// pass whenever a comparison is too close to call): the reference the
+// tests hold the shortcuts to, bit for bit. `out_separating_axis`, when
+// given, receives the axis the full search found separating, or -1.
+int collide_box_box_full_search(const OrientedBox& a, const OrientedBox& b, ContactManifold& out,
+                                std::int8_t* out_separating_axis = nullptr);
+
 inline constexpr std::uint32_t kFeatureFaceContact = 1u << 30;
 inline constexpr std::uint32_t kFeatureEdgeContact = 2u << 30;
 inline constexpr std::uint32_t kFeatureKindMask = 3u << 30;
