@@ -15,7 +15,6 @@
 #include <limits>
 
 #include "joints/joint_system.h"
-#include "dem_core/parallel_for.h"
 #include "dem_core/quat_lanes.h"
 
 namespace fq {
@@ -117,45 +116,39 @@ std::size_t JointSystem::lane_joint_count() const {
   return std::size_t(std::count(joint_lanes_.begin(), joint_lanes_.end(), std::uint8_t(1)));
 }
 
-// The frames of the lane joints, four joints at a time: update_joint_frame_
-// in lanes (dem_core/quat_lanes.h gives Eigen's bits per lane).
-void JointSystem::update_lane_frames_(const BodyStore& bodies) {
-  const auto nj = std::int64_t(joint_body_a_.size());
-  constexpr std::int64_t kJointsPerItem = 1024;
-  const std::int64_t items = (nj + kJointsPerItem - 1) / kJointsPerItem;
-  parallel_for_static(items, parallel_(spring_joint_.size()), [&](std::int64_t item) {
-    std::size_t group[lanes::kWidth];
-    int n = 0;
-    auto frames = [&]() {
-      const Quat *qa[lanes::kWidth], *ja[lanes::kWidth], *qb[lanes::kWidth], *jb[lanes::kWidth];
-      for (int k = 0; k < n; ++k) {
-        const std::size_t j = group[k];
-        qa[k] = &bodies.orientation[joint_body_a_[j]];
-        qb[k] = &bodies.orientation[joint_body_b_[j]];
-        ja[k] = &joint_frame_a_[j];
-        jb[k] = &joint_frame_b_[j];
-      }
-      const lanes::QuatLanes fa = lanes::product(lanes::load_quats(qa, n), lanes::load_quats(ja, n));
-      lanes::QuatLanes fb = lanes::product(lanes::load_quats(qb, n), lanes::load_quats(jb, n));
-      const v4m flip = lanes::dot(fa, fb) < 0.0;
-      fb = {lanes::select(flip, -fb.x, fb.x), lanes::select(flip, -fb.y, fb.y), lanes::select(flip, -fb.z, fb.z),
-            lanes::select(flip, -fb.w, fb.w)};
-      v4d m[9];
-      lanes::to_rotation_matrix(lanes::normalized({fa.x + fb.x, fa.y + fb.y, fa.z + fb.z, fa.w + fb.w}), m);
-      double columns[9][lanes::kWidth];
-      for (int i = 0; i < 9; ++i) lanes::store(columns[i], m[i]);
-      for (int k = 0; k < n; ++k)
-        for (int i = 0; i < 9; ++i) joint_frame_world_[group[k]].data()[i] = columns[i][k];
-      n = 0;
-    };
-    const std::int64_t last = std::min(nj, (item + 1) * kJointsPerItem);
-    for (auto j = std::size_t(item * kJointsPerItem); j < std::size_t(last); ++j) {
-      if (!joint_lanes_[j] || joint_broken_[j]) continue;
-      group[n++] = j;
-      if (n == lanes::kWidth) frames();
+// The frames of the lane joints among [first, last), four joints at a time:
+// update_joint_frame_ in lanes (dem_core/quat_lanes.h gives Eigen's bits per lane).
+void JointSystem::update_lane_frames_(const BodyStore& bodies, std::size_t first, std::size_t last) {
+  std::size_t group[lanes::kWidth];
+  int n = 0;
+  auto frames = [&]() {
+    const Quat *qa[lanes::kWidth], *ja[lanes::kWidth], *qb[lanes::kWidth], *jb[lanes::kWidth];
+    for (int k = 0; k < n; ++k) {
+      const std::size_t j = group[k];
+      qa[k] = &bodies.orientation[joint_body_a_[j]];
+      qb[k] = &bodies.orientation[joint_body_b_[j]];
+      ja[k] = &joint_frame_a_[j];
+      jb[k] = &joint_frame_b_[j];
     }
-    if (n > 0) frames();
-  });
+    const lanes::QuatLanes fa = lanes::product(lanes::load_quats(qa, n), lanes::load_quats(ja, n));
+    lanes::QuatLanes fb = lanes::product(lanes::load_quats(qb, n), lanes::load_quats(jb, n));
+    const v4m flip = lanes::dot(fa, fb) < 0.0;
+    fb = {lanes::select(flip, -fb.x, fb.x), lanes::select(flip, -fb.y, fb.y), lanes::select(flip, -fb.z, fb.z),
+          lanes::select(flip, -fb.w, fb.w)};
+    v4d m[9];
+    lanes::to_rotation_matrix(lanes::normalized({fa.x + fb.x, fa.y + fb.y, fa.z + fb.z, fa.w + fb.w}), m);
+    double columns[9][lanes::kWidth];
+    for (int i = 0; i < 9; ++i) lanes::store(columns[i], m[i]);
+    for (int k = 0; k < n; ++k)
+      for (int i = 0; i < 9; ++i) joint_frame_world_[group[k]].data()[i] = columns[i][k];
+    n = 0;
+  };
+  for (std::size_t j = first; j < last; ++j) {
+    if (!joint_lanes_[j] || joint_broken_[j]) continue;
+    group[n++] = j;
+    if (n == lanes::kWidth) frames();
+  }
+  if (n > 0) frames();
 }
 
 namespace {

@@ -204,13 +204,20 @@ void JointSystem::prepare(const BodyStore& bodies) {
 void JointSystem::accumulate_forces(BodyStore& bodies, const StepInfo& /*step*/) {
   if (!prepared_) prepare(bodies);
   const bool parallel = parallel_(spring_joint_.size());
-  update_lane_frames_(bodies);
-  parallel_for_static(std::int64_t(joint_body_a_.size()), parallel, [&](std::int64_t ji) {
-    const auto j = std::size_t(ji);
-    if (joint_lanes_[j] && !joint_broken_[j])
-      joint_step_lanes_(bodies, j);
-    else
-      joint_step_(bodies, j);
+  // Joints in runs of kJointsPerRun, one run per loop index: a run first
+  // updates the frames of its lane joints (four at a time), then steps its
+  // joints, so both happen in one parallel region and on one core.
+  constexpr std::size_t kJointsPerRun = 1024;
+  const std::size_t nj = joint_body_a_.size();
+  parallel_for_static(std::int64_t((nj + kJointsPerRun - 1) / kJointsPerRun), parallel, [&](std::int64_t run) {
+    const std::size_t first = std::size_t(run) * kJointsPerRun, last = std::min(nj, first + kJointsPerRun);
+    update_lane_frames_(bodies, first, last);
+    for (std::size_t j = first; j < last; ++j) {
+      if (joint_lanes_[j] && !joint_broken_[j])
+        joint_step_lanes_(bodies, j);
+      else
+        joint_step_(bodies, j);
+    }
   });
   spring_geometry_current_ = false;
   spring_force_current_ = false;

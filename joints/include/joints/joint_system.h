@@ -185,7 +185,8 @@ class JointSystem final : public ForceProvider {
     double k0_t_Npm, k0_c_Npm, k1_t_Npm, k1_c_Npm, fy_t_N, fy_c_N, dy_t_m, dy_c_m, du_t_m, du_c_m;
   };
   void prepare_lanes_();
-  void update_lane_frames_(const BodyStore& bodies);  // before joint_step_lanes_
+  // The frames of the lane joints among [first, last), before their joint_step_lanes_.
+  void update_lane_frames_(const BodyStore& bodies, std::size_t first, std::size_t last);
   void joint_step_lanes_(const BodyStore& bodies, std::size_t j);
   bool spring_is_plain_(std::size_t s) const;
   void refresh_point_plain_(std::size_t p);
