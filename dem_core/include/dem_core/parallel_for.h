@@ -71,8 +71,8 @@ inline void split_by_cost(const double* cost, std::int64_t n, int parts, std::ve
 // the same indices from one step to the next while the ranges stay put.
 template <class Body>
 inline void parallel_for_parts(const std::vector<std::int64_t>& first, bool parallel, Body&& body) {
-  const int parts = int(first.size()) - 1;
 #if defined(_OPENMP)
+  const int parts = int(first.size()) - 1;
   if (parallel && parts > 1) {
 #pragma omp parallel num_threads(parts)
     {
