@@ -11,6 +11,8 @@
 //   energy books, deletion and yield flags; the point's springs summed into
 //   one force F applied at the mid-point of the two ends; the joint's sums
 //   written to its two slots (body a, body b); the fracture test.
+// Joints of the four-corner shape run the same pass four points at a time,
+// their laws' initial linear branch included (the lane kernel, below).
 // Then per body (parallel) its joints' slots are gathered in a fixed order
 // (CSR, joint id ascending). Every write goes to a slot owned by one loop
 // index and every sum runs in a fixed order, so results are bitwise identical
