@@ -371,10 +371,7 @@ void JointSystem::point_springs_general_(std::size_t p, const double d_axis[3], 
     } else if (evaluate_spring_(s, delta, rate, f_law, f_dashpot, any_event)) {
       f_axis[ax] += f_law + f_dashpot;
       fd_axis[ax] += f_dashpot;
-      ++sum.springs_alive;
-      if (spring_is_normal_[s]) ++sum.normal_springs_alive;
-      // Only the strain-limit criterion reads it (fracture.h).
-      if (strain_limit) sum.max_strain = std::max(sum.max_strain, std::abs(delta) / reference_length_m_[s]);
+      count_alive_(sum, s, delta, strain_limit);
     }
   }
 }
@@ -433,8 +430,6 @@ void JointSystem::joint_step_(const BodyStore& bodies, std::size_t j) {
   const Vec3 w_sum = wa + wb;
   const std::int32_t* __restrict point_first = point_first_.data();
   const std::int8_t* __restrict axis = spring_axis_.data();
-  const double* __restrict reference_length = reference_length_m_.data();
-  const std::uint8_t* __restrict is_normal = spring_is_normal_.data();
   // Written by evaluate_spring_ as well: no __restrict.
   const std::uint8_t* alive = alive_.data();
   double* delta_m = delta_m_.data();
@@ -450,12 +445,6 @@ void JointSystem::joint_step_(const BodyStore& bodies, std::size_t j) {
   const double* rb_m = rb.data();
   const double* fr = frame.data();  // columns t1, t2, n
   double force_on_a[3] = {0.0, 0.0, 0.0}, torque_on_a[3] = {0.0, 0.0, 0.0};
-  auto count_alive = [&](std::size_t s, double delta) {
-    ++sum.springs_alive;
-    if (is_normal[s]) ++sum.normal_springs_alive;
-    // Only the strain-limit criterion reads it (fracture.h).
-    if (strain_limit) sum.max_strain = std::max(sum.max_strain, std::abs(delta) / reference_length[s]);
-  };
 
   // The joint's points in chunks. Stages 1 and 3 are loops over points with
   // no branch, on columns of doubles (structures of arrays), which the
@@ -552,7 +541,7 @@ void JointSystem::joint_step_(const BodyStore& bodies, std::size_t j) {
         } else if (evaluate_spring_(s, delta, rate, f_law, f_dashpot, any_pending)) {
           f = f_law + f_dashpot;
           fd = f_dashpot;
-          count_alive(s, delta);
+          count_alive_(sum, s, delta, strain_limit);
         }
         for (int r = 0; r < 3; ++r) {
           link_force[r][i] = f * e[r];

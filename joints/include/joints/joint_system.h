@@ -57,6 +57,8 @@
 // joint of the spring that stores most energy in that mode.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <unordered_map>
@@ -197,6 +199,13 @@ class JointSystem final : public ForceProvider {
   // total and dashpot forces along the axes out.
   void point_springs_general_(std::size_t p, const double d_axis[3], const double v_axis[3], double f_axis[3],
                               double fd_axis[3], JointSpringSummary& sum, bool strain_limit, bool& any_event);
+  // Live spring s at deformation delta (m) into the joint's summary (fracture.h).
+  void count_alive_(JointSpringSummary& sum, std::size_t s, double delta, bool strain_limit) const {
+    ++sum.springs_alive;
+    if (spring_is_normal_[s]) ++sum.normal_springs_alive;
+    // Only the strain-limit criterion reads it.
+    if (strain_limit) sum.max_strain = std::max(sum.max_strain, std::abs(delta) / reference_length_m_[s]);
+  }
   std::vector<std::uint8_t> joint_lanes_;        // joint j runs joint_step_lanes_
   std::vector<std::int32_t> joint_lane_law_;     // 2 j: its normal springs' law, 2 j + 1: shear (lane_laws_)
   std::vector<double> joint_lane_dashpot_Nspm_;  // 2 j: normal, 2 j + 1: shear (N s/m)
