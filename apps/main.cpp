@@ -27,6 +27,7 @@
 #include <string>
 #include <vector>
 
+#include "dem_core/lane_isa.h"
 #include "fq_config.h"
 #include "io/case_file.h"
 #include "io/checkpoint.h"
@@ -323,6 +324,14 @@ int main(int argc, char** argv) {
     if (command == "--version") {
       std::cout << "framequake " << FQ_VERSION_STRING << "\n";
       return kExitOk;
+    }
+    // The SIMD form of the lane kernels, which FRAMEQUAKE_SIMD may set
+    // (dem_core/lane_isa.h): a bad value is bad input, refused before any work.
+    try {
+      (void)fq::active_lane_isa();
+    } catch (const std::invalid_argument& e) {
+      std::cerr << "framequake: error: " << e.what() << "\n";
+      return kExitBadInput;
     }
     if (command == "run") return command_run(argc, argv);
     if (command == "info") return command_info(argc, argv);

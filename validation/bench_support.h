@@ -20,6 +20,7 @@
 #include <omp.h>
 #endif
 
+#include "dem_core/lane_isa.h"
 namespace fq::bench {
 
 // CPU seconds of the whole process (all threads): on a shared machine the
@@ -105,6 +106,9 @@ inline void large_scene_sizes(benchmark::internal::Benchmark* b) {
 // Runs the benchmarks the command line selects; false for an unknown option.
 inline bool run_selected_benchmarks(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
+  // The SIMD form of the lane kernels every figure was measured with
+  // (FRAMEQUAKE_SIMD=sse2 or avx2 to choose; dem_core/lane_isa.h).
+  benchmark::AddCustomContext("simd_form", fq::lane_isa_name(fq::active_lane_isa()));
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return false;
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();

@@ -9,6 +9,7 @@
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_odeiv2.h>
 
+#include "dem_core/lane_isa.h"
 #include "dem_core/parallel_for.h"
 #include "dem_core/rotation.h"
 
@@ -103,6 +104,9 @@ Simulation::Simulation(BodyStore bodies, SimulationSettings settings, GroundMoti
   if (!(settings_.duration_s >= 0.0) || !std::isfinite(settings_.duration_s))
     throw std::invalid_argument("duration_s must be a non-negative number of seconds");
   if (settings_.profile_every_steps < 1) settings_.profile_every_steps = 1;
+  // The SIMD form of the lane kernels, read here, outside any parallel
+  // region: a bad FRAMEQUAKE_SIMD throws now (lane_isa.h), not inside a step.
+  (void)active_lane_isa();
   if (settings_.integrator == Integrator::GslRk8pd &&
       (!(settings_.reference_tolerance > 0.0) || !std::isfinite(settings_.reference_tolerance)))
     throw std::invalid_argument("reference_tolerance must be a positive number");

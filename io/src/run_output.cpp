@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "io/atomic_file.h"
+#include "dem_core/lane_isa.h"
 #include "dem_core/state_io.h"
 #include "io/checkpoint.h"
 #include "event_csv_writer.h"
@@ -34,7 +35,8 @@ constexpr const char* kBuiltinSummaryKeys[] = {
     "program",          "program_version", "case",           "status",           "message",
     "steps",            "dt_s",            "duration_s",     "simulated_time_s", "wall_time_s",
     "steps_per_second", "body_count",      "energy",         "event_counts",     "stage_seconds",
-    "provider_seconds", "frames_written",  "history_rows",   "event_rows",       "output"};
+    "provider_seconds", "frames_written",  "history_rows",   "event_rows",       "output",
+    "simd_form"};
 
 bool is_digits(std::string_view s) {
   return !s.empty() && std::all_of(s.begin(), s.end(), [](char c) { return c >= '0' && c <= '9'; });
@@ -334,6 +336,9 @@ void RunOutput::Impl::write_summary(const Simulation& sim, const RunResult& resu
   // Non-finite (null) when the run was too short for the clock to see.
   w.key("steps_per_second").value(result.wall_s > 0.0 ? double(result.steps) / result.wall_s : HUGE_VAL);
   w.key("body_count").value(sim.bodies().size());
+  // Which SIMD form of the lane kernels ran (dem_core/lane_isa.h): the
+  // results are the same in every form, the wall time is not.
+  w.key("simd_form").value(lane_isa_name(active_lane_isa()));
 
   const EnergyLedger& e = sim.ledger();
   w.key("energy").begin_object();

@@ -3,24 +3,16 @@
 // laws included, for joints whose points each carry a normal and two shear
 // springs with one law per kind (the four-corner joints of the frames).
 //
-// It computes what joint_step_ computes, with the same expressions in the
-// same order per point, so every result is bitwise the same (the test
-// JointLanes.* runs both paths side by side). What it saves: the per-spring
-// law path (flags, law batch, parameter lookups) for the springs that stay
-// on their initial linear branch, which is most springs at most steps, and
-// the loop set-up of the generic point chunks.
+// This file decides which joints and points qualify and which SIMD form
+// runs them; the kernels themselves are in joint_lane_kernels.h.
 #include <algorithm>
-#include <cmath>
 #include <cstring>
 #include <limits>
 
+#include "dem_core/lane_isa.h"
 #include "joints/joint_system.h"
-#include "dem_core/quat_lanes.h"
 
 namespace fq {
-
-using lanes::v4d;
-using lanes::v4m;
 
 bool JointSystem::spring_is_plain_(std::size_t s) const {
   if (!alive_[s] || !has_prev_[s]) return false;
@@ -54,6 +46,7 @@ void JointSystem::prepare_lanes_() {
   joint_lane_law_.assign(2 * nj, -1);
   joint_lane_dashpot_Nspm_.assign(2 * nj, 0.0);
   lane_laws_.clear();
+  lanes_avx2_ = active_lane_isa() == LaneIsa::Avx2;
   point_plain_.assign(point_first_.empty() ? 0 : point_first_.size() - 1, 0);
   auto lane_law_of = [&](std::size_t s, LaneLaw& out) {
     const auto k = std::size_t(law_index_[s]);
@@ -112,218 +105,22 @@ void JointSystem::prepare_lanes_() {
   }
 }
 
+void JointSystem::update_lane_frames_(const BodyStore& bodies, std::size_t first, std::size_t last) {
+#if FQ_HAVE_AVX2_KERNELS
+  if (lanes_avx2_) return update_lane_frames_avx2_(bodies, first, last);
+#endif
+  update_lane_frames_sse2_(bodies, first, last);
+}
+
+void JointSystem::joint_step_lanes_(const BodyStore& bodies, std::size_t j) {
+#if FQ_HAVE_AVX2_KERNELS
+  if (lanes_avx2_) return joint_step_lanes_avx2_(bodies, j);
+#endif
+  joint_step_lanes_sse2_(bodies, j);
+}
+
 std::size_t JointSystem::lane_joint_count() const {
   return std::size_t(std::count(joint_lanes_.begin(), joint_lanes_.end(), std::uint8_t(1)));
-}
-
-// The frames of the lane joints among [first, last), four joints at a time:
-// update_joint_frame_ in lanes (dem_core/quat_lanes.h gives Eigen's bits per lane).
-void JointSystem::update_lane_frames_(const BodyStore& bodies, std::size_t first, std::size_t last) {
-  std::size_t group[lanes::kWidth];
-  int n = 0;
-  auto frames = [&]() {
-    const Quat *qa[lanes::kWidth], *ja[lanes::kWidth], *qb[lanes::kWidth], *jb[lanes::kWidth];
-    for (int k = 0; k < n; ++k) {
-      const std::size_t j = group[k];
-      qa[k] = &bodies.orientation[joint_body_a_[j]];
-      qb[k] = &bodies.orientation[joint_body_b_[j]];
-      ja[k] = &joint_frame_a_[j];
-      jb[k] = &joint_frame_b_[j];
-    }
-    const lanes::QuatLanes fa = lanes::product(lanes::load_quats(qa, n), lanes::load_quats(ja, n));
-    lanes::QuatLanes fb = lanes::product(lanes::load_quats(qb, n), lanes::load_quats(jb, n));
-    const v4m flip = lanes::dot(fa, fb) < 0.0;
-    fb = {lanes::select(flip, -fb.x, fb.x), lanes::select(flip, -fb.y, fb.y), lanes::select(flip, -fb.z, fb.z),
-          lanes::select(flip, -fb.w, fb.w)};
-    v4d m[9];
-    lanes::to_rotation_matrix(lanes::normalized({fa.x + fb.x, fa.y + fb.y, fa.z + fb.z, fa.w + fb.w}), m);
-    double columns[9][lanes::kWidth];
-    for (int i = 0; i < 9; ++i) lanes::store(columns[i], m[i]);
-    for (int k = 0; k < n; ++k)
-      for (int i = 0; i < 9; ++i) joint_frame_world_[group[k]].data()[i] = columns[i][k];
-    n = 0;
-  };
-  for (std::size_t j = first; j < last; ++j) {
-    if (!joint_lanes_[j] || joint_broken_[j]) continue;
-    group[n++] = j;
-    if (n == lanes::kWidth) frames();
-  }
-  if (n > 0) frames();
-}
-
-namespace {
-
-// A spring on the initial linear branch of its law, in lanes: the law
-// force F* = k0 delta (trilinear_trial with a zero offset), and in `ok`
-// the lanes where it holds: not past the ultimate deformation
-// (trilinear_past_ultimate) and inside the hardening bounds
-// (TrilinearTrial::inside), with the law's own expressions.
-[[gnu::always_inline]] inline v4d initial_branch(const double* law, v4d delta, v4m& ok) {
-  // law: k0_t, k0_c, k1_t, k1_c, fy_t, fy_c, dy_t, dy_c, du_t, du_c (LaneLaw)
-  const v4m past = (delta > law[8]) | (delta < -law[9]);
-  const v4d force = lanes::select(delta >= 0.0, lanes::splat(law[0]), lanes::splat(law[1])) * delta;
-  const v4d lower = -law[5] + law[3] * (delta + law[7]);
-  const v4d upper = law[4] + law[2] * (delta - law[6]);
-  ok = lanes::and_not(ok, past | (force > upper) | (force < lower));
-  return force;
-}
-
-}  // namespace
-
-// joint_step_ for a lane joint (joint_system.h): the same quantities in the
-// same order per point, four points per vector.
-void JointSystem::joint_step_lanes_(const BodyStore& bodies, std::size_t j) {
-  const BodyId a = joint_body_a_[j], b = joint_body_b_[j];
-  const Mat3& frame = joint_frame_world_[j];  // update_lane_frames_
-  // Loop invariants as plain scalars; matrices column-major (m[3 c + r] is
-  // row r of column c), the frame's columns t1, t2, n.
-  double Ra[9], Rb[9], F[9], Xa[3], Xb[3], Va[3], Vb[3], Wa[3], Wb[3], w_sum[3];
-  for (int k = 0; k < 9; ++k)
-    Ra[k] = bodies.rotation[a].data()[k], Rb[k] = bodies.rotation[b].data()[k], F[k] = frame.data()[k];
-  for (int k = 0; k < 3; ++k) {
-    Xa[k] = bodies.position_m[a][k], Xb[k] = bodies.position_m[b][k];
-    Va[k] = bodies.velocity_mps[a][k], Vb[k] = bodies.velocity_mps[b][k];
-    Wa[k] = bodies.angular_velocity_radps[a][k], Wb[k] = bodies.angular_velocity_radps[b][k];
-    w_sum[k] = Wa[k] + Wb[k];
-  }
-  const double* law_n = &lane_laws_[std::size_t(joint_lane_law_[2 * j])].k0_t_Npm;
-  const double* law_s = &lane_laws_[std::size_t(joint_lane_law_[2 * j + 1])].k0_t_Npm;
-  const double c_n = joint_lane_dashpot_Nspm_[2 * j], c_s = joint_lane_dashpot_Nspm_[2 * j + 1];
-
-  const bool strain_limit = joint_break_[j].criterion == BreakCriterion::StrainLimit;
-  JointSpringSummary sum;
-  sum.springs = joint_spring_count_[j];
-  sum.normal_springs = joint_normal_count_[j];
-  bool any_pending = false;
-  double force_on_a[3] = {0.0, 0.0, 0.0}, torque_on_a[3] = {0.0, 0.0, 0.0};
-
-  const auto first_point = std::size_t(joint_first_point_[j]), last_point = std::size_t(joint_first_point_[j + 1]);
-  for (std::size_t group = first_point; group < last_point; group += lanes::kWidth) {
-    const int n = int(std::min<std::size_t>(lanes::kWidth, last_point - group));
-    const bool full = n == lanes::kWidth;
-    auto in = [&](const std::vector<double>& column) {
-      return full ? lanes::load(column.data() + group) : lanes::load_partial(column.data() + group, n);
-    };
-    auto out = [&](std::vector<double>& column, v4d v) {
-      if (full)
-        lanes::store(column.data() + group, v);
-      else
-        lanes::store_partial(column.data() + group, v, n);
-    };
-    // Stage 1: ends, arm of end a, separation d = p_b - p_a, relative
-    // velocity, and d and v_rel along the joint axes (joint_step_).
-    const v4d la[3] = {in(point_attach_a_m_.x), in(point_attach_a_m_.y), in(point_attach_a_m_.z)};
-    const v4d lb[3] = {in(point_attach_b_m_.x), in(point_attach_b_m_.y), in(point_attach_b_m_.z)};
-    v4d am[3], bm[3], d[3];
-    for (int r = 0; r < 3; ++r) {
-      am[r] = Ra[r] * la[0] + Ra[3 + r] * la[1] + Ra[6 + r] * la[2];
-      bm[r] = Rb[r] * lb[0] + Rb[3 + r] * lb[1] + Rb[6 + r] * lb[2];
-      const v4d pa = Xa[r] + am[r], pb = Xb[r] + bm[r];
-      d[r] = pb - pa;
-      out(r == 0 ? point_end_a_m_.x : r == 1 ? point_end_a_m_.y : point_end_a_m_.z, pa);
-      out(r == 0 ? point_end_b_m_.x : r == 1 ? point_end_b_m_.y : point_end_b_m_.z, pb);
-    }
-    const v4d vrel[3] = {
-        (Vb[0] + Wb[1] * bm[2] - Wb[2] * bm[1]) - (Va[0] + Wa[1] * am[2] - Wa[2] * am[1]),
-        (Vb[1] + Wb[2] * bm[0] - Wb[0] * bm[2]) - (Va[1] + Wa[2] * am[0] - Wa[0] * am[2]),
-        (Vb[2] + Wb[0] * bm[1] - Wb[1] * bm[0]) - (Va[2] + Wa[0] * am[1] - Wa[1] * am[0])};
-    v4d d_axis[3], v_axis[3];
-    for (int c = 0; c < 3; ++c) {
-      d_axis[c] = F[3 * c] * d[0] + F[3 * c + 1] * d[1] + F[3 * c + 2] * d[2];
-      v_axis[c] = F[3 * c] * vrel[0] + F[3 * c + 1] * vrel[1] + F[3 * c + 2] * vrel[2];
-    }
-
-    // Stage 2: the laws. In lanes: the initial branch of each spring (the
-    // normal along axis 2, the shear springs along axes 0 and 1), valid
-    // where the point is plain and every spring stays on it; the other
-    // points run the general spring code.
-    v4m ok = lanes::mask(point_plain_[group] != 0, n > 1 && point_plain_[group + 1] != 0,
-                         n > 2 && point_plain_[group + 2] != 0, n > 3 && point_plain_[group + 3] != 0);
-    const v4d law_force[3] = {initial_branch(law_s, d_axis[0], ok), initial_branch(law_s, d_axis[1], ok),
-                              initial_branch(law_n, d_axis[2], ok)};
-    const v4d dashpot_force[3] = {c_s * v_axis[0], c_s * v_axis[1], c_n * v_axis[2]};
-    // f_axis = 0 + (f_law + f_dashpot), fd_axis = 0 + f_dashpot: the sums
-    // of joint_step_ over the one spring per axis.
-    double f_axis[3][lanes::kWidth], fd_axis[3][lanes::kWidth];
-    double delta_of[3][lanes::kWidth], rate_of[3][lanes::kWidth], law_force_of[3][lanes::kWidth];
-    for (int c = 0; c < 3; ++c) {
-      lanes::store(f_axis[c], 0.0 + (law_force[c] + dashpot_force[c]));
-      lanes::store(fd_axis[c], 0.0 + dashpot_force[c]);
-      lanes::store(delta_of[c], d_axis[c]);
-      lanes::store(rate_of[c], v_axis[c]);
-      lanes::store(law_force_of[c], law_force[c]);
-    }
-    if (lanes::all_of(ok) && !strain_limit) {
-      // Every point of the group on its initial branches (the usual case):
-      // the springs' deformation, rate and law force, normal first, and
-      // the counts of count_alive_ for the whole group at once (this
-      // branch is 2-5 % of the joint stage faster than the per-lane one).
-      const auto s0 = std::size_t(point_first_[group]);
-      double* delta = delta_m_.data() + s0;
-      double* rate = rate_mps_.data() + s0;
-      double* force = law_force_N_.data() + s0;
-      for (int i = 0; i < lanes::kWidth; ++i) {
-        delta[3 * i] = delta_of[2][i], delta[3 * i + 1] = delta_of[0][i], delta[3 * i + 2] = delta_of[1][i];
-        rate[3 * i] = rate_of[2][i], rate[3 * i + 1] = rate_of[0][i], rate[3 * i + 2] = rate_of[1][i];
-        force[3 * i] = law_force_of[2][i], force[3 * i + 1] = law_force_of[0][i], force[3 * i + 2] = law_force_of[1][i];
-      }
-      sum.springs_alive += 3 * lanes::kWidth;
-      sum.normal_springs_alive += lanes::kWidth;
-    } else {
-      for (int i = 0; i < n; ++i) {
-        const std::size_t p = group + std::size_t(i);
-        const auto s0 = std::size_t(point_first_[p]);
-        if (lanes::lane(ok, i)) {
-          for (int k = 0; k < 3; ++k) {
-            const int c = k == 0 ? 2 : k - 1;  // normal, shear t1, shear t2
-            const std::size_t s = s0 + std::size_t(k);
-            delta_m_[s] = delta_of[c][i];
-            rate_mps_[s] = rate_of[c][i];
-            law_force_N_[s] = law_force_of[c][i];
-            count_alive_(sum, s, delta_of[c][i], strain_limit);
-          }
-        } else {
-          const double point_d[3] = {delta_of[0][i], delta_of[1][i], delta_of[2][i]};
-          const double point_v[3] = {rate_of[0][i], rate_of[1][i], rate_of[2][i]};
-          double point_f[3], point_fd[3];
-          point_springs_general_(p, point_d, point_v, point_f, point_fd, sum, strain_limit, any_pending);
-          for (int c = 0; c < 3; ++c) f_axis[c][i] = point_f[c], fd_axis[c][i] = point_fd[c];
-          refresh_point_plain_(p);
-        }
-      }
-    }
-
-    // Stage 3: world force and dashpot force of each point, the dashpot
-    // power at n-1/2, and the torque on a about x_a (joint_step_).
-    const v4d fa[3] = {lanes::load(f_axis[0]), lanes::load(f_axis[1]), lanes::load(f_axis[2])};
-    const v4d fda[3] = {lanes::load(fd_axis[0]), lanes::load(fd_axis[1]), lanes::load(fd_axis[2])};
-    v4d force[3], dashpot[3];
-    for (int r = 0; r < 3; ++r) {
-      force[r] = F[r] * fa[0] + F[3 + r] * fa[1] + F[6 + r] * fa[2];
-      dashpot[r] = F[r] * fda[0] + F[3 + r] * fda[1] + F[6 + r] * fda[2];
-    }
-    out(point_dashpot_force_N_.x, dashpot[0]);
-    out(point_dashpot_force_N_.y, dashpot[1]);
-    out(point_dashpot_force_N_.z, dashpot[2]);
-    const v4d dxf0 = d[1] * dashpot[2] - d[2] * dashpot[1], dxf1 = d[2] * dashpot[0] - d[0] * dashpot[2],
-              dxf2 = d[0] * dashpot[1] - d[1] * dashpot[0];
-    out(point_power_prev_W_,
-        (dashpot[0] * vrel[0] + dashpot[1] * vrel[1] + dashpot[2] * vrel[2]) -
-            0.5 * (dxf0 * w_sum[0] + dxf1 * w_sum[1] + dxf2 * w_sum[2]));
-    const v4d m0 = am[0] + 0.5 * d[0], m1 = am[1] + 0.5 * d[1], m2 = am[2] + 0.5 * d[2];
-    double point_force[3][lanes::kWidth], point_torque[3][lanes::kWidth];
-    lanes::store(point_torque[0], m1 * force[2] - m2 * force[1]);
-    lanes::store(point_torque[1], m2 * force[0] - m0 * force[2]);
-    lanes::store(point_torque[2], m0 * force[1] - m1 * force[0]);
-    for (int r = 0; r < 3; ++r) lanes::store(point_force[r], force[r]);
-    // Stage 4: sums in point order.
-    for (int i = 0; i < n; ++i)
-      for (int r = 0; r < 3; ++r) {
-        force_on_a[r] += point_force[r][i];
-        torque_on_a[r] += point_torque[r][i];
-      }
-  }
-  finish_joint_(j, Xa, Xb, force_on_a, torque_on_a, sum, any_pending);
 }
 
 }  // namespace fq

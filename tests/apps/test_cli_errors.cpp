@@ -10,6 +10,7 @@
 // contracts in io/case_file.h and io/accelerogram.h, not from the program.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -218,6 +219,24 @@ TEST(CliErrors, MissingCaseFile) {
   EXPECT_NE(r.err.find("nope.yaml"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("not found"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(out));
+}
+
+// FRAMEQUAKE_SIMD chooses the SIMD form of the lane kernels
+// (dem_core/lane_isa.h): auto, sse2 or avx2. A bad value is bad input: exit
+// 2, the variable and the accepted values named, no output folder. sse2 is
+// available everywhere and runs the same case to the end.
+TEST(CliErrors, BadSimdFormIsRefusedNamingTheVariable) {
+  ::setenv("FRAMEQUAKE_SIMD", "avx9", 1);
+  const Outcome bad = run_case(kBaseCase, kBaseRecord);
+  ::setenv("FRAMEQUAKE_SIMD", "sse2", 1);
+  const Outcome baseline = run_case(kBaseCase, kBaseRecord);
+  ::unsetenv("FRAMEQUAKE_SIMD");
+  EXPECT_EQ(bad.app.code, 2) << bad.app.err;
+  EXPECT_FALSE(bad.out_folder_exists);
+  EXPECT_NE(bad.app.err.find("FRAMEQUAKE_SIMD='avx9'"), std::string::npos) << bad.app.err;
+  EXPECT_NE(bad.app.err.find("expected auto, sse2 or avx2"), std::string::npos) << bad.app.err;
+  EXPECT_EQ(baseline.app.code, 0) << baseline.app.err;
+  EXPECT_TRUE(baseline.out_folder_exists);
 }
 
 // ---- usage -------------------------------------------------------------------

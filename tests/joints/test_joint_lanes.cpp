@@ -1,8 +1,11 @@
-// The lane kernel (joint_lanes.cpp) against the general joint code: the
+// The lane kernel (joint_lane_kernels.h) against the general joint code: the
 // same chain run twice, once with JointSystemSettings::lane_kernel on and
 // once off, must give the same events (every field), the same final state
 // of every body, the same per-spring deformations, forces and states and
-// the same energy books, bit for bit. The lane kernel claims exactly that
+// the same energy books, bit for bit. The kernel runs in each SIMD form
+// this build and processor have (dem_core/lane_isa.h: SSE2, AVX2), against
+// one general run in the SSE2 form (whose four-body rotation drift is the
+// SSE2 one too). The lane kernel claims exactly that
 // (it evaluates the general code's expressions in the general code's
 // order), and the general code is itself checked against closed forms by
 // the other joint tests.
@@ -18,6 +21,7 @@
 #include <algorithm>
 #include <iterator>
 
+#include "dem_core/lane_isa.h"
 #include "dem_core/simulation.h"
 #include "joint_test_util.h"
 
@@ -53,7 +57,21 @@ struct Outcome {
 constexpr int kJoints = 8;
 const int kLaneJoints[] = {0, 1, 2, 3, 4, 6};  // the joints the kernel takes
 
-Outcome run(bool lane_kernel, int steps) {
+// The lane form for one scope (lane_isa.h), the previous one restored after.
+class ScopedLaneIsa {
+ public:
+  explicit ScopedLaneIsa(LaneIsa isa) : previous_(active_lane_isa()) { ok_ = set_lane_isa(isa); }
+  ~ScopedLaneIsa() { set_lane_isa(previous_); }
+  bool ok() const { return ok_; }
+
+ private:
+  LaneIsa previous_;
+  bool ok_ = false;
+};
+
+Outcome run(bool lane_kernel, int steps, LaneIsa isa) {
+  const ScopedLaneIsa form(isa);
+  EXPECT_TRUE(form.ok());
   test::ChainSpec spec;
   spec.n = kJoints;
   spec.length_m = 0.8;
@@ -157,9 +175,9 @@ Outcome run(bool lane_kernel, int steps) {
   return o;
 }
 
-TEST(JointLanes, SameBitsAsTheGeneralCodeThroughYieldDeletionAndBreaking) {
+void expect_same_bits_as_the_general_code(LaneIsa isa) {
   const int steps = 600;
-  const Outcome lanes = run(true, steps), general = run(false, steps);
+  const Outcome lanes = run(true, steps, isa), general = run(false, steps, LaneIsa::Sse2);
   // The kernel took the joints it should and no other; the general run none.
   EXPECT_EQ(lanes.lane_joints, std::size(kLaneJoints));
   EXPECT_EQ(general.lane_joints, 0u);
@@ -180,8 +198,19 @@ TEST(JointLanes, SameBitsAsTheGeneralCodeThroughYieldDeletionAndBreaking) {
   EXPECT_LT(lanes.run.counts.broken, kJoints);  // and joints stay to carry load to the end
 
   test::expect_identical(lanes.run, general.run);
-  std::printf("lanes: %zu events (lane joints: %d yields, %d deletions, %d breaks), %d joints broken, %d yielded\n",
-              lanes.run.events.size(), yielded, deleted, broken, lanes.run.counts.broken, lanes.run.counts.yielded);
+  std::printf("lanes (%s): %zu events (lane joints: %d yields, %d deletions, %d breaks), %d joints broken, %d yielded\n",
+              lane_isa_name(isa), lanes.run.events.size(), yielded, deleted, broken, lanes.run.counts.broken,
+              lanes.run.counts.yielded);
+}
+
+TEST(JointLanes, SameBitsAsTheGeneralCodeThroughYieldDeletionAndBreaking) {
+  expect_same_bits_as_the_general_code(LaneIsa::Sse2);
+}
+
+TEST(JointLanes, Avx2FormSameBitsAsTheGeneralCode) {
+  if (!lane_isa_available(LaneIsa::Avx2))
+    GTEST_SKIP() << "no AVX2 kernels in this build or no AVX2 on this processor";
+  expect_same_bits_as_the_general_code(LaneIsa::Avx2);
 }
 
 }  // namespace

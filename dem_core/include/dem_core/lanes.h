@@ -1,24 +1,91 @@
 // Four doubles in SIMD lanes, for loops whose items are independent and
-// alike: the points of a joint (joints/src/joint_lanes.cpp; a four-corner
-// joint is one v4d) and the rotation drift of four bodies
-// (rotation.cpp). Written with SSE2 intrinsics (the x86-64 baseline; two
-// registers per v4d), because GCC's generic vectors wider than the target
-// build their scalar broadcasts and lane masks through the stack, where
-// mismatched store and load widths stall the pipeline.
+// alike: the points of a joint (joints/src/joint_lane_kernels.h; a
+// four-corner joint is one v4d) and the rotation drift of four bodies
+// (dem_core/src/rotor_drift_lanes.h).
+//
+// Two forms of the same types and operations:
+//   - SSE2 (the x86-64 baseline every build targets): two registers per v4d,
+//     written with intrinsics, because GCC's generic vectors wider than the
+//     target build their scalar broadcasts and lane masks through the stack,
+//     where mismatched store and load widths stall the pipeline;
+//   - AVX2 (one 256-bit register per v4d), used where the translation unit
+//     is compiled with -mavx2: the kernels are compiled once in each form
+//     and chosen at run time (dem_core/lane_isa.h).
+// Each form lives in its own inline namespace, so the two never meet at
+// link time.
 //
 // Every operation is the IEEE operation of one lane, and comparisons are
 // the ordered ones of C (false when either side is NaN), so a lane gives
 // the bits that the scalar code gives for one item, written in the same
-// order (FMA contraction is off, top-level CMakeLists.txt).
+// order (FMA contraction is off, top-level CMakeLists.txt), in either form.
 #pragma once
 
-#include <emmintrin.h>
+#include <immintrin.h>
 
 #include <cstdint>
+
+// The inline namespace of this translation unit's form (quat_lanes.h and
+// the kernels put their own lane helpers in it too).
+#if defined(__AVX2__)
+#define FQ_LANES_ISA avx2
+#else
+#define FQ_LANES_ISA sse2
+#endif
+
+#define FQ_LANES_INLINE [[gnu::always_inline]] inline
 
 namespace fq::lanes {
 
 constexpr int kWidth = 4;
+
+inline namespace FQ_LANES_ISA {
+
+// ---- what each form writes with its own registers -------------------------
+#if defined(__AVX2__)
+
+struct v4d {
+  __m256d v;
+  double operator[](int i) const {
+    alignas(32) double lanes[kWidth];
+    _mm256_store_pd(lanes, v);
+    return lanes[i];
+  }
+};
+// Lane masks: all bits set (true) or clear (false) per lane.
+struct v4m {
+  __m256d v;
+};
+
+FQ_LANES_INLINE v4d splat(double x) { return {_mm256_set1_pd(x)}; }
+FQ_LANES_INLINE v4d load(const double* p) { return {_mm256_loadu_pd(p)}; }
+FQ_LANES_INLINE v4d make(double l0, double l1, double l2, double l3) { return {_mm256_set_pd(l3, l2, l1, l0)}; }
+FQ_LANES_INLINE void store(double* p, v4d v) { _mm256_storeu_pd(p, v.v); }
+FQ_LANES_INLINE v4d operator+(v4d a, v4d b) { return {_mm256_add_pd(a.v, b.v)}; }
+FQ_LANES_INLINE v4d operator-(v4d a, v4d b) { return {_mm256_sub_pd(a.v, b.v)}; }
+FQ_LANES_INLINE v4d operator*(v4d a, v4d b) { return {_mm256_mul_pd(a.v, b.v)}; }
+FQ_LANES_INLINE v4d operator/(v4d a, v4d b) { return {_mm256_div_pd(a.v, b.v)}; }
+FQ_LANES_INLINE v4d operator-(v4d a) { return {_mm256_xor_pd(a.v, _mm256_set1_pd(-0.0))}; }
+FQ_LANES_INLINE v4d abs(v4d a) { return {_mm256_andnot_pd(_mm256_set1_pd(-0.0), a.v)}; }
+FQ_LANES_INLINE v4d sqrt(v4d a) { return {_mm256_sqrt_pd(a.v)}; }
+// SSE2's cmpgt / cmplt / cmpge predicates (_OS: ordered, signalling, as C's
+// relational operators).
+FQ_LANES_INLINE v4m operator>(v4d a, v4d b) { return {_mm256_cmp_pd(a.v, b.v, _CMP_GT_OS)}; }
+FQ_LANES_INLINE v4m operator<(v4d a, v4d b) { return {_mm256_cmp_pd(a.v, b.v, _CMP_LT_OS)}; }
+FQ_LANES_INLINE v4m operator>=(v4d a, v4d b) { return {_mm256_cmp_pd(a.v, b.v, _CMP_GE_OS)}; }
+FQ_LANES_INLINE v4m operator|(v4m a, v4m b) { return {_mm256_or_pd(a.v, b.v)}; }
+FQ_LANES_INLINE v4m operator&(v4m a, v4m b) { return {_mm256_and_pd(a.v, b.v)}; }
+FQ_LANES_INLINE v4m and_not(v4m a, v4m b) { return {_mm256_andnot_pd(b.v, a.v)}; }
+FQ_LANES_INLINE v4d select(v4m m, v4d a, v4d b) {
+  return {_mm256_or_pd(_mm256_and_pd(m.v, a.v), _mm256_andnot_pd(m.v, b.v))};
+}
+FQ_LANES_INLINE v4m mask(bool l0, bool l1, bool l2, bool l3) {
+  auto bits = [](bool x) { return x ? std::int64_t(-1) : std::int64_t(0); };
+  return {_mm256_castsi256_pd(_mm256_set_epi64x(bits(l3), bits(l2), bits(l1), bits(l0)))};
+}
+FQ_LANES_INLINE bool all_of(v4m m) { return _mm256_movemask_pd(m.v) == 15; }
+FQ_LANES_INLINE bool lane(v4m m, int i) { return (_mm256_movemask_pd(m.v) >> i) & 1; }
+
+#else  // SSE2
 
 struct v4d {
   __m128d lo, hi;
@@ -32,8 +99,6 @@ struct v4m {
   __m128d lo, hi;
 };
 
-#define FQ_LANES_INLINE [[gnu::always_inline]] inline
-
 FQ_LANES_INLINE v4d splat(double x) {
   const __m128d v = _mm_set1_pd(x);
   return {v, v};
@@ -46,30 +111,10 @@ FQ_LANES_INLINE void store(double* p, v4d v) {
   _mm_storeu_pd(p, v.lo);
   _mm_storeu_pd(p + 2, v.hi);
 }
-// n (< kWidth) values from p, zeros in the other lanes; and back.
-FQ_LANES_INLINE v4d load_partial(const double* p, int n) {
-  double tmp[kWidth] = {0.0, 0.0, 0.0, 0.0};
-  for (int i = 0; i < n; ++i) tmp[i] = p[i];
-  return load(tmp);
-}
-FQ_LANES_INLINE void store_partial(double* p, v4d v, int n) {
-  double tmp[kWidth];
-  store(tmp, v);
-  for (int i = 0; i < n; ++i) p[i] = tmp[i];
-}
-
 FQ_LANES_INLINE v4d operator+(v4d a, v4d b) { return {_mm_add_pd(a.lo, b.lo), _mm_add_pd(a.hi, b.hi)}; }
 FQ_LANES_INLINE v4d operator-(v4d a, v4d b) { return {_mm_sub_pd(a.lo, b.lo), _mm_sub_pd(a.hi, b.hi)}; }
 FQ_LANES_INLINE v4d operator*(v4d a, v4d b) { return {_mm_mul_pd(a.lo, b.lo), _mm_mul_pd(a.hi, b.hi)}; }
-FQ_LANES_INLINE v4d operator+(double a, v4d b) { return splat(a) + b; }
-FQ_LANES_INLINE v4d operator-(double a, v4d b) { return splat(a) - b; }
-FQ_LANES_INLINE v4d operator*(double a, v4d b) { return splat(a) * b; }
-FQ_LANES_INLINE v4d operator+(v4d a, double b) { return a + splat(b); }
-FQ_LANES_INLINE v4d operator-(v4d a, double b) { return a - splat(b); }
-FQ_LANES_INLINE v4d operator*(v4d a, double b) { return a * splat(b); }
-
 FQ_LANES_INLINE v4d operator/(v4d a, v4d b) { return {_mm_div_pd(a.lo, b.lo), _mm_div_pd(a.hi, b.hi)}; }
-FQ_LANES_INLINE v4d operator/(v4d a, double b) { return a / splat(b); }
 // -a: the sign bit flipped, as the scalar unary minus does.
 FQ_LANES_INLINE v4d operator-(v4d a) {
   const __m128d sign = _mm_set1_pd(-0.0);
@@ -83,9 +128,6 @@ FQ_LANES_INLINE v4d sqrt(v4d a) { return {_mm_sqrt_pd(a.lo), _mm_sqrt_pd(a.hi)};
 FQ_LANES_INLINE v4m operator>(v4d a, v4d b) { return {_mm_cmpgt_pd(a.lo, b.lo), _mm_cmpgt_pd(a.hi, b.hi)}; }
 FQ_LANES_INLINE v4m operator<(v4d a, v4d b) { return {_mm_cmplt_pd(a.lo, b.lo), _mm_cmplt_pd(a.hi, b.hi)}; }
 FQ_LANES_INLINE v4m operator>=(v4d a, v4d b) { return {_mm_cmpge_pd(a.lo, b.lo), _mm_cmpge_pd(a.hi, b.hi)}; }
-FQ_LANES_INLINE v4m operator>(v4d a, double b) { return a > splat(b); }
-FQ_LANES_INLINE v4m operator<(v4d a, double b) { return a < splat(b); }
-FQ_LANES_INLINE v4m operator>=(v4d a, double b) { return a >= splat(b); }
 FQ_LANES_INLINE v4m operator|(v4m a, v4m b) { return {_mm_or_pd(a.lo, b.lo), _mm_or_pd(a.hi, b.hi)}; }
 FQ_LANES_INLINE v4m operator&(v4m a, v4m b) { return {_mm_and_pd(a.lo, b.lo), _mm_and_pd(a.hi, b.hi)}; }
 // a and not b
@@ -105,6 +147,35 @@ FQ_LANES_INLINE bool lane(v4m m, int i) {
   return ((i < 2 ? _mm_movemask_pd(m.lo) : _mm_movemask_pd(m.hi)) >> (i & 1)) & 1;
 }
 
-#undef FQ_LANES_INLINE
+#endif
+
+// ---- the same in both forms, from the above --------------------------------
+
+// n (< kWidth) values from p, zeros in the other lanes; and back.
+FQ_LANES_INLINE v4d load_partial(const double* p, int n) {
+  double tmp[kWidth] = {0.0, 0.0, 0.0, 0.0};
+  for (int i = 0; i < n; ++i) tmp[i] = p[i];
+  return load(tmp);
+}
+FQ_LANES_INLINE void store_partial(double* p, v4d v, int n) {
+  double tmp[kWidth];
+  store(tmp, v);
+  for (int i = 0; i < n; ++i) p[i] = tmp[i];
+}
+
+FQ_LANES_INLINE v4d operator+(double a, v4d b) { return splat(a) + b; }
+FQ_LANES_INLINE v4d operator-(double a, v4d b) { return splat(a) - b; }
+FQ_LANES_INLINE v4d operator*(double a, v4d b) { return splat(a) * b; }
+FQ_LANES_INLINE v4d operator+(v4d a, double b) { return a + splat(b); }
+FQ_LANES_INLINE v4d operator-(v4d a, double b) { return a - splat(b); }
+FQ_LANES_INLINE v4d operator*(v4d a, double b) { return a * splat(b); }
+FQ_LANES_INLINE v4d operator/(v4d a, double b) { return a / splat(b); }
+FQ_LANES_INLINE v4m operator>(v4d a, double b) { return a > splat(b); }
+FQ_LANES_INLINE v4m operator<(v4d a, double b) { return a < splat(b); }
+FQ_LANES_INLINE v4m operator>=(v4d a, double b) { return a >= splat(b); }
+
+}  // namespace FQ_LANES_ISA
 
 }  // namespace fq::lanes
+
+#undef FQ_LANES_INLINE

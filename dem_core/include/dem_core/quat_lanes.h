@@ -9,6 +9,7 @@
 #include "dem_core/types.h"
 
 namespace fq::lanes {
+inline namespace FQ_LANES_ISA {
 
 struct QuatLanes {
   v4d x, y, z, w;
@@ -16,9 +17,9 @@ struct QuatLanes {
 
 // Lane k from q[k] for k < n; the identity in the other lanes.
 [[gnu::always_inline]] inline QuatLanes load_quats(const Quat* const q[4], int n) {
-  static const Quat identity = Quat::Identity();
+  static constexpr double kIdentity[4] = {0.0, 0.0, 0.0, 1.0};  // (x, y, z, w)
   const double* c[kWidth];
-  for (int k = 0; k < kWidth; ++k) c[k] = (k < n ? *q[k] : identity).coeffs().data();
+  for (int k = 0; k < kWidth; ++k) c[k] = k < n ? q[k]->coeffs().data() : kIdentity;
   return {make(c[0][0], c[1][0], c[2][0], c[3][0]), make(c[0][1], c[1][1], c[2][1], c[3][1]),
           make(c[0][2], c[1][2], c[2][2], c[3][2]), make(c[0][3], c[1][3], c[2][3], c[3][3])};
 }
@@ -62,4 +63,5 @@ struct QuatLanes {
   m[8] = 1.0 - (txx + tyy);
 }
 
+}  // namespace FQ_LANES_ISA
 }  // namespace fq::lanes

@@ -192,6 +192,12 @@ class JointSystem final : public ForceProvider {
   // The frames of the lane joints among [first, last), before their joint_step_lanes_.
   void update_lane_frames_(const BodyStore& bodies, std::size_t first, std::size_t last);
   void joint_step_lanes_(const BodyStore& bodies, std::size_t j);
+  // The two above in each SIMD form (joint_lane_kernels.h); they call the
+  // form prepare_lanes_ chose (dem_core/lane_isa.h): the same bits either way.
+  void update_lane_frames_sse2_(const BodyStore& bodies, std::size_t first, std::size_t last);
+  void joint_step_lanes_sse2_(const BodyStore& bodies, std::size_t j);
+  void update_lane_frames_avx2_(const BodyStore& bodies, std::size_t first, std::size_t last);
+  void joint_step_lanes_avx2_(const BodyStore& bodies, std::size_t j);
   bool spring_is_plain_(std::size_t s) const;
   void refresh_point_plain_(std::size_t p);
   // Stage 2 of joint_step_ for point p (its springs along the joint axes):
@@ -200,7 +206,10 @@ class JointSystem final : public ForceProvider {
   void point_springs_general_(std::size_t p, const double d_axis[3], const double v_axis[3], double f_axis[3],
                               double fd_axis[3], JointSpringSummary& sum, bool strain_limit, bool& any_event);
   // Live spring s at deformation delta (m) into the joint's summary (fracture.h).
-  void count_alive_(JointSpringSummary& sum, std::size_t s, double delta, bool strain_limit) const {
+  // (Always inlined: the AVX2 kernels must not emit a shared copy, CMake's
+  // check_avx2_objects.)
+  [[gnu::always_inline]] void count_alive_(JointSpringSummary& sum, std::size_t s, double delta,
+                                           bool strain_limit) const {
     ++sum.springs_alive;
     if (spring_is_normal_[s]) ++sum.normal_springs_alive;
     // Only the strain-limit criterion reads it.
@@ -211,6 +220,7 @@ class JointSystem final : public ForceProvider {
   std::vector<double> joint_lane_dashpot_Nspm_;  // 2 j: normal, 2 j + 1: shear (N s/m)
   std::vector<LaneLaw> lane_laws_;
   std::vector<std::uint8_t> point_plain_;  // every spring of point p is plain (see above)
+  bool lanes_avx2_ = false;                // the AVX2 form of the kernels runs (prepare_lanes_)
 
   BondedPairs* bonded_;
   JointSystemSettings settings_;
