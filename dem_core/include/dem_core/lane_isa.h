@@ -3,7 +3,7 @@
 // lanes, where the build has the AVX2 kernels (CMake option
 // FQ_AVX2_KERNELS, on by default on x86-64) and the processor has AVX2.
 // Both forms give the same bits (tests/joints/test_joint_lanes.cpp,
-// tests/dem_core/test_rotation.cpp); the AVX2 form does the same lane work
+// tests/dem_core/test_torque_free_rotation.cpp); the AVX2 form does the same lane work
 // in about half the instructions (docs/performance.md, change 23).
 //
 // The default is the widest form available. The environment variable

@@ -175,7 +175,7 @@ class JointSystem final : public ForceProvider {
   void materialise_spring_geometry_() const;
   bool parallel_(std::size_t n) const { return n >= std::size_t(settings_.parallel_min_items); }
 
-  // Lane kernel (joint_lanes.cpp). A joint whose points each carry a normal
+  // Lane kernel (joint_lanes.cpp, joint_lane_kernels.h). A joint whose points each carry a normal
   // spring and two shear springs (in that order), with one law and one
   // dashpot for all its normal springs and one for all its shear springs,
   // trilinear or linear elastic, runs its points four at a time in SIMD
