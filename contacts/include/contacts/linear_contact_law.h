@@ -66,11 +66,15 @@ struct ContactLawOutput {
 
 // io_shear_spring_N: tangential spring force on b (N, world) carried from the
 // previous step (zero when the contact is new); updated in place.
-// Defined here, inline: the contact system calls it for every point at
-// every step, and a caller that does not use some outputs (ContactSystem
-// books its own losses) then does not pay for them.
-inline ContactLawOutput linear_contact_law(const ContactCoefficients& coeff, const ContactLawInput& in,
-                                           Vec3& io_shear_spring_N) {
+// Defined here and always inlined: the contact system calls it for every
+// point at every step, and a caller that does not use some outputs
+// (ContactSystem books its own losses) then does not pay for them. A plain
+// `inline` was not enough: GCC kept it out of line in process_item, a call
+// per point that also computed the unused losses (a quotient, two dot
+// products), 14 % of frame B's samples (docs/performance.md, change 24).
+[[gnu::always_inline]] inline ContactLawOutput linear_contact_law(const ContactCoefficients& coeff,
+                                                                  const ContactLawInput& in,
+                                                                  Vec3& io_shear_spring_N) {
   ContactLawOutput out;
   const double kn = in.stiffness_scale * coeff.normal_stiffness_N_per_m;
   const double kt = in.stiffness_scale * coeff.tangential_stiffness_N_per_m;
