@@ -66,6 +66,22 @@ void JointSystem::FQ_LANE_KERNEL(update_lane_frames_)(const BodyStore& bodies, s
 
 namespace {
 
+// Up to four consecutive points [first, first + n) of one joint: their
+// values in a per-point column as lanes (zeros past n), and back.
+struct PointGroup {
+  std::size_t first;
+  int n;
+  [[gnu::always_inline]] v4d in(const std::vector<double>& column) const {
+    return n == lanes::kWidth ? lanes::load(column.data() + first) : lanes::load_partial(column.data() + first, n);
+  }
+  [[gnu::always_inline]] void out(std::vector<double>& column, v4d v) const {
+    if (n == lanes::kWidth)
+      lanes::store(column.data() + first, v);
+    else
+      lanes::store_partial(column.data() + first, v, n);
+  }
+};
+
 // A spring on the initial linear branch of its law, in lanes: the law
 // force F* = k0 delta (trilinear_trial with a zero offset), and in `ok`
 // the lanes where it holds: not past the ultimate deformation
@@ -237,6 +253,35 @@ void JointSystem::FQ_LANE_KERNEL(joint_step_lanes_)(const BodyStore& bodies, std
       }
   }
   finish_joint_(j, Xa, Xb, force_on_a, torque_on_a, sum, any_pending);
+}
+
+// The dashpot books of lane joint j's points at step n (finish_step: the
+// loop there, "Energy" in joint_system.h), four points per vector with the
+// same expressions in the same order per point.
+void JointSystem::FQ_LANE_KERNEL(dashpot_books_lanes_)(const BodyStore& bodies, std::size_t j, double dt,
+                                                       double first_step_share) {
+  const BooksKinematics k = books_kinematics_(bodies, j, dt);
+  const double *xa = k.xa, *xb = k.xb, *va = k.va, *vb = k.vb, *wa = k.wa, *wb = k.wb, *w_sum = k.w_sum;
+  const double half_dt = dt * 0.5;
+  const auto first_point = std::size_t(joint_first_point_[j]), last_point = std::size_t(joint_first_point_[j + 1]);
+  for (std::size_t group = first_point; group < last_point; group += lanes::kWidth) {
+    const int n = int(std::min<std::size_t>(lanes::kWidth, last_point - group));
+    const PointGroup p{group, n};
+    const v4d f0 = p.in(point_dashpot_force_N_.x), f1 = p.in(point_dashpot_force_N_.y), f2 = p.in(point_dashpot_force_N_.z);
+    const v4d pa0 = p.in(point_end_a_m_.x), pa1 = p.in(point_end_a_m_.y), pa2 = p.in(point_end_a_m_.z);
+    const v4d pb0 = p.in(point_end_b_m_.x), pb1 = p.in(point_end_b_m_.y), pb2 = p.in(point_end_b_m_.z);
+    const v4d ra0 = pa0 - xa[0], ra1 = pa1 - xa[1], ra2 = pa2 - xa[2];
+    const v4d rb0 = pb0 - xb[0], rb1 = pb1 - xb[1], rb2 = pb2 - xb[2];
+    const v4d v0 = (vb[0] + (wb[1] * rb2 - wb[2] * rb1)) - (va[0] + (wa[1] * ra2 - wa[2] * ra1));
+    const v4d v1 = (vb[1] + (wb[2] * rb0 - wb[0] * rb2)) - (va[1] + (wa[2] * ra0 - wa[0] * ra2));
+    const v4d v2 = (vb[2] + (wb[0] * rb1 - wb[1] * rb0)) - (va[2] + (wa[0] * ra1 - wa[1] * ra0));
+    const v4d d0 = pb0 - pa0, d1 = pb1 - pa1, d2 = pb2 - pa2;
+    const v4d c0 = d1 * f2 - d2 * f1, c1 = d2 * f0 - d0 * f2, c2 = d0 * f1 - d1 * f0;
+    const v4d power_next = (f0 * v0 + f1 * v1 + f2 * v2) - 0.5 * (c0 * w_sum[0] + c1 * w_sum[1] + c2 * w_sum[2]);
+    const v4d term = half_dt * (p.in(point_power_prev_W_) + power_next);
+    p.out(point_viscous_done_J_, p.in(point_viscous_done_J_) + first_step_share * term);
+    p.out(point_viscous_half_J_, 0.5 * term);
+  }
 }
 
 }  // namespace fq

@@ -119,6 +119,13 @@ void JointSystem::joint_step_lanes_(const BodyStore& bodies, std::size_t j) {
   joint_step_lanes_sse2_(bodies, j);
 }
 
+void JointSystem::dashpot_books_lanes_(const BodyStore& bodies, std::size_t j, double dt, double first_step_share) {
+#if FQ_HAVE_AVX2_KERNELS
+  if (lanes_avx2_) return dashpot_books_lanes_avx2_(bodies, j, dt, first_step_share);
+#endif
+  dashpot_books_lanes_sse2_(bodies, j, dt, first_step_share);
+}
+
 std::size_t JointSystem::lane_joint_count() const {
   return std::size_t(std::count(joint_lanes_.begin(), joint_lanes_.end(), std::uint8_t(1)));
 }

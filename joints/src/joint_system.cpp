@@ -643,6 +643,21 @@ void JointSystem::kill_spring_(std::size_t s) {
   point_plain_[std::size_t(spring_point_[s])] = 0;
 }
 
+JointSystem::BooksKinematics JointSystem::books_kinematics_(const BodyStore& bodies, std::size_t j, double dt) const {
+  const BodyId a = joint_body_a_[j], b = joint_body_b_[j];
+  BooksKinematics k;
+  for (int r = 0; r < 3; ++r) {
+    k.xa[r] = bodies.position_m[a][r] - dt * bodies.velocity_mps[a][r];
+    k.xb[r] = bodies.position_m[b][r] - dt * bodies.velocity_mps[b][r];
+    k.va[r] = bodies.velocity_mps[a][r];
+    k.vb[r] = bodies.velocity_mps[b][r];
+    k.wa[r] = bodies.angular_velocity_radps[a][r];
+    k.wb[r] = bodies.angular_velocity_radps[b][r];
+    k.w_sum[r] = k.wa[r] + k.wb[r];
+  }
+  return k;
+}
+
 void JointSystem::finish_step(const BodyStore& bodies, const StepInfo& step, EventLog& events) {
   const std::size_t nj = joint_body_a_.size();
   // Dashpot dissipation of step n, as the ledger counts work: dt P(v_n) with
@@ -658,20 +673,12 @@ void JointSystem::finish_step(const BodyStore& bodies, const StepInfo& step, Eve
         point_viscous_half_J_[p] = 0.0;
       return;
     }
-    const BodyId a = joint_body_a_[j], b = joint_body_b_[j];
+    const double first_step_share = step.step == 0 ? 0.5 : 1.0;
+    if (joint_lanes_[j]) return dashpot_books_lanes_(bodies, j, dt, first_step_share);
     // Loop invariants as plain scalars, so that the point loop runs in SIMD
     // lanes (as in joint_step_; every lane does what one point would).
-    double xa[3], xb[3], va[3], vb[3], wa[3], wb[3], w_sum[3];
-    for (int r = 0; r < 3; ++r) {
-      xa[r] = bodies.position_m[a][r] - dt * bodies.velocity_mps[a][r];
-      xb[r] = bodies.position_m[b][r] - dt * bodies.velocity_mps[b][r];
-      va[r] = bodies.velocity_mps[a][r];
-      vb[r] = bodies.velocity_mps[b][r];
-      wa[r] = bodies.angular_velocity_radps[a][r];
-      wb[r] = bodies.angular_velocity_radps[b][r];
-      w_sum[r] = wa[r] + wb[r];
-    }
-    const double first_step_share = step.step == 0 ? 0.5 : 1.0;
+    const BooksKinematics k = books_kinematics_(bodies, j, dt);
+    const double *xa = k.xa, *xb = k.xb, *va = k.va, *vb = k.vb, *wa = k.wa, *wb = k.wb, *w_sum = k.w_sum;
     const double half_dt = dt * 0.5;  // a local: the closure's dt would be re-read after every store
     const auto first_point = std::size_t(joint_first_point_[j]), last_point = std::size_t(joint_first_point_[j + 1]);
     const double* __restrict fd_x = point_dashpot_force_N_.x.data() + first_point;

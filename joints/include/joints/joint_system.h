@@ -198,6 +198,17 @@ class JointSystem final : public ForceProvider {
   void joint_step_lanes_sse2_(const BodyStore& bodies, std::size_t j);
   void update_lane_frames_avx2_(const BodyStore& bodies, std::size_t first, std::size_t last);
   void joint_step_lanes_avx2_(const BodyStore& bodies, std::size_t j);
+  // What the dashpot books of joint j read of its bodies at step n
+  // (finish_step): positions x(n) = x(n+1) - dt v(n+1/2), velocities at
+  // n+1/2, and w_a + w_b.
+  struct BooksKinematics {
+    double xa[3], xb[3], va[3], vb[3], wa[3], wb[3], w_sum[3];
+  };
+  BooksKinematics books_kinematics_(const BodyStore& bodies, std::size_t j, double dt) const;
+  // The dashpot books of a lane joint's points (finish_step) in lanes.
+  void dashpot_books_lanes_(const BodyStore& bodies, std::size_t j, double dt, double first_step_share);
+  void dashpot_books_lanes_sse2_(const BodyStore& bodies, std::size_t j, double dt, double first_step_share);
+  void dashpot_books_lanes_avx2_(const BodyStore& bodies, std::size_t j, double dt, double first_step_share);
   bool spring_is_plain_(std::size_t s) const;
   void refresh_point_plain_(std::size_t p);
   // Stage 2 of joint_step_ for point p (its springs along the joint axes):
