@@ -773,6 +773,13 @@ void JointSystem::finish_step(const BodyStore& bodies, const StepInfo& step, Eve
   }
 }
 
+double JointSystem::joint_viscous_J(std::size_t j) const {
+  double viscous = 0.0;
+  for (auto p = std::size_t(joint_first_point_[j]); p < std::size_t(joint_first_point_[j + 1]); ++p)
+    viscous += point_viscous_done_J_[p] - point_viscous_half_J_[p];
+  return viscous;
+}
+
 void JointSystem::report_energy(EnergyLedger& ledger) const {
   double elastic = 0.0, plastic = 0.0, viscous = 0.0;
   for (std::size_t s = 0; s < spring_joint_.size(); ++s) {

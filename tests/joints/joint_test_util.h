@@ -241,6 +241,7 @@ struct JointRunOutcome {
   std::vector<Vec3> position, velocity, angular_velocity;
   std::vector<Quat> orientation;
   std::vector<double> spring_delta, spring_force;
+  std::vector<double> joint_viscous_J;  // per joint: a total hides a last-bit change of one term
   std::vector<SpringStatus> spring_status;
   double elastic_J = 0.0, plastic_J = 0.0, viscous_J = 0.0;
   JointCounts counts;
@@ -256,6 +257,7 @@ inline JointRunOutcome capture_outcome(const Simulation& sim, const JointSystem&
   o.spring_delta = joints.spring_deformation_m();
   o.spring_force = joints.spring_force_N();
   for (std::size_t s = 0; s < joints.spring_count(); ++s) o.spring_status.push_back(joints.spring_status(s));
+  for (std::size_t j = 0; j < joints.joint_count(); ++j) o.joint_viscous_J.push_back(joints.joint_viscous_J(j));
   EnergyLedger books;
   joints.report_energy(books);
   o.elastic_J = books.elastic_J;
@@ -294,6 +296,7 @@ inline void expect_identical(const JointRunOutcome& a, const JointRunOutcome& b)
   EXPECT_TRUE(same_bits(a.elastic_J, b.elastic_J));
   EXPECT_TRUE(same_bits(a.plastic_J, b.plastic_J));
   EXPECT_TRUE(same_bits(a.viscous_J, b.viscous_J));
+  EXPECT_TRUE(same_bits(a.joint_viscous_J, b.joint_viscous_J));
   EXPECT_EQ(a.counts.broken, b.counts.broken);
   EXPECT_EQ(a.counts.yielded, b.counts.yielded);
 }

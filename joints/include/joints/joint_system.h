@@ -150,6 +150,9 @@ class JointSystem final : public ForceProvider {
   // Stored / dissipated energy of one spring (J).
   double spring_elastic_J(std::size_t s) const;
   double spring_plastic_J(std::size_t s) const { return plastic_J_[s]; }
+  // Energy dissipated by joint j's dashpots so far (J), as report_energy
+  // counts it (through the last step: all of the steps before, half of it).
+  double joint_viscous_J(std::size_t j) const;
 
  private:
   void add_spring_(std::int32_t joint, SpringRole role, std::int8_t axis, const Vec3& attach_a_local,
