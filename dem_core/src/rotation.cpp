@@ -9,7 +9,6 @@ namespace fq {
 
 using namespace rotation_series;
 
-
 void fast_sincos(double angle, double& out_cos, double& out_sin) {
   if (std::abs(angle) < kSeriesAngle) {
     const double a2 = angle * angle;

@@ -14,9 +14,28 @@
 #include "dem_core/body_store.h"
 #include "dem_core/bonded_pairs.h"
 #include "dem_core/simulation.h"
+#include "joints/curee_law.h"
 #include "joints/joint_system.h"
 
 namespace fq::test {
+
+// A CUREE timber connection (Folz & Filiatrault's shape ratios r1-r4,
+// alpha, beta) at the given initial stiffness (N/m), force intercepts (N)
+// and ultimate displacement (m).
+inline CureeParams timber_curee(double K0_Npm, double F0_N, double F1_N, double delta_u_m) {
+  CureeParams c;
+  c.K0_Npm = K0_Npm;
+  c.F0_N = F0_N;
+  c.F1_N = F1_N;
+  c.r1 = 0.05;
+  c.r2 = -0.1;
+  c.r3 = 1.1;
+  c.r4 = 0.02;
+  c.delta_u_m = delta_u_m;
+  c.alpha = 0.8;
+  c.beta = 1.1;
+  return c;
+}
 
 inline BodyStore two_boxes(double edge_m = 0.1, double density = 500.0) {
   BodyStore store;

@@ -81,17 +81,8 @@ Outcome run(bool lane_kernel, int steps, LaneIsa isa) {
   const SpringDef tri_n = trilinear_spring(brittle(2e4, 2e-4, ref), ref, 0.02);
   const SpringDef tri_s = trilinear_spring(brittle(1e4, 3e-4, ref), ref, 0.05);
   const SpringDef lin_n = linear_spring(2e4, 0.05), lin_s = linear_spring(1e4, 0.05);
-  CureeParams cu;  // a timber connection softer than the trilinear shear springs
-  cu.K0_Npm = 1e4;
-  cu.F0_N = 3.0;
-  cu.F1_N = 0.5;
-  cu.r1 = 0.05;
-  cu.r2 = -0.1;
-  cu.r3 = 1.1;
-  cu.r4 = 0.02;
-  cu.delta_u_m = 1e-3;
-  cu.alpha = 0.8;
-  cu.beta = 1.1;
+  // A timber connection softer than the trilinear shear springs.
+  const CureeParams cu = test::timber_curee(1e4, 3.0, 0.5, 1e-3);
   auto layout_of = [&](int i) -> JointLayout {
     switch (i) {
       case 0:

@@ -53,20 +53,7 @@ double trilinear_backbone(const TrilinearParams& p, double delta) {
   return t ? f : -f;
 }
 
-CureeParams timber_curee() {
-  CureeParams c;
-  c.K0_Npm = 1e6;
-  c.F0_N = 1000.0;
-  c.F1_N = 150.0;
-  c.r1 = 0.05;
-  c.r2 = -0.1;
-  c.r3 = 1.1;
-  c.r4 = 0.02;
-  c.delta_u_m = 0.01;
-  c.alpha = 0.8;
-  c.beta = 1.1;
-  return c;
-}
+CureeParams timber_curee() { return test::timber_curee(1e6, 1000.0, 150.0, 0.01); }
 // Folz & Filiatrault envelope, written out independently of the library.
 double curee_env(const CureeParams& c, double x) {
   const double fu = (c.F0_N + c.r1 * c.K0_Npm * c.delta_u_m) * (1.0 - std::exp(-c.K0_Npm * c.delta_u_m / c.F0_N));

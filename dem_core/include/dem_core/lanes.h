@@ -1,7 +1,7 @@
 // Four doubles in SIMD lanes, for loops whose items are independent and
 // alike: the points of a joint (joints/src/joint_lane_kernels.h; a
 // four-corner joint is one v4d) and the rotation drift of four bodies
-// (dem_core/src/rotor_drift_lanes.h).
+// (dem_core/src/rotor_drift_kernel.h).
 //
 // Two forms of the same types and operations:
 //   - SSE2 (the x86-64 baseline every build targets): two registers per v4d,
