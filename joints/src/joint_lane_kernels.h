@@ -124,7 +124,9 @@ void JointSystem::FQ_LANE_KERNEL(joint_step_lanes_)(const BodyStore& bodies, std
   sum.springs = joint_spring_count_[j];
   sum.normal_springs = joint_normal_count_[j];
   bool any_pending = false;
-  double force_on_a[3] = {0.0, 0.0, 0.0}, torque_on_a[3] = {0.0, 0.0, 0.0};
+  // Sums over the points, in point order per component: lanes of
+  // (F_x, F_y, F_z, T_x) and (T_y, T_z, -, -) of the force and torque on a.
+  v4d sum_force_torque = lanes::splat(0.0), sum_torque_yz = lanes::splat(0.0);
 
   const auto first_point = std::size_t(joint_first_point_[j]), last_point = std::size_t(joint_first_point_[j + 1]);
   for (std::size_t group = first_point; group < last_point; group += lanes::kWidth) {
@@ -173,32 +175,34 @@ void JointSystem::FQ_LANE_KERNEL(joint_step_lanes_)(const BodyStore& bodies, std
     const v4d dashpot_force[3] = {c_s * v_axis[0], c_s * v_axis[1], c_n * v_axis[2]};
     // f_axis = 0 + (f_law + f_dashpot), fd_axis = 0 + f_dashpot: the sums
     // of joint_step_ over the one spring per axis.
-    double f_axis[3][lanes::kWidth], fd_axis[3][lanes::kWidth];
-    double delta_of[3][lanes::kWidth], rate_of[3][lanes::kWidth], law_force_of[3][lanes::kWidth];
+    v4d fa[3], fda[3];
     for (int c = 0; c < 3; ++c) {
-      lanes::store(f_axis[c], 0.0 + (law_force[c] + dashpot_force[c]));
-      lanes::store(fd_axis[c], 0.0 + dashpot_force[c]);
-      lanes::store(delta_of[c], d_axis[c]);
-      lanes::store(rate_of[c], v_axis[c]);
-      lanes::store(law_force_of[c], law_force[c]);
+      fa[c] = 0.0 + (law_force[c] + dashpot_force[c]);
+      fda[c] = 0.0 + dashpot_force[c];
     }
     if (lanes::all_of(ok) && !strain_limit) {
-      // Every point of the group on its initial branches (the usual case):
-      // the springs' deformation, rate and law force, normal first, and
-      // the counts of count_alive_ for the whole group at once (this
-      // branch is 2-5 % of the joint stage faster than the per-lane one).
+      // Every point of the group on its initial branches (the usual case;
+      // all_of(ok) implies a full group, the mask is false past n): the
+      // springs' deformation, rate and law force, normal first, written
+      // from the lanes as records of three, and the counts of count_alive_
+      // for the whole group at once (this branch is 2-5 % of the joint
+      // stage faster than the per-lane one).
       const auto s0 = std::size_t(point_first_[group]);
-      double* delta = delta_m_.data() + s0;
-      double* rate = rate_mps_.data() + s0;
-      double* force = law_force_N_.data() + s0;
-      for (int i = 0; i < lanes::kWidth; ++i) {
-        delta[3 * i] = delta_of[2][i], delta[3 * i + 1] = delta_of[0][i], delta[3 * i + 2] = delta_of[1][i];
-        rate[3 * i] = rate_of[2][i], rate[3 * i + 1] = rate_of[0][i], rate[3 * i + 2] = rate_of[1][i];
-        force[3 * i] = law_force_of[2][i], force[3 * i + 1] = law_force_of[0][i], force[3 * i + 2] = law_force_of[1][i];
-      }
+      lanes::store_interleaved3(delta_m_.data() + s0, d_axis[2], d_axis[0], d_axis[1]);
+      lanes::store_interleaved3(rate_mps_.data() + s0, v_axis[2], v_axis[0], v_axis[1]);
+      lanes::store_interleaved3(law_force_N_.data() + s0, law_force[2], law_force[0], law_force[1]);
       sum.springs_alive += 3 * lanes::kWidth;
       sum.normal_springs_alive += lanes::kWidth;
     } else {
+      double f_axis[3][lanes::kWidth], fd_axis[3][lanes::kWidth];
+      double delta_of[3][lanes::kWidth], rate_of[3][lanes::kWidth], law_force_of[3][lanes::kWidth];
+      for (int c = 0; c < 3; ++c) {
+        lanes::store(f_axis[c], fa[c]);
+        lanes::store(fd_axis[c], fda[c]);
+        lanes::store(delta_of[c], d_axis[c]);
+        lanes::store(rate_of[c], v_axis[c]);
+        lanes::store(law_force_of[c], law_force[c]);
+      }
       for (int i = 0; i < n; ++i) {
         const std::size_t p = group + std::size_t(i);
         const auto s0 = std::size_t(point_first_[p]);
@@ -220,12 +224,11 @@ void JointSystem::FQ_LANE_KERNEL(joint_step_lanes_)(const BodyStore& bodies, std
           refresh_point_plain_(p);
         }
       }
+      for (int c = 0; c < 3; ++c) fa[c] = lanes::load(f_axis[c]), fda[c] = lanes::load(fd_axis[c]);
     }
 
     // Stage 3: world force and dashpot force of each point, the dashpot
     // power at n-1/2, and the torque on a about x_a (joint_step_).
-    const v4d fa[3] = {lanes::load(f_axis[0]), lanes::load(f_axis[1]), lanes::load(f_axis[2])};
-    const v4d fda[3] = {lanes::load(fd_axis[0]), lanes::load(fd_axis[1]), lanes::load(fd_axis[2])};
     v4d force[3], dashpot[3];
     for (int r = 0; r < 3; ++r) {
       force[r] = F[r] * fa[0] + F[3 + r] * fa[1] + F[6 + r] * fa[2];
@@ -240,19 +243,25 @@ void JointSystem::FQ_LANE_KERNEL(joint_step_lanes_)(const BodyStore& bodies, std
         (dashpot[0] * vrel[0] + dashpot[1] * vrel[1] + dashpot[2] * vrel[2]) -
             0.5 * (dxf0 * w_sum[0] + dxf1 * w_sum[1] + dxf2 * w_sum[2]));
     const v4d m0 = am[0] + 0.5 * d[0], m1 = am[1] + 0.5 * d[1], m2 = am[2] + 0.5 * d[2];
-    double point_force[3][lanes::kWidth], point_torque[3][lanes::kWidth];
-    lanes::store(point_torque[0], m1 * force[2] - m2 * force[1]);
-    lanes::store(point_torque[1], m2 * force[0] - m0 * force[2]);
-    lanes::store(point_torque[2], m0 * force[1] - m1 * force[0]);
-    for (int r = 0; r < 3; ++r) lanes::store(point_force[r], force[r]);
-    // Stage 4: sums in point order.
-    for (int i = 0; i < n; ++i)
-      for (int r = 0; r < 3; ++r) {
-        force_on_a[r] += point_force[r][i];
-        torque_on_a[r] += point_torque[r][i];
-      }
+    // Stage 4: sums in point order. The lanes of (F_x, F_y, F_z, T_x) and
+    // (T_y, T_z) transposed into one vector per point, which the two sums
+    // add in turn: each component gets ((0 + p0) + p1) + ..., the order of
+    // joint_step_.
+    v4d point[4] = {force[0], force[1], force[2], m1 * force[2] - m2 * force[1]};
+    v4d point_yz[4] = {m2 * force[0] - m0 * force[2], m0 * force[1] - m1 * force[0], lanes::splat(0.0),
+                       lanes::splat(0.0)};
+    lanes::transpose(point[0], point[1], point[2], point[3]);
+    lanes::transpose(point_yz[0], point_yz[1], point_yz[2], point_yz[3]);
+    for (int i = 0; i < n; ++i) {
+      sum_force_torque = sum_force_torque + point[i];
+      sum_torque_yz = sum_torque_yz + point_yz[i];
+    }
   }
-  finish_joint_(j, Xa, Xb, force_on_a, torque_on_a, sum, any_pending);
+  // force_on_a = sums[0..2], torque_on_a = sums[3..5]
+  double sums[2 * lanes::kWidth];
+  lanes::store(sums, sum_force_torque);
+  lanes::store(sums + lanes::kWidth, sum_torque_yz);
+  finish_joint_(j, Xa, Xb, sums, sums + 3, sum, any_pending);
 }
 
 // The dashpot books of lane joint j's points at step n (finish_step: the

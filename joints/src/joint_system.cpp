@@ -643,21 +643,6 @@ void JointSystem::kill_spring_(std::size_t s) {
   point_plain_[std::size_t(spring_point_[s])] = 0;
 }
 
-JointSystem::BooksKinematics JointSystem::books_kinematics_(const BodyStore& bodies, std::size_t j, double dt) const {
-  const BodyId a = joint_body_a_[j], b = joint_body_b_[j];
-  BooksKinematics k;
-  for (int r = 0; r < 3; ++r) {
-    k.xa[r] = bodies.position_m[a][r] - dt * bodies.velocity_mps[a][r];
-    k.xb[r] = bodies.position_m[b][r] - dt * bodies.velocity_mps[b][r];
-    k.va[r] = bodies.velocity_mps[a][r];
-    k.vb[r] = bodies.velocity_mps[b][r];
-    k.wa[r] = bodies.angular_velocity_radps[a][r];
-    k.wb[r] = bodies.angular_velocity_radps[b][r];
-    k.w_sum[r] = k.wa[r] + k.wb[r];
-  }
-  return k;
-}
-
 void JointSystem::finish_step(const BodyStore& bodies, const StepInfo& step, EventLog& events) {
   const std::size_t nj = joint_body_a_.size();
   // Dashpot dissipation of step n, as the ledger counts work: dt P(v_n) with

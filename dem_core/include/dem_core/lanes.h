@@ -84,6 +84,25 @@ FQ_LANES_INLINE v4m mask(bool l0, bool l1, bool l2, bool l3) {
 }
 FQ_LANES_INLINE bool all_of(v4m m) { return _mm256_movemask_pd(m.v) == 15; }
 FQ_LANES_INLINE bool lane(v4m m, int i) { return (_mm256_movemask_pd(m.v) >> i) & 1; }
+// p[3 i] = x[i], p[3 i + 1] = y[i], p[3 i + 2] = z[i] for the four lanes
+// (twelve doubles: lanes of three columns to records of three).
+FQ_LANES_INLINE void store_interleaved3(double* p, v4d x, v4d y, v4d z) {
+  const __m256d xy = _mm256_unpacklo_pd(x.v, y.v);      // x0 y0 | x2 y2
+  const __m256d zx = _mm256_blend_pd(z.v, x.v, 0b1010);  // z0 x1 | z2 x3
+  const __m256d yz = _mm256_unpackhi_pd(y.v, z.v);      // y1 z1 | y3 z3
+  _mm256_storeu_pd(p, _mm256_permute2f128_pd(xy, zx, 0x20));
+  _mm256_storeu_pd(p + 4, _mm256_permute2f128_pd(yz, xy, 0x30));
+  _mm256_storeu_pd(p + 8, _mm256_permute2f128_pd(zx, yz, 0x31));
+}
+// Rows to columns: afterwards a = (a0, b0, c0, d0), b = (a1, b1, c1, d1), ...
+FQ_LANES_INLINE void transpose(v4d& a, v4d& b, v4d& c, v4d& d) {
+  const __m256d ab_lo = _mm256_unpacklo_pd(a.v, b.v), ab_hi = _mm256_unpackhi_pd(a.v, b.v);
+  const __m256d cd_lo = _mm256_unpacklo_pd(c.v, d.v), cd_hi = _mm256_unpackhi_pd(c.v, d.v);
+  a.v = _mm256_permute2f128_pd(ab_lo, cd_lo, 0x20);
+  b.v = _mm256_permute2f128_pd(ab_hi, cd_hi, 0x20);
+  c.v = _mm256_permute2f128_pd(ab_lo, cd_lo, 0x31);
+  d.v = _mm256_permute2f128_pd(ab_hi, cd_hi, 0x31);
+}
 
 #else  // SSE2
 
@@ -145,6 +164,21 @@ FQ_LANES_INLINE v4m mask(bool l0, bool l1, bool l2, bool l3) {
 FQ_LANES_INLINE bool all_of(v4m m) { return (_mm_movemask_pd(m.lo) & _mm_movemask_pd(m.hi)) == 3; }
 FQ_LANES_INLINE bool lane(v4m m, int i) {
   return ((i < 2 ? _mm_movemask_pd(m.lo) : _mm_movemask_pd(m.hi)) >> (i & 1)) & 1;
+}
+FQ_LANES_INLINE void store_interleaved3(double* p, v4d x, v4d y, v4d z) {
+  _mm_storeu_pd(p, _mm_unpacklo_pd(x.lo, y.lo));       // x0 y0
+  _mm_storeu_pd(p + 2, _mm_move_sd(x.lo, z.lo));       // z0 x1
+  _mm_storeu_pd(p + 4, _mm_unpackhi_pd(y.lo, z.lo));   // y1 z1
+  _mm_storeu_pd(p + 6, _mm_unpacklo_pd(x.hi, y.hi));   // x2 y2
+  _mm_storeu_pd(p + 8, _mm_move_sd(x.hi, z.hi));       // z2 x3
+  _mm_storeu_pd(p + 10, _mm_unpackhi_pd(y.hi, z.hi));  // y3 z3
+}
+FQ_LANES_INLINE void transpose(v4d& a, v4d& b, v4d& c, v4d& d) {
+  const v4d a0 = a, b0 = b, c0 = c, d0 = d;
+  a = {_mm_unpacklo_pd(a0.lo, b0.lo), _mm_unpacklo_pd(c0.lo, d0.lo)};
+  b = {_mm_unpackhi_pd(a0.lo, b0.lo), _mm_unpackhi_pd(c0.lo, d0.lo)};
+  c = {_mm_unpacklo_pd(a0.hi, b0.hi), _mm_unpacklo_pd(c0.hi, d0.hi)};
+  d = {_mm_unpackhi_pd(a0.hi, b0.hi), _mm_unpackhi_pd(c0.hi, d0.hi)};
 }
 
 #endif
