@@ -31,14 +31,28 @@ std::uint32_t crossing_code(int line, int plane) {
   return std::uint32_t(8 + line * 4 + plane);
 }
 
-// Clip `in` (n vertices) by the half-space d(p) = dir.p - offset <= 0.
+// Clip `in` (n vertices, n <= 16) by the half-space d(p) = dir.p - offset
+// <= 0 into `out`. Returns the count of `out`, or -1 when every vertex is
+// inside (within tol), in which case `in` is the result unchanged and
+// `out` is not written.
 int clip(const ClipVertex* in, int n, const Vec3& dir, double offset, int plane, double tol, ClipVertex* out) {
+  // Each vertex's distance once (it is the end of one edge and the start of
+  // the next).
+  double dist[16];
+  bool all_inside = true;
+  for (int k = 0; k < n; ++k) {
+    dist[k] = dir.dot(in[k].p) - offset;
+    all_inside = all_inside && dist[k] <= tol;
+  }
+  // The loop below would copy every vertex and change nothing.
+  if (all_inside) return -1;
   int m = 0;
   for (int k = 0; k < n; ++k) {
+    const int next = k + 1 == n ? 0 : k + 1;
     const ClipVertex& p = in[k];
-    const ClipVertex& q = in[k + 1 == n ? 0 : k + 1];
-    const double dp = dir.dot(p.p) - offset;
-    const double dq = dir.dot(q.p) - offset;
+    const ClipVertex& q = in[next];
+    const double dp = dist[k];
+    const double dq = dist[next];
     const bool in_p = dp <= tol, in_q = dq <= tol;
     if (in_p) out[m++] = p;
     if (in_p && !in_q) {
@@ -110,7 +124,9 @@ int face_contact(const OrientedBox& ref, const OrientedBox& inc, int ref_axis, d
   ClipVertex* src = buf_a;
   ClipVertex* dst = buf_b;
   for (int plane = 0; plane < 4 && count > 0; ++plane) {
-    count = clip(src, count, dirs[plane], offs[plane], plane, tol, dst);
+    const int clipped = clip(src, count, dirs[plane], offs[plane], plane, tol, dst);
+    if (clipped < 0) continue;  // wholly inside this side plane
+    count = clipped;
     std::swap(src, dst);
   }
 
