@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -158,14 +159,15 @@ void ContactSystem::accumulate_forces(BodyStore& bodies, const StepInfo& step) {
   gather(bodies);
 }
 
-// Narrow phase and contact law, one pass per work item (a candidate pair or
-// a box near the ground): the manifold's points are made, sorted by feature,
-// and loaded at once, while the bodies' data is still in cache. Work items
+// Narrow phase, one pass per work item (a candidate pair or a box near the
+// ground): the manifold's points are made, sorted by feature, given their
+// history and their velocities while the bodies' data is still in cache
+// (apply_law then loads them). Work items
 // come in increasing pair key (pairs sorted by (a, b), then ground contacts
 // by box), and so do the records of previous_: the history of each point is
 // found by a cursor that only moves forward (one binary search per chunk,
 // then a merge), with the same result as a search per point.
-std::size_t ContactSystem::process_item(const BodyStore& bodies, const StepInfo& step, std::size_t item,
+std::size_t ContactSystem::process_item(const BodyStore& bodies, std::size_t item,
                                         std::size_t& cursor, ContactManifold& manifold,
                                         std::vector<ContactPoint>& out, std::size_t& box_tests) {
   const auto& pairs = broad_.pairs();
@@ -243,7 +245,6 @@ std::size_t ContactSystem::process_item(const BodyStore& bodies, const StepInfo&
   const Vec3& x_b = bodies.position_m[b];
   const Vec3& v_b = bodies.velocity_mps[b];
   const Vec3& w_b = bodies.angular_velocity_radps[b];
-  const ContactCoefficients& coefficients = coeffs_[std::size_t(coeff)];
   const bool soft_start_pair =
       !soft_start_pairs_.empty() && std::binary_search(soft_start_pairs_.begin(), soft_start_pairs_.end(), key);
   for (int k = 0; k < count; ++k) {
@@ -260,15 +261,22 @@ std::size_t ContactSystem::process_item(const BodyStore& bodies, const StepInfo&
     c.stiffness_scale = g.weight;
     c.effective_mass_kg = mass_per_weight * g.weight;
 
-    // Tangential history of the same (pair, feature) at the previous step.
+    // Tangential history of the same (pair, feature) at the previous step
+    // (a new point's shear spring starts empty: the record's zero).
     while (history != history_end && history->feature < c.feature) ++history;
-    Vec3 shear = Vec3::Zero();
     if (history != history_end && history->feature == c.feature) {
       ContactPoint& p = *history;
-      shear = p.shear_spring_N;
+      c.shear_spring_N = p.shear_spring_N;
       c.reference_depth_m = std::min(p.reference_depth_m, c.depth_m);
       c.elastic_prev_J = p.elastic_J;
       c.elastic_tangential_prev_J = p.elastic_tangential_J;
+      // Same share and mass (same bits): the same dashpot coefficients.
+      if (p.dashpots_known && std::bit_cast<std::uint64_t>(p.stiffness_scale) == std::bit_cast<std::uint64_t>(c.stiffness_scale) &&
+          std::bit_cast<std::uint64_t>(p.effective_mass_kg) == std::bit_cast<std::uint64_t>(c.effective_mass_kg)) {
+        c.dashpots_known = true;
+        c.normal_dashpot_Nspm = p.normal_dashpot_Nspm;
+        c.tangential_dashpot_Nspm = p.tangential_dashpot_Nspm;
+      }
       // Keys are unique, so no two contacts write the same record.
       p.history_carried = true;
     } else if (soft_start_pair) {
@@ -282,6 +290,19 @@ std::size_t ContactSystem::process_item(const BodyStore& bodies, const StepInfo&
     const Vec3 va = moving_a ? Vec3(v_a + w_a.cross(c.arm_a_m)) : Vec3(Vec3::Zero());
     const Vec3 v_rel = v_b + w_b.cross(c.arm_b_m) - va;
     c.velocity_prev_mps = v_rel;
+  }
+  return std::size_t(count);
+}
+
+// The contact law of every record in [first, last) (process_item made
+// them). A pass of its own rather than a step of process_item: the law is a
+// chain of square roots and quotients per point, and in a short loop of
+// its own the processor overlaps the chains of successive points, where
+// the manifold code between them kept it waiting on each in turn.
+void ContactSystem::apply_law(ContactPoint* first, ContactPoint* last, const StepInfo& step) const {
+  for (ContactPoint* cp = first; cp != last; ++cp) {
+    ContactPoint& c = *cp;
+    const Vec3& v_rel = c.velocity_prev_mps;
     const double vn = c.normal.dot(v_rel);
     ContactLawInput in;
     in.depth_m = c.depth_m - c.reference_depth_m;
@@ -291,10 +312,17 @@ std::size_t ContactSystem::process_item(const BodyStore& bodies, const StepInfo&
     in.stiffness_scale = c.stiffness_scale;
     in.effective_mass_kg = c.effective_mass_kg;
     in.dt_s = step.dt_s;
-    const ContactLawOutput law = linear_contact_law(coefficients, in, shear);
+    const ContactCoefficients& coeff = coeffs_[std::size_t(c.coeff_index)];
+    if (!c.dashpots_known) {
+      const ContactDashpots d = contact_dashpots(coeff, in);
+      c.normal_dashpot_Nspm = d.normal_Nspm;
+      c.tangential_dashpot_Nspm = d.tangential_Nspm;
+      c.dashpots_known = true;
+    }
+    const ContactLawOutput law =
+        linear_contact_law(coeff, in, {c.normal_dashpot_Nspm, c.tangential_dashpot_Nspm}, c.shear_spring_N);
     c.normal_force_N = law.normal_force_N;
     c.tangential_force_N = law.tangential_force_N;
-    c.shear_spring_N = shear;
     c.sliding = law.sliding;
     c.elastic_J = law.elastic_J;
     c.elastic_tangential_J = law.elastic_tangential_J;
@@ -304,7 +332,6 @@ std::size_t ContactSystem::process_item(const BodyStore& bodies, const StepInfo&
       c.elastic_tangential_prev_J = c.elastic_tangential_J;
     }
   }
-  return std::size_t(count);
 }
 
 void ContactSystem::narrow_phase(const BodyStore& bodies, const StepInfo& step) {
@@ -318,7 +345,8 @@ void ContactSystem::narrow_phase(const BodyStore& bodies, const StepInfo& step) 
     std::size_t cursor = kNoCursor;
     std::size_t box_tests = 0;
     for (std::size_t item = 0; item < n_items; ++item)
-      process_item(bodies, step, item, cursor, manifold_, contacts_, box_tests);
+      process_item(bodies, item, cursor, manifold_, contacts_, box_tests);
+    apply_law(contacts_.data(), contacts_.data() + contacts_.size(), step);
   } else {
     const std::size_t n_chunks = (n_items + kChunkItems - 1) / kChunkItems;
     if (chunk_buffers_.size() < n_chunks) chunk_buffers_.resize(n_chunks);
@@ -344,7 +372,8 @@ void ContactSystem::narrow_phase(const BodyStore& bodies, const StepInfo& step) 
       const std::size_t end = std::min(n_items, begin + kChunkItems);
       std::size_t box_tests = 0;
       for (std::size_t item = begin; item < end; ++item)
-        process_item(bodies, step, item, cursor, manifold, buf, box_tests);
+        process_item(bodies, item, cursor, manifold, buf, box_tests);
+      apply_law(buf.data(), buf.data() + buf.size(), step);
       chunk_cost_[std::size_t(c)] =
           double(end - begin) + kCostPerBoxTest * double(box_tests) + kCostPerPoint * double(buf.size());
     });

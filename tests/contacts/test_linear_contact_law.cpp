@@ -1,8 +1,10 @@
 // The contact law alone, against closed forms.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include "contacts/linear_contact_law.h"
 
@@ -95,6 +97,54 @@ TEST(LinearContactLaw, CoulombCapAndSlipWork) {
   EXPECT_NEAR(out.tangential_force_N.x(), -cap, 1e-12 * cap);
   EXPECT_NEAR(out.friction_J, cap * v * dt, 1e-12 * cap * v * dt);
   EXPECT_NEAR(out.elastic_J, 0.5 * kn * d * d + 0.5 * cap * cap / c.tangential_stiffness_N_per_m, 1e-12);
+}
+
+TEST(LinearContactLaw, SlidingDecisionAtTheCapIsThatOfTheRoot) {
+  // The law decides |F_t| > mu F_n without taking |F_t| when |F_t|^2 is
+  // surely below the cap (linear_contact_law.h). Reference: the Coulomb rule
+  // itself, evaluated here with the root, on the law's trial force (no
+  // history: F_t = -(k_t dt) v_t - c_t v_t), for trial forces from 1e-3 to
+  // 1e-15 of the cap on either side of it (across the shortcut's 1e-6
+  // margin), for a cap of 4 N and for one whose square is subnormal.
+  const auto c = coefficients(1e5, 0.5, 0.4);
+  int slid = 0, stuck = 0;
+  // Where |F_t|^2 is subnormal (second depth) the squares are rounded to
+  // up to 1e-3 of their size, far beyond the 1e-6 margin; the shortcut
+  // holds there for another reason (linear_contact_law.h), which the fine
+  // and wide sweep checks.
+  std::vector<double> fine_sweep;
+  for (int k = -2000; k <= 2000; ++k) fine_sweep.push_back(2.5e-6 * k);
+  const std::vector<double> near_cap = {-1e-3, -2e-6, -1e-6, -9.9e-7, -5e-7, -1e-9, -1e-12, -1e-15, 0.0,
+                                        1e-15, 1e-12, 1e-9,   5e-7,    9.9e-7, 1e-6, 2e-6,   1e-3};
+  for (const double depth_m : {1e-4, 1e-165}) {
+    for (const double rel : depth_m > 1e-10 ? near_cap : fine_sweep) {
+      fq::ContactLawInput in;
+      in.depth_m = depth_m;
+      in.effective_mass_kg = 0.2;
+      in.dt_s = 1e-5;
+      const double kt = in.stiffness_scale * c.tangential_stiffness_N_per_m;
+      const fq::ContactDashpots dashpots = fq::contact_dashpots(c, in);
+      const double cap = c.friction_coefficient * std::max(0.0, in.stiffness_scale * c.normal_stiffness_N_per_m * depth_m);
+      const double speed = cap * (1.0 + rel) / (kt * in.dt_s + dashpots.tangential_Nspm);
+      in.tangential_velocity_mps = Vec3(-speed, 0.3 * speed, 0.0) / std::sqrt(1.09);
+      const Vec3& vt = in.tangential_velocity_mps;
+      const Vec3 trial = (Vec3(Vec3::Zero()) - (kt * in.dt_s) * vt) - dashpots.tangential_Nspm * vt;
+      const bool slides = trial.norm() > cap;
+      const Vec3 expected = slides ? Vec3(trial * (cap / trial.norm())) : trial;
+      Vec3 shear = Vec3::Zero();
+      const auto out = fq::linear_contact_law(c, in, shear);
+      EXPECT_EQ(out.sliding, slides) << "depth " << depth_m << ", |F_t| / cap - 1 = " << rel;
+      for (int r = 0; r < 3; ++r)
+        EXPECT_EQ(out.tangential_force_N[r], expected[r]) << "depth " << depth_m << ", rel " << rel << ", r " << r;
+      if (depth_m > 1e-10) (slides ? slid : stuck) += 1;
+    }
+  }
+  // With the 4 N cap the rule gives both outcomes, each on its own side:
+  // the eight trial forces clearly below the cap stick and the eight above
+  // slide. (Where |F_t|^2 is subnormal its root is off by up to 1e-3, so
+  // there only the agreement above is asserted.)
+  EXPECT_GE(slid, 8);
+  EXPECT_GE(stuck, 8);
 }
 
 TEST(LinearContactLaw, HistoryIsRotatedIntoTheNewPlaneKeepingItsLength) {

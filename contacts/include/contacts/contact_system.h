@@ -7,10 +7,12 @@
 //      items; each chunk writes its own buffer, buffers are joined in chunk
 //      order, so the contact list is the same for any thread count
 //   3. contact law per point (linear_contact_law.h) with tangential history
-//      looked up from the previous step's contact list; done in the same
-//      pass as 2, item by item, while the pair's data is in cache (a box
-//      pair that did not touch keeps its separating axis, which is tested
-//      first at the next step: collide_box_box.h)
+//      looked up from the previous step's contact list: the history and
+//      the point's velocity in the same pass as 2, item by item, while the
+//      pair's data is in cache (a box pair that did not touch keeps its
+//      separating axis, which is tested first at the next step:
+//      collide_box_box.h); the law itself in a short pass over the points
+//      of each chunk right after it (apply_law)
 //   4. gather: each body sums the forces of its contacts in contact order
 //      (one CSR list per body; on one thread the same sums in one sweep),
 //      so forces are bitwise identical for any number of OpenMP threads
@@ -128,6 +130,12 @@ struct ContactPoint {
   double stiffness_scale = 1.0;
   double effective_mass_kg = 0.0;
   bool history_carried = false;  // set on the previous step's record when this step took its history
+  // The law's dashpot coefficients at this step (N s/m; contact_dashpots),
+  // and whether they are known: carried from the previous step's record of
+  // the point when its share and mass are bitwise the same (apply_law).
+  bool dashpots_known = false;
+  double normal_dashpot_Nspm = 0.0;
+  double tangential_dashpot_Nspm = 0.0;
   double elastic_J = 0.0;              // E_N + E_T at this step (J)
   double elastic_tangential_J = 0.0;   // E_T at this step (J)
   double elastic_prev_J = 0.0;         // E_N + E_T of the same point at the previous step (J, header)
@@ -212,12 +220,15 @@ class ContactSystem : public ForceProvider {
   // Narrow phase and contact law of every work item (pairs, then boxes near
   // the ground), into contacts_; books the energy of the springs that ended.
   void narrow_phase(const BodyStore& bodies, const StepInfo& step);
-  // One work item: appends its points, with forces, to `out`, and returns
-  // how many; `cursor` is the position in previous_ of the history search
+  // One work item: appends its points to `out` (geometry, history,
+  // velocities; apply_law adds the forces), and returns how many; `cursor` is the position in previous_ of the history search
   // (see the .cpp); `box_tests` counts the items that got past the cheap
   // bounding test to a full box test.
-  std::size_t process_item(const BodyStore& bodies, const StepInfo& step, std::size_t item, std::size_t& cursor,
+  std::size_t process_item(const BodyStore& bodies, std::size_t item, std::size_t& cursor,
                            ContactManifold& manifold, std::vector<ContactPoint>& out, std::size_t& box_tests);
+  // The contact law (linear_contact_law.h) of the records [first, last):
+  // forces, shear springs (history in, updated out), energies.
+  void apply_law(ContactPoint* first, ContactPoint* last, const StepInfo& step) const;
   void gather(BodyStore& bodies);
 
   const BondedPairs* bonded_;

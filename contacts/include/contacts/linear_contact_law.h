@@ -64,8 +64,26 @@ struct ContactLawOutput {
   bool sliding = false;                      ///< the Coulomb cap was active
 };
 
+// The point's dashpot coefficients (N s/m): c_n = 2 zeta sqrt(k_n m_eff),
+// c_t = 2 zeta sqrt(k_t m_eff) with the scaled stiffnesses (header). A
+// function of their own so that a caller whose point keeps the same share
+// and mass from step to step can keep them (ContactSystem does: two square
+// roots a point, the same bits).
+struct ContactDashpots {
+  double normal_Nspm = 0.0;
+  double tangential_Nspm = 0.0;
+};
+[[gnu::always_inline]] inline ContactDashpots contact_dashpots(const ContactCoefficients& coeff,
+                                                              const ContactLawInput& in) {
+  const double kn = in.stiffness_scale * coeff.normal_stiffness_N_per_m;
+  const double kt = in.stiffness_scale * coeff.tangential_stiffness_N_per_m;
+  const double m = in.effective_mass_kg;
+  return {2.0 * coeff.damping_ratio * std::sqrt(kn * m), 2.0 * coeff.damping_ratio * std::sqrt(kt * m)};
+}
+
 // io_shear_spring_N: tangential spring force on b (N, world) carried from the
 // previous step (zero when the contact is new); updated in place.
+// `dashpots` must be contact_dashpots(coeff, in).
 // Defined here and always inlined: the contact system calls it for every
 // point at every step, and a caller that does not use some outputs
 // (ContactSystem books its own losses) then does not pay for them. A plain
@@ -74,13 +92,13 @@ struct ContactLawOutput {
 // products), 14 % of frame B's samples (docs/performance.md, change 24).
 [[gnu::always_inline]] inline ContactLawOutput linear_contact_law(const ContactCoefficients& coeff,
                                                                   const ContactLawInput& in,
+                                                                  const ContactDashpots& dashpots,
                                                                   Vec3& io_shear_spring_N) {
   ContactLawOutput out;
   const double kn = in.stiffness_scale * coeff.normal_stiffness_N_per_m;
   const double kt = in.stiffness_scale * coeff.tangential_stiffness_N_per_m;
-  const double m = in.effective_mass_kg;
-  const double cn = 2.0 * coeff.damping_ratio * std::sqrt(kn * m);
-  const double ct = 2.0 * coeff.damping_ratio * std::sqrt(kt * m);
+  const double cn = dashpots.normal_Nspm;
+  const double ct = dashpots.tangential_Nspm;
   const double d = in.depth_m;
   const double dd = in.approach_speed_mps;
   const double dt = in.dt_s;
@@ -104,8 +122,19 @@ struct ContactLawOutput {
   fs -= (kt * dt) * vt;
   Vec3 ft = fs - ct * vt;
   const double cap = coeff.friction_coefficient * fn;
-  const double ft_len = ft.norm();
-  if (ft_len > cap) {
+  // |F_t| > cap decides sliding, and |F_t| (a square root) is needed only
+  // then. When |F_t|^2 < (1 - 1e-6) cap^2, as computed, |F_t|^2 is below
+  // cap^2 exactly: the margin is far wider than the rounding of cap^2 and
+  // of the product; and where the bound is subnormal, the squares lie on
+  // one evenly spaced grid, so |F_t|^2 is at least one spacing below the
+  // rounded cap^2, which is within half a spacing of cap^2. A correctly
+  // rounded root of a value below cap^2 cannot pass the representable cap,
+  // so the root would decide "sticks" too. Elsewhere (and for NaN) the root
+  // decides, as before: ft.norm() is sqrt(ft.squaredNorm()).
+  const double ft_sq = ft.squaredNorm();
+  const bool surely_sticks = ft_sq < (cap * cap) * (1.0 - 1e-6);
+  const double ft_len = surely_sticks ? 0.0 : std::sqrt(ft_sq);
+  if (!surely_sticks && ft_len > cap) {
     // Sliding: the contact transmits mu F_n along the trial force, and the
     // spring is reset to carry exactly that force (Cundall-Strack). Storing
     // fs = ft + c_t v_t instead would park the dashpot's share in the spring:
@@ -127,6 +156,13 @@ struct ContactLawOutput {
     out.viscous_J += loss_t;
   }
   return out;
+}
+
+// The same, computing the dashpot coefficients.
+[[gnu::always_inline]] inline ContactLawOutput linear_contact_law(const ContactCoefficients& coeff,
+                                                                  const ContactLawInput& in,
+                                                                  Vec3& io_shear_spring_N) {
+  return linear_contact_law(coeff, in, contact_dashpots(coeff, in), io_shear_spring_N);
 }
 
 }  // namespace fq
