@@ -70,7 +70,7 @@ int clip(const ClipVertex* in, int n, const Vec3& dir, double offset, int plane,
 
 // Face contact: `ref` owns the reference face with outward normal n (pointing
 // to `inc`) along its axis `ref_axis`; n_sign = +-1.
-int face_contact(const OrientedBox& ref, const OrientedBox& inc, int ref_axis, double n_sign, bool ref_is_b,
+int face_contact(const OrientedBoxRef& ref, const OrientedBoxRef& inc, int ref_axis, double n_sign, bool ref_is_b,
                  ContactManifold& out) {
   const Vec3 n = n_sign * ref.rotation.col(ref_axis);
   // Incident face: the face of `inc` most opposed to n.
@@ -184,7 +184,7 @@ void closest_points_segments(const Vec3& p1, const Vec3& d1, const Vec3& p2, con
   c2 = p2 + t * d2;
 }
 
-int edge_contact(const OrientedBox& a, const OrientedBox& b, int ia, int jb, const Vec3& axis_ab, double depth,
+int edge_contact(const OrientedBoxRef& a, const OrientedBoxRef& b, int ia, int jb, const Vec3& axis_ab, double depth,
                  ContactManifold& out) {
   // Supporting edge of a along +axis, of b along -axis.
   Vec3 pa = a.center_m, pb = b.center_m;
@@ -297,20 +297,20 @@ bool separates(const SatFrame& f, int k) {
 
 // The search; `shortcuts` enables the remembered separating axis and the
 // root-free pass over the edge axes, which never change its result.
-int collide_box_box_(const OrientedBox& a, const OrientedBox& b, ContactManifold& out, std::int8_t* io_separating_axis,
+int collide_box_box_(const OrientedBoxRef& a, const OrientedBoxRef& b, ContactManifold& out, std::int8_t* io_separating_axis,
                      bool shortcuts);
 
 }  // namespace
 
-int collide_box_box(const OrientedBox& a, const OrientedBox& b, ContactManifold& out) {
+int collide_box_box(const OrientedBoxRef& a, const OrientedBoxRef& b, ContactManifold& out) {
   return collide_box_box(a, b, out, nullptr);
 }
 
-int collide_box_box(const OrientedBox& a, const OrientedBox& b, ContactManifold& out, std::int8_t* io_separating_axis) {
+int collide_box_box(const OrientedBoxRef& a, const OrientedBoxRef& b, ContactManifold& out, std::int8_t* io_separating_axis) {
   return collide_box_box_(a, b, out, io_separating_axis, true);
 }
 
-int collide_box_box_full_search(const OrientedBox& a, const OrientedBox& b, ContactManifold& out,
+int collide_box_box_full_search(const OrientedBoxRef& a, const OrientedBoxRef& b, ContactManifold& out,
                                 std::int8_t* out_separating_axis) {
   if (out_separating_axis) *out_separating_axis = -1;
   return collide_box_box_(a, b, out, out_separating_axis, false);
@@ -318,7 +318,7 @@ int collide_box_box_full_search(const OrientedBox& a, const OrientedBox& b, Cont
 
 namespace {
 
-int collide_box_box_(const OrientedBox& a, const OrientedBox& b, ContactManifold& out, std::int8_t* io_separating_axis,
+int collide_box_box_(const OrientedBoxRef& a, const OrientedBoxRef& b, ContactManifold& out, std::int8_t* io_separating_axis,
                      bool shortcuts) {
   out.count = 0;
   const Mat3& ra = a.rotation;

@@ -4,13 +4,13 @@
 
 namespace fq {
 
-double box_lowest_z_m(const OrientedBox& box) {
+double box_lowest_z_m(const OrientedBoxRef& box) {
   const Mat3& r = box.rotation;
   const Vec3& h = box.half_extents_m;
   return box.center_m.z() - (std::fabs(r(2, 0)) * h.x() + std::fabs(r(2, 1)) * h.y() + std::fabs(r(2, 2)) * h.z());
 }
 
-int collide_box_ground(const OrientedBox& box, double ground_level_m, ContactManifold& out) {
+int collide_box_ground(const OrientedBoxRef& box, double ground_level_m, ContactManifold& out) {
   out.count = 0;
   const Mat3& r = box.rotation;
   const Vec3& h = box.half_extents_m;

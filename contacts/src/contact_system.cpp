@@ -38,7 +38,7 @@ constexpr std::size_t kNoCursor = ~std::size_t(0);
 
 std::uint64_t pair_key(BodyId a, BodyId b) { return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b); }
 
-OrientedBox box_of(const BodyStore& bodies, BodyId i) {
+OrientedBoxRef box_of(const BodyStore& bodies, BodyId i) {
   return {bodies.position_m[i], bodies.rotation[i], bodies.half_extents_m[i]};
 }
 

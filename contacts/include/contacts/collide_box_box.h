@@ -39,14 +39,14 @@
 namespace fq {
 
 // Normal from a to b. Returns out.count (0 when separated).
-int collide_box_box(const OrientedBox& a, const OrientedBox& b, ContactManifold& out);
+int collide_box_box(const OrientedBoxRef& a, const OrientedBoxRef& b, ContactManifold& out);
 
 // The same, with a memory of the separating axis for a pair tested at every
 // step (temporal coherence): *io_separating_axis (-1: none; else 0..2 face
 // of a, 3..5 face of b, 6 + 3 i + j edge a_i x b_j) is tried first, and set
 // to the axis that separated the boxes, or -1 when they touch. The result
 // is exactly that of the plain call whatever the hint holds.
-int collide_box_box(const OrientedBox& a, const OrientedBox& b, ContactManifold& out, std::int8_t* io_separating_axis);
+int collide_box_box(const OrientedBoxRef& a, const OrientedBoxRef& b, ContactManifold& out, std::int8_t* io_separating_axis);
 
 // Feature id layout (for tests and output).
 // The same test without its two shortcuts (the remembered separating axis
@@ -55,7 +55,7 @@ int collide_box_box(const OrientedBox& a, const OrientedBox& b, ContactManifold&
 // pass whenever a comparison is too close to call): the reference the
 // tests hold the shortcuts to, bit for bit. `out_separating_axis`, when
 // given, receives the axis the full search found separating, or -1.
-int collide_box_box_full_search(const OrientedBox& a, const OrientedBox& b, ContactManifold& out,
+int collide_box_box_full_search(const OrientedBoxRef& a, const OrientedBoxRef& b, ContactManifold& out,
                                 std::int8_t* out_separating_axis = nullptr);
 
 inline constexpr std::uint32_t kFeatureFaceContact = 1u << 30;

@@ -15,9 +15,9 @@ namespace fq {
 // ground_level_m - z_corner; position the corner lifted by half the depth;
 // feature = corner index 0..7, bit k set when the corner lies on the + side
 // of body axis k). Returns out.count.
-int collide_box_ground(const OrientedBox& box, double ground_level_m, ContactManifold& out);
+int collide_box_ground(const OrientedBoxRef& box, double ground_level_m, ContactManifold& out);
 
 // Lowest z of the box (m): a cheap test before collide_box_ground.
-double box_lowest_z_m(const OrientedBox& box);
+double box_lowest_z_m(const OrientedBoxRef& box);
 
 }  // namespace fq

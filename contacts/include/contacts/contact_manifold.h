@@ -16,6 +16,20 @@ struct OrientedBox {
   Vec3 half_extents_m = Vec3::Ones(); // along body x, y, z (m)
 };
 
+// The same box by reference, what the narrow-phase routines take: the
+// contact system passes the bodies' own arrays instead of a copy (the copy
+// was written in pieces and read back across them, a store-forwarding stall
+// at every box test). An OrientedBox converts to it.
+struct OrientedBoxRef {
+  const Vec3& center_m;
+  const Mat3& rotation;
+  const Vec3& half_extents_m;
+  OrientedBoxRef(const Vec3& center, const Mat3& rot, const Vec3& half_extents)
+      : center_m(center), rotation(rot), half_extents_m(half_extents) {}
+  OrientedBoxRef(const OrientedBox& box)  // NOLINT(google-explicit-constructor): a view of the box
+      : center_m(box.center_m), rotation(box.rotation), half_extents_m(box.half_extents_m) {}
+};
+
 // One contact point between shape a and shape b.
 struct ContactPointGeometry {
   Vec3 position_m = Vec3::Zero();  // world (m): middle of the overlap along the normal
