@@ -53,4 +53,49 @@ TEST(BondedRelease, PairCollidesTheStepAfterItsJointReleasesIt) {
   EXPECT_GT(scene.contacts->contacts()[0].normal_force_N, 0.0);
 }
 
+TEST(BondedRelease, APairNeverBondedStartsFromZeroOverlapBesideAReleasedOne) {
+  // Only a released pair starts from its overlap (contact_system.h). Here a
+  // released pair (2, 3) stays in contact, each of its points holding the
+  // 1 mm it was released at as reference depth, while a pair never bonded,
+  // (0, 1), comes into contact: its points come first in the contact list
+  // (keys in pair order), in the places the released pair's points held
+  // two steps before, and must start from a reference depth of zero, i.e.
+  // resist their whole overlap: F_n > 0 at the first touch, as for any
+  // new contact (the records of a step are reused, contact_system.cpp).
+  fq::BodyStore store;
+  fq::test::add_box(store, Vec3::Constant(0.1), 500.0, Vec3(0, 0, 0), fq::Quat::Identity(), true);
+  fq::test::add_box(store, Vec3::Constant(0.1), 500.0, Vec3(0.1005, 0, 0));
+  fq::test::add_box(store, Vec3::Constant(0.1), 500.0, Vec3(0, 1.0, 0));
+  fq::test::add_box(store, Vec3::Constant(0.1), 500.0, Vec3(0.099, 1.0, 0));
+  fq::SimulationSettings s;
+  s.dt_s = 1e-5;
+  s.gravity_mps2 = Vec3::Zero();
+  auto scene = fq::test::make_scene(std::move(store), s, [](fq::ContactSystem& c) {
+    c.set_pair_params(0, 0, fq::test::params(1e5, 0.5, 0.4));
+  });
+  auto& sim = *scene.sim;
+  sim.bonded_pairs().add(2, 3);
+  sim.step();
+  sim.bonded_pairs().release(2, 3);
+  sim.bodies().velocity_mps[1] = Vec3(-0.1, 0, 0);  // 0.5 mm gap: first touch after about 500 steps
+  int first_touch_points = 0;
+  for (int k = 0; k < 1000 && first_touch_points == 0; ++k) {
+    sim.step();
+    int released_points = 0;
+    for (const auto& c : scene.contacts->contacts()) {
+      if (c.body_a == 2) {
+        ++released_points;
+        EXPECT_NEAR(c.reference_depth_m, 1e-3, 1e-9) << "step " << k;
+      } else {
+        ASSERT_EQ(c.body_a, 0);
+        ++first_touch_points;
+        EXPECT_EQ(c.reference_depth_m, 0.0) << "step " << k;
+        EXPECT_GT(c.normal_force_N, 0.0) << "step " << k;
+      }
+    }
+    ASSERT_EQ(released_points, 4) << "step " << k;  // the released pair touches throughout
+  }
+  EXPECT_EQ(first_touch_points, 4);  // a face on a face: four points
+}
+
 }  // namespace

@@ -220,12 +220,16 @@ class ContactSystem : public ForceProvider {
   // Narrow phase and contact law of every work item (pairs, then boxes near
   // the ground), into contacts_; books the energy of the springs that ended.
   void narrow_phase(const BodyStore& bodies, const StepInfo& step);
-  // One work item: appends its points to `out` (geometry, history,
-  // velocities; apply_law adds the forces), and returns how many; `cursor` is the position in previous_ of the history search
-  // (see the .cpp); `box_tests` counts the items that got past the cheap
-  // bounding test to a full box test.
+  // One work item: writes its points into out[used], out[used + 1], ...
+  // (reusing the records left there by an earlier step, appending past
+  // the end; `used` advances) with geometry, history and velocities
+  // (apply_law adds the forces), and returns how many; `cursor` is the
+  // position in previous_ of the history search (see the .cpp);
+  // `box_tests` counts the items that got past the cheap bounding test to
+  // a full box test.
   std::size_t process_item(const BodyStore& bodies, std::size_t item, std::size_t& cursor,
-                           ContactManifold& manifold, std::vector<ContactPoint>& out, std::size_t& box_tests);
+                           ContactManifold& manifold, std::vector<ContactPoint>& out, std::size_t& used,
+                           std::size_t& box_tests);
   // The contact law (linear_contact_law.h) of the records [first, last):
   // forces, shear springs (history in, updated out), energies.
   void apply_law(ContactPoint* first, ContactPoint* last, const StepInfo& step) const;
