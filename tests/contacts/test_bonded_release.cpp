@@ -12,6 +12,17 @@ namespace {
 
 using fq::Vec3;
 
+// The boxes of `store` without gravity, dt = 1e-5 s, one contact material
+// (k_n = 1e5 N/m, e = 0.5, mu = 0.4).
+fq::test::ContactScene weightless_scene(fq::BodyStore store) {
+  fq::SimulationSettings s;
+  s.dt_s = 1e-5;
+  s.gravity_mps2 = Vec3::Zero();
+  return fq::test::make_scene(std::move(store), s, [](fq::ContactSystem& c) {
+    c.set_pair_params(0, 0, fq::test::params(1e5, 0.5, 0.4));
+  });
+}
+
 TEST(BondedRelease, PairCollidesTheStepAfterItsJointReleasesIt) {
   // Two boxes overlapping by 1 mm, no gravity, bonded at the start.
   fq::BodyStore store;
@@ -20,12 +31,7 @@ TEST(BondedRelease, PairCollidesTheStepAfterItsJointReleasesIt) {
   // A Ground member overlapping both: ignored (the ground is the half-space).
   fq::test::add_box(store, Vec3(1.0, 1.0, 0.1), 500.0, Vec3(0, 0, -0.099), fq::Quat::Identity(), true,
                     fq::MemberKind::Ground);
-  fq::SimulationSettings s;
-  s.dt_s = 1e-5;
-  s.gravity_mps2 = Vec3::Zero();
-  auto scene = fq::test::make_scene(std::move(store), s, [](fq::ContactSystem& c) {
-    c.set_pair_params(0, 0, fq::test::params(1e5, 0.5, 0.4));
-  });
+  auto scene = weightless_scene(std::move(store));
   auto& sim = *scene.sim;
   sim.bonded_pairs().add(0, 1);
   for (int k = 0; k < 10; ++k) sim.step();
@@ -67,12 +73,7 @@ TEST(BondedRelease, APairNeverBondedStartsFromZeroOverlapBesideAReleasedOne) {
   fq::test::add_box(store, Vec3::Constant(0.1), 500.0, Vec3(0.1005, 0, 0));
   fq::test::add_box(store, Vec3::Constant(0.1), 500.0, Vec3(0, 1.0, 0));
   fq::test::add_box(store, Vec3::Constant(0.1), 500.0, Vec3(0.099, 1.0, 0));
-  fq::SimulationSettings s;
-  s.dt_s = 1e-5;
-  s.gravity_mps2 = Vec3::Zero();
-  auto scene = fq::test::make_scene(std::move(store), s, [](fq::ContactSystem& c) {
-    c.set_pair_params(0, 0, fq::test::params(1e5, 0.5, 0.4));
-  });
+  auto scene = weightless_scene(std::move(store));
   auto& sim = *scene.sim;
   sim.bonded_pairs().add(2, 3);
   sim.step();
