@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <type_traits>
 
 #include "dem_core/quat_lanes.h"
 #include "joints/joint_system.h"
@@ -50,10 +51,18 @@ void JointSystem::FQ_LANE_KERNEL(update_lane_frames_)(const BodyStore& bodies, s
           lanes::select(flip, -fb.w, fb.w)};
     v4d m[9];
     lanes::to_rotation_matrix(lanes::normalized({fa.x + fb.x, fa.y + fb.y, fa.z + fb.z, fa.w + fb.w}), m);
-    double columns[9][lanes::kWidth];
-    for (int i = 0; i < 9; ++i) lanes::store(columns[i], m[i]);
-    for (int k = 0; k < n; ++k)
-      for (int i = 0; i < 9; ++i) joint_frame_world_[group[k]].data()[i] = columns[i][k];
+    // Lanes back to one matrix per joint: after the two transposes, m[k]
+    // holds entries 0-3 of joint k's matrix and m[4 + k] entries 4-7.
+    lanes::transpose(m[0], m[1], m[2], m[3]);
+    lanes::transpose(m[4], m[5], m[6], m[7]);
+    double entry_8[lanes::kWidth];
+    lanes::store(entry_8, m[8]);
+    for (int k = 0; k < n; ++k) {
+      double* frame = joint_frame_world_[group[k]].data();
+      lanes::store(frame, m[k]);
+      lanes::store(frame + 4, m[4 + k]);
+      frame[8] = entry_8[k];
+    }
     n = 0;
   };
   for (std::size_t j = first; j < last; ++j) {
@@ -67,15 +76,18 @@ void JointSystem::FQ_LANE_KERNEL(update_lane_frames_)(const BodyStore& bodies, s
 namespace {
 
 // Up to four consecutive points [first, first + n) of one joint: their
-// values in a per-point column as lanes (zeros past n), and back.
+// values in a per-point column as lanes (zeros past n), and back. Full
+// (n = 4, known when compiled) loads and stores four wide without a test.
+template <bool Full>
 struct PointGroup {
   std::size_t first;
   int n;
   [[gnu::always_inline]] v4d in(const std::vector<double>& column) const {
-    return n == lanes::kWidth ? lanes::load(column.data() + first) : lanes::load_partial(column.data() + first, n);
+    if constexpr (Full) return lanes::load(column.data() + first);
+    return lanes::load_partial(column.data() + first, n);
   }
   [[gnu::always_inline]] void out(std::vector<double>& column, v4d v) const {
-    if (n == lanes::kWidth)
+    if constexpr (Full)
       lanes::store(column.data() + first, v);
     else
       lanes::store_partial(column.data() + first, v, n);
@@ -103,18 +115,21 @@ struct PointGroup {
 // same order per point, four points per vector.
 void JointSystem::FQ_LANE_KERNEL(joint_step_lanes_)(const BodyStore& bodies, std::size_t j) {
   const BodyId a = joint_body_a_[j], b = joint_body_b_[j];
-  const Mat3& frame = joint_frame_world_[j];  // update_lane_frames_
-  // Loop invariants as plain scalars; matrices column-major (m[3 c + r] is
-  // row r of column c), the frame's columns t1, t2, n.
-  double Ra[9], Rb[9], F[9], Xa[3], Xb[3], Va[3], Vb[3], Wa[3], Wb[3], w_sum[3];
-  for (int k = 0; k < 9; ++k)
-    Ra[k] = bodies.rotation[a].data()[k], Rb[k] = bodies.rotation[b].data()[k], F[k] = frame.data()[k];
-  for (int k = 0; k < 3; ++k) {
-    Xa[k] = bodies.position_m[a][k], Xb[k] = bodies.position_m[b][k];
-    Va[k] = bodies.velocity_mps[a][k], Vb[k] = bodies.velocity_mps[b][k];
-    Wa[k] = bodies.angular_velocity_radps[a][k], Wb[k] = bodies.angular_velocity_radps[b][k];
-    w_sum[k] = Wa[k] + Wb[k];
-  }
+  // The loop invariants are read where they are used, as broadcasts from
+  // the body arrays and the frame (update_lane_frames_). Copies into local
+  // arrays cost a load and a store per scalar, about 100 of the 723
+  // instructions per joint (callgrind, 1e3-body lattice), for values that a
+  // four-point joint uses once or twice. Matrices are column-major (m[3 c +
+  // r] is row r of column c), the frame's columns t1, t2, n.
+  const double* const Ra = bodies.rotation[a].data();
+  const double* const Rb = bodies.rotation[b].data();
+  const double* const F = joint_frame_world_[j].data();
+  const double* const Xa = bodies.position_m[a].data();
+  const double* const Xb = bodies.position_m[b].data();
+  const double* const Va = bodies.velocity_mps[a].data();
+  const double* const Vb = bodies.velocity_mps[b].data();
+  const double* const Wa = bodies.angular_velocity_radps[a].data();
+  const double* const Wb = bodies.angular_velocity_radps[b].data();
   const double* law_n = &lane_laws_[std::size_t(joint_lane_law_[2 * j])].k0_t_Npm;
   const double* law_s = &lane_laws_[std::size_t(joint_lane_law_[2 * j + 1])].k0_t_Npm;
   const double c_n = joint_lane_dashpot_Nspm_[2 * j], c_s = joint_lane_dashpot_Nspm_[2 * j + 1];
@@ -129,9 +144,12 @@ void JointSystem::FQ_LANE_KERNEL(joint_step_lanes_)(const BodyStore& bodies, std
   v4d sum_force_torque = lanes::splat(0.0), sum_torque_yz = lanes::splat(0.0);
 
   const auto first_point = std::size_t(joint_first_point_[j]), last_point = std::size_t(joint_first_point_[j + 1]);
-  for (std::size_t group = first_point; group < last_point; group += lanes::kWidth) {
-    const int n = int(std::min<std::size_t>(lanes::kWidth, last_point - group));
-    const bool full = n == lanes::kWidth;
+  // One group of up to four points; compiled twice, for a full group (every
+  // load and store four wide, no test of n at each) and for the last group
+  // of a joint whose point count is not a multiple of four.
+  auto group_step = [&](std::size_t group, int n, auto full_group) __attribute__((always_inline)) {
+    constexpr bool full = decltype(full_group)::value;
+    if constexpr (full) n = lanes::kWidth;  // a constant for the compiler
     auto in = [&](const std::vector<double>& column) {
       return full ? lanes::load(column.data() + group) : lanes::load_partial(column.data() + group, n);
     };
@@ -241,7 +259,8 @@ void JointSystem::FQ_LANE_KERNEL(joint_step_lanes_)(const BodyStore& bodies, std
               dxf2 = d[0] * dashpot[1] - d[1] * dashpot[0];
     out(point_power_prev_W_,
         (dashpot[0] * vrel[0] + dashpot[1] * vrel[1] + dashpot[2] * vrel[2]) -
-            0.5 * (dxf0 * w_sum[0] + dxf1 * w_sum[1] + dxf2 * w_sum[2]));
+            0.5 * (dxf0 * (Wa[0] + lanes::splat(Wb[0])) + dxf1 * (Wa[1] + lanes::splat(Wb[1])) +
+                   dxf2 * (Wa[2] + lanes::splat(Wb[2]))));
     const v4d m0 = am[0] + 0.5 * d[0], m1 = am[1] + 0.5 * d[1], m2 = am[2] + 0.5 * d[2];
     // Stage 4: sums in point order. The lanes of (F_x, F_y, F_z, T_x) and
     // (T_y, T_z) transposed into one vector per point, which the two sums
@@ -256,6 +275,13 @@ void JointSystem::FQ_LANE_KERNEL(joint_step_lanes_)(const BodyStore& bodies, std
       sum_force_torque = sum_force_torque + point[i];
       sum_torque_yz = sum_torque_yz + point_yz[i];
     }
+  };
+  for (std::size_t group = first_point; group < last_point; group += lanes::kWidth) {
+    const int n = int(std::min<std::size_t>(lanes::kWidth, last_point - group));
+    if (n == lanes::kWidth)
+      group_step(group, n, std::true_type{});
+    else
+      group_step(group, n, std::false_type{});
   }
   // force_on_a = sums[0..2], torque_on_a = sums[3..5]
   double sums[2 * lanes::kWidth];
@@ -273,9 +299,7 @@ void JointSystem::FQ_LANE_KERNEL(dashpot_books_lanes_)(const BodyStore& bodies, 
   const double *xa = k.xa, *xb = k.xb, *va = k.va, *vb = k.vb, *wa = k.wa, *wb = k.wb, *w_sum = k.w_sum;
   const double half_dt = dt * 0.5;
   const auto first_point = std::size_t(joint_first_point_[j]), last_point = std::size_t(joint_first_point_[j + 1]);
-  for (std::size_t group = first_point; group < last_point; group += lanes::kWidth) {
-    const int n = int(std::min<std::size_t>(lanes::kWidth, last_point - group));
-    const PointGroup p{group, n};
+  auto group_books = [&](auto p) __attribute__((always_inline)) {
     const v4d f0 = p.in(point_dashpot_force_N_.x), f1 = p.in(point_dashpot_force_N_.y), f2 = p.in(point_dashpot_force_N_.z);
     const v4d pa0 = p.in(point_end_a_m_.x), pa1 = p.in(point_end_a_m_.y), pa2 = p.in(point_end_a_m_.z);
     const v4d pb0 = p.in(point_end_b_m_.x), pb1 = p.in(point_end_b_m_.y), pb2 = p.in(point_end_b_m_.z);
@@ -290,6 +314,22 @@ void JointSystem::FQ_LANE_KERNEL(dashpot_books_lanes_)(const BodyStore& bodies, 
     const v4d term = half_dt * (p.in(point_power_prev_W_) + power_next);
     p.out(point_viscous_done_J_, p.in(point_viscous_done_J_) + first_step_share * term);
     p.out(point_viscous_half_J_, 0.5 * term);
+  };
+  // A four-point joint (the frames' and the lattice's) without a loop: in a
+  // loop GCC broadcasts the seven body vectors once before it and keeps
+  // them on the stack, which cost 27 more instructions per joint (callgrind)
+  // than broadcasting them where a single pass uses them. (The kernel above
+  // is the other way round, by 6 instructions.)
+  if (last_point - first_point == lanes::kWidth) {
+    group_books(PointGroup<true>{first_point, lanes::kWidth});
+  } else {
+    for (std::size_t group = first_point; group < last_point; group += lanes::kWidth) {
+      const int n = int(std::min<std::size_t>(lanes::kWidth, last_point - group));
+      if (n == lanes::kWidth)
+        group_books(PointGroup<true>{group, n});
+      else
+        group_books(PointGroup<false>{group, n});
+    }
   }
 }
 

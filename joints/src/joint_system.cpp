@@ -388,29 +388,6 @@ Mat3 JointSystem::update_joint_frame_(const BodyStore& bodies, std::size_t j) {
   return frame;
 }
 
-void JointSystem::finish_joint_(std::size_t j, const double xa[3], const double xb[3], const double force_on_a[3],
-                                const double torque_on_a[3], const JointSpringSummary& sum, bool any_event) {
-  // Torque on b: -(m - x_b) x F = -(m - x_a) x F + (x_b - x_a) x F, summed over points.
-  const double* f = force_on_a;
-  const double ab[3] = {xb[0] - xa[0], xb[1] - xa[1], xb[2] - xa[2]};
-  const double ab_x_f[3] = {ab[1] * f[2] - ab[2] * f[1], ab[2] * f[0] - ab[0] * f[2], ab[0] * f[1] - ab[1] * f[0]};
-  double* slot_fa = slot_force_N_[2 * j].data();
-  double* slot_fb = slot_force_N_[2 * j + 1].data();
-  double* slot_ta = slot_torque_Nm_[2 * j].data();
-  double* slot_tb = slot_torque_Nm_[2 * j + 1].data();
-  for (int r = 0; r < 3; ++r) {
-    slot_fa[r] = f[r];
-    slot_fb[r] = -f[r];
-    slot_ta[r] = torque_on_a[r];
-    slot_tb[r] = ab_x_f[r] - torque_on_a[r];
-  }
-  const bool brk = joint_should_break(joint_break_[j], sum);
-  joint_break_pending_[j] = brk ? 1 : 0;
-  // Kept until finish_step emits the events (an evaluation without a
-  // finish_step in between must not lose them).
-  if (brk || any_event) joint_event_pending_[j] = 1;
-}
-
 // One joint, one pass (joint_system.h). Writes only what joint j owns: its
 // springs, its points, its two slots and its flags.
 void JointSystem::joint_step_(const BodyStore& bodies, std::size_t j) {

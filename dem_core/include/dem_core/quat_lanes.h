@@ -20,8 +20,12 @@ struct QuatLanes {
   static constexpr double kIdentity[4] = {0.0, 0.0, 0.0, 1.0};  // (x, y, z, w)
   const double* c[kWidth];
   for (int k = 0; k < kWidth; ++k) c[k] = k < n ? q[k]->coeffs().data() : kIdentity;
-  return {make(c[0][0], c[1][0], c[2][0], c[3][0]), make(c[0][1], c[1][1], c[2][1], c[3][1]),
-          make(c[0][2], c[1][2], c[2][2], c[3][2]), make(c[0][3], c[1][3], c[2][3], c[3][3])};
+  // Each quaternion's four coefficients in one load, turned into lanes of x,
+  // y, z and w by a transpose: a third of the instructions of sixteen
+  // scalar loads put into lanes one by one.
+  v4d x = load(c[0]), y = load(c[1]), z = load(c[2]), w = load(c[3]);
+  transpose(x, y, z, w);
+  return {x, y, z, w};
 }
 
 // a * b: Eigen's quat_product for double with SSE2 (Geometry_SIMD.h), whose

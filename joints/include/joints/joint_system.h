@@ -162,8 +162,9 @@ class JointSystem final : public ForceProvider {
   Mat3 update_joint_frame_(const BodyStore& bodies, std::size_t j);
   // The end of a joint's step: its summed force and torque on a (about x_a)
   // into its two slots, the fracture test and the event flag.
-  void finish_joint_(std::size_t j, const double xa[3], const double xb[3], const double force_on_a[3],
-                     const double torque_on_a[3], const JointSpringSummary& sum, bool any_event);
+  [[gnu::always_inline]] inline void finish_joint_(std::size_t j, const double xa[3], const double xb[3],
+                                                   const double force_on_a[3], const double torque_on_a[3],
+                                                   const JointSpringSummary& sum, bool any_event);
   // Law of spring s (alive) at deformation delta and rate: stores delta,
   // rate and the law force, keeps the books and flags, and returns the law
   // and dashpot forces (N). Returns false when the spring was deleted now;
@@ -353,6 +354,32 @@ inline JointSystem::BooksKinematics JointSystem::books_kinematics_(const BodySto
     k.w_sum[r] = k.wa[r] + k.wb[r];
   }
   return k;
+}
+
+// Inline: called once per joint from joint_step_ and the lane kernels, for
+// some 30 instructions whose call and argument copies cost as many again.
+inline void JointSystem::finish_joint_(std::size_t j, const double xa[3], const double xb[3], const double force_on_a[3],
+                                const double torque_on_a[3], const JointSpringSummary& sum, bool any_event) {
+  // Torque on b: -(m - x_b) x F = -(m - x_a) x F + (x_b - x_a) x F, summed over points.
+  const double* f = force_on_a;
+  const double ab[3] = {xb[0] - xa[0], xb[1] - xa[1], xb[2] - xa[2]};
+  const double ab_x_f[3] = {ab[1] * f[2] - ab[2] * f[1], ab[2] * f[0] - ab[0] * f[2], ab[0] * f[1] - ab[1] * f[0]};
+  double* slot_fa = slot_force_N_[2 * j].data();
+  double* slot_fb = slot_force_N_[2 * j + 1].data();
+  double* slot_ta = slot_torque_Nm_[2 * j].data();
+  double* slot_tb = slot_torque_Nm_[2 * j + 1].data();
+  // Component by component, not in a loop: GCC vectorises such a loop
+  // behind some twenty instructions of run-time alias checks.
+  slot_fa[0] = f[0], slot_fa[1] = f[1], slot_fa[2] = f[2];
+  slot_fb[0] = -f[0], slot_fb[1] = -f[1], slot_fb[2] = -f[2];
+  slot_ta[0] = torque_on_a[0], slot_ta[1] = torque_on_a[1], slot_ta[2] = torque_on_a[2];
+  slot_tb[0] = ab_x_f[0] - torque_on_a[0], slot_tb[1] = ab_x_f[1] - torque_on_a[1];
+  slot_tb[2] = ab_x_f[2] - torque_on_a[2];
+  const bool brk = joint_should_break(joint_break_[j], sum);
+  joint_break_pending_[j] = brk ? 1 : 0;
+  // Kept until finish_step emits the events (an evaluation without a
+  // finish_step in between must not lose them).
+  if (brk || any_event) joint_event_pending_[j] = 1;
 }
 
 }  // namespace fq
