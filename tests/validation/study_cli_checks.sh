@@ -6,11 +6,12 @@
 # file.
 # The two study scripts check their arguments before anything starts: a
 # stray argument must not launch an hour of runs.
-#   study_cli_checks.sh STABILITY_LIMITS_BIN WORK_PRECISION_BIN SOURCE_DIR
+#   study_cli_checks.sh STABILITY_LIMITS_BIN WORK_PRECISION_BIN SOURCE_DIR COMPARE_ROUNDS_BIN
 set -u
 stability=$1
 precision=$2
 source_dir=$3
+compare=$4
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cd "$work"
@@ -61,6 +62,36 @@ expect 0 "usage: bash validation/frames_sweep.sh" out -- timeout 60 bash "$sourc
 expect 2 "unknown record 'kobee'" err -- timeout 60 bash "$source_dir/validation/frames_sweep.sh" kobee
 expect 2 "one record name expected, got 2" err -- timeout 60 bash "$source_dir/validation/frames_sweep.sh" kobe takatori
 only_io_files "the study scripts' argument checks"
+
+# The comparison of two builds: compare_rounds on a log, and the script's
+# argument checks, which come before any benchmark runs (here the build
+# directories hold none, so a script that went on would fail with 1).
+expect 0 "usage: compare_rounds" out -- "$compare" --help
+expect 2 "a log and two build names expected" err -- "$compare" log.txt
+expect 1 "cannot read $work/none.txt" err -- "$compare" "$work/none.txt" old new
+printf '## round 1 build old\nBM_a x=1 state_hash=5\n## round 1 build new\nBM_a x=2 state_hash=5\n' > same.txt
+expect 0 "| BM_a | x | 1 / 1 | 1 | 2 | 1 | 2.000 (2.00-2.00) |" out -- "$compare" same.txt old new x
+expect 0 "every run of both builds the same" out -- "$compare" same.txt old new x
+sed '4s/state_hash=5/state_hash=6/' same.txt > differ.txt
+expect 3 "state hash differs: BM_a: old=5 new=6" out -- "$compare" differ.txt old new x
+expect 2 "no runs of build 'nieuw'" err -- "$compare" same.txt old nieuw x
+printf '## round 1 build old\nBM_a x=1q\n' > bad.txt
+expect 1 "bad.txt:2: counter x: '1q' is not a number" err -- "$compare" bad.txt old new
+rm -f same.txt differ.txt bad.txt
+# The script checks that it runs from the repository root by cases/frame_B.yaml.
+mkdir -p fake/old/validation fake/new/validation cases
+touch cases/frame_B.yaml
+expect 0 "usage: bash validation/compare_builds.sh" out -- bash "$source_dir/validation/compare_builds.sh" --help
+expect 2 "two build directories expected" err -- timeout 60 bash "$source_dir/validation/compare_builds.sh" only_one
+expect 2 "ROUNDS must be a positive whole number, got 'x'" err -- \
+  timeout 60 bash "$source_dir/validation/compare_builds.sh" fake/old fake/new x
+expect 2 "unknown scene 'frame'" err -- timeout 60 bash "$source_dir/validation/compare_builds.sh" fake/old fake/new 2 frame
+expect 2 "fake/old/validation/bench_frames not found" err -- \
+  timeout 60 bash "$source_dir/validation/compare_builds.sh" fake/old fake/new 2 frames
+rm cases/frame_B.yaml
+expect 2 "run from the repository root" err -- timeout 60 bash "$source_dir/validation/compare_builds.sh" fake/old fake/new
+rm -rf fake cases
+only_io_files "the comparison's argument checks"
 
 if [ "$failures" -ne 0 ]; then echo "$failures check(s) failed"; exit 1; fi
 echo "all study command-line checks passed"
