@@ -20,7 +20,16 @@
 # compare_rounds), 2 for a usage error, 1 when a benchmark fails.
 set -euo pipefail
 
-usage() { sed -n '7,20p' "$0" | sed 's/^# \{0,1\}//'; }
+usage() {
+  cat <<'EOF_USAGE'
+usage: bash validation/compare_builds.sh OLD_BUILD_DIR NEW_BUILD_DIR [ROUNDS] [SCENES]
+  OLD_BUILD_DIR, NEW_BUILD_DIR  build directories holding validation/bench_*
+  ROUNDS   rounds of both builds (default 4)
+  SCENES   comma-separated: frames, joints, joints_sse2, contacts (default frames,joints)
+Run from the repository root. Exit status: 0 when every state hash agrees,
+3 when one differs, 2 for a usage error, 1 when a benchmark fails.
+EOF_USAGE
+}
 die() { echo "compare_builds.sh: $*" >&2; exit 1; }
 usage_error() { echo "compare_builds.sh: $*" >&2; exit 2; }
 if [ "${1:-}" = --help ] || [ "${1:-}" = -h ]; then usage; exit 0; fi

@@ -144,33 +144,25 @@ void JointSystem::FQ_LANE_KERNEL(joint_step_lanes_)(const BodyStore& bodies, std
   v4d sum_force_torque = lanes::splat(0.0), sum_torque_yz = lanes::splat(0.0);
 
   const auto first_point = std::size_t(joint_first_point_[j]), last_point = std::size_t(joint_first_point_[j + 1]);
-  // One group of up to four points; compiled twice, for a full group (every
-  // load and store four wide, no test of n at each) and for the last group
-  // of a joint whose point count is not a multiple of four.
-  auto group_step = [&](std::size_t group, int n, auto full_group) __attribute__((always_inline)) {
-    constexpr bool full = decltype(full_group)::value;
-    if constexpr (full) n = lanes::kWidth;  // a constant for the compiler
-    auto in = [&](const std::vector<double>& column) {
-      return full ? lanes::load(column.data() + group) : lanes::load_partial(column.data() + group, n);
-    };
-    auto out = [&](std::vector<double>& column, v4d v) {
-      if (full)
-        lanes::store(column.data() + group, v);
-      else
-        lanes::store_partial(column.data() + group, v, n);
-    };
+  // One group of up to four points (PointGroup); compiled twice, for a full
+  // group (every load and store four wide, no test of n at each) and for
+  // the last group of a joint whose point count is not a multiple of four.
+  auto group_step = [&](auto points) __attribute__((always_inline)) {
+    constexpr bool full = std::is_same_v<decltype(points), PointGroup<true>>;
+    const std::size_t group = points.first;
+    const int n = full ? lanes::kWidth : points.n;  // a constant for the compiler when full
     // Stage 1: ends, arm of end a, separation d = p_b - p_a, relative
     // velocity, and d and v_rel along the joint axes (joint_step_).
-    const v4d la[3] = {in(point_attach_a_m_.x), in(point_attach_a_m_.y), in(point_attach_a_m_.z)};
-    const v4d lb[3] = {in(point_attach_b_m_.x), in(point_attach_b_m_.y), in(point_attach_b_m_.z)};
+    const v4d la[3] = {points.in(point_attach_a_m_.x), points.in(point_attach_a_m_.y), points.in(point_attach_a_m_.z)};
+    const v4d lb[3] = {points.in(point_attach_b_m_.x), points.in(point_attach_b_m_.y), points.in(point_attach_b_m_.z)};
     v4d am[3], bm[3], d[3];
     for (int r = 0; r < 3; ++r) {
       am[r] = Ra[r] * la[0] + Ra[3 + r] * la[1] + Ra[6 + r] * la[2];
       bm[r] = Rb[r] * lb[0] + Rb[3 + r] * lb[1] + Rb[6 + r] * lb[2];
       const v4d pa = Xa[r] + am[r], pb = Xb[r] + bm[r];
       d[r] = pb - pa;
-      out(r == 0 ? point_end_a_m_.x : r == 1 ? point_end_a_m_.y : point_end_a_m_.z, pa);
-      out(r == 0 ? point_end_b_m_.x : r == 1 ? point_end_b_m_.y : point_end_b_m_.z, pb);
+      points.out(r == 0 ? point_end_a_m_.x : r == 1 ? point_end_a_m_.y : point_end_a_m_.z, pa);
+      points.out(r == 0 ? point_end_b_m_.x : r == 1 ? point_end_b_m_.y : point_end_b_m_.z, pb);
     }
     const v4d vrel[3] = {
         (Vb[0] + Wb[1] * bm[2] - Wb[2] * bm[1]) - (Va[0] + Wa[1] * am[2] - Wa[2] * am[1]),
@@ -252,12 +244,12 @@ void JointSystem::FQ_LANE_KERNEL(joint_step_lanes_)(const BodyStore& bodies, std
       force[r] = F[r] * fa[0] + F[3 + r] * fa[1] + F[6 + r] * fa[2];
       dashpot[r] = F[r] * fda[0] + F[3 + r] * fda[1] + F[6 + r] * fda[2];
     }
-    out(point_dashpot_force_N_.x, dashpot[0]);
-    out(point_dashpot_force_N_.y, dashpot[1]);
-    out(point_dashpot_force_N_.z, dashpot[2]);
+    points.out(point_dashpot_force_N_.x, dashpot[0]);
+    points.out(point_dashpot_force_N_.y, dashpot[1]);
+    points.out(point_dashpot_force_N_.z, dashpot[2]);
     const v4d dxf0 = d[1] * dashpot[2] - d[2] * dashpot[1], dxf1 = d[2] * dashpot[0] - d[0] * dashpot[2],
               dxf2 = d[0] * dashpot[1] - d[1] * dashpot[0];
-    out(point_power_prev_W_,
+    points.out(point_power_prev_W_,
         (dashpot[0] * vrel[0] + dashpot[1] * vrel[1] + dashpot[2] * vrel[2]) -
             0.5 * (dxf0 * (Wa[0] + lanes::splat(Wb[0])) + dxf1 * (Wa[1] + lanes::splat(Wb[1])) +
                    dxf2 * (Wa[2] + lanes::splat(Wb[2]))));
@@ -279,9 +271,9 @@ void JointSystem::FQ_LANE_KERNEL(joint_step_lanes_)(const BodyStore& bodies, std
   for (std::size_t group = first_point; group < last_point; group += lanes::kWidth) {
     const int n = int(std::min<std::size_t>(lanes::kWidth, last_point - group));
     if (n == lanes::kWidth)
-      group_step(group, n, std::true_type{});
+      group_step(PointGroup<true>{group, n});
     else
-      group_step(group, n, std::false_type{});
+      group_step(PointGroup<false>{group, n});
   }
   // force_on_a = sums[0..2], torque_on_a = sums[3..5]
   double sums[2 * lanes::kWidth];
