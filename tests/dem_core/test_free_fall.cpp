@@ -13,6 +13,10 @@
 
 #include "dem_core/simulation.h"
 
+#if defined(_OPENMP)
+#include <omp.h>
+#endif
+
 namespace {
 
 using fq::BodyStore;
@@ -232,6 +236,95 @@ TEST(FreeFall, LedgerBalancesToRoundOffForGravityAndGroundMotion) {
   // The run was not trivial: the ground did work and gravity released energy.
   EXPECT_GT(std::abs(rec.samples.back().ledger.work_ground_motion_J), 1.0);
   EXPECT_GT(std::abs(rec.samples.back().ledger.gravity_potential_J), 10.0);
+}
+
+// The ledger of a scene large enough for the threaded body update (11 000
+// bodies, of which every eleventh is fixed, like the 1e4-body lattice of
+// bench_joints): the kinetic energy and the gravity potential are the closed
+// forms above, summed over the free bodies, and every ledger field is the
+// same bits on one and on two threads. The bodies are summed per chunk and
+// the chunk sums added in order (simulation.cpp, parallel_for.h
+// EqualChunks); a chunking that depended on the thread count would change
+// the order of the sums and, at this size, their last bits.
+struct LedgerRun {
+  std::vector<EnergyLedger> ledgers;
+  std::uint64_t state_hash = 0;
+};
+
+LedgerRun run_many_bodies(int threads, std::vector<Motion>& motions, double& rotational, SimulationSettings& s) {
+#if defined(_OPENMP)
+  omp_set_num_threads(threads);
+#else
+  (void)threads;
+#endif
+  s.dt_s = 1e-3;
+  s.duration_s = 0.05;
+  BodyStore store;
+  motions.clear();
+  rotational = 0.0;
+  const double i_z = kMass * (0.01 + 0.04) / 12.0;
+  for (int i = 0; i < 11000; ++i) {
+    // Positions on a 100 x 110 grid 1 m apart; velocities of varied size
+    // (the sums then round at every addition).
+    const Vec3 x0(double(i % 100), double(i / 100), 5.0);
+    const Vec3 v0(0.1 * std::sin(0.7 * i), 0.2 * std::cos(1.3 * i), 1.0 + 0.05 * (i % 17));
+    BoxBodyDef def = box(x0, v0);
+    if (i % 11 == 0) {
+      def.fixed = true;
+      store.add_box(def);
+      continue;
+    }
+    const double spin = 1.0 + 0.01 * (i % 23);  // about a principal axis: steady (see above)
+    def.angular_velocity_radps = Vec3(0.0, 0.0, spin);
+    store.add_box(def);
+    motions.push_back({x0, v0, s.gravity_mps2});
+    rotational += 0.5 * i_z * spin * spin;
+  }
+  Simulation sim(std::move(store), s);
+  LedgerRecorder rec;
+  sim.add_observer(&rec, 1);
+  EXPECT_EQ(sim.run().status, fq::RunStatus::Completed);
+  LedgerRun out;
+  for (const LedgerRecorder::Sample& smp : rec.samples) out.ledgers.push_back(smp.ledger);
+  out.state_hash = sim.state_hash();
+  return out;
+}
+
+TEST(FreeFall, LedgerOfElevenThousandBodiesIsClosedFormAndTheSameOnOneAndTwoThreads) {
+#if defined(_OPENMP)
+  const int threads_before = omp_get_max_threads();
+#endif
+  std::vector<Motion> motions;
+  double rotational = 0.0;
+  SimulationSettings s;
+  const LedgerRun one = run_many_bodies(1, motions, rotational, s);
+  ASSERT_EQ(motions.size(), 10000u);
+  ASSERT_EQ(one.ledgers.size(), 51u);
+  for (std::size_t k = 0; k < one.ledgers.size(); ++k) {
+    const std::int64_t n = k == 0 ? 0 : std::int64_t(k) - 1;  // as in the test above
+    const double t = double(n) * s.dt_s;
+    double kinetic = rotational, gravity_potential = 0.0;
+    for (const Motion& m : motions) {
+      kinetic += 0.5 * kMass * m.v(t).squaredNorm() + kMass * s.dt_s * s.dt_s * m.a.squaredNorm() / 8.0;
+      gravity_potential += -kMass * s.gravity_mps2.dot(m.x(t) - m.x0);
+    }
+    const EnergyLedger& l = one.ledgers[k];
+    EXPECT_NEAR(l.kinetic_J, kinetic, kLedgerRoundOff * l.scale_J) << "step " << n;
+    EXPECT_NEAR(l.kinetic_rotational_J, rotational, kLedgerRoundOff * l.scale_J) << "step " << n;
+    EXPECT_NEAR(l.gravity_potential_J, gravity_potential, kLedgerRoundOff * l.scale_J) << "step " << n;
+  }
+#if defined(_OPENMP)
+  const LedgerRun two = run_many_bodies(2, motions, rotational, s);
+  omp_set_num_threads(threads_before);
+  ASSERT_EQ(two.ledgers.size(), one.ledgers.size());
+  EXPECT_EQ(two.state_hash, one.state_hash);
+  for (std::size_t k = 0; k < one.ledgers.size(); ++k) {
+    // Bitwise: EXPECT_EQ on doubles compares exactly.
+    EXPECT_EQ(two.ledgers[k].kinetic_J, one.ledgers[k].kinetic_J) << "sample " << k;
+    EXPECT_EQ(two.ledgers[k].kinetic_rotational_J, one.ledgers[k].kinetic_rotational_J) << "sample " << k;
+    EXPECT_EQ(two.ledgers[k].gravity_potential_J, one.ledgers[k].gravity_potential_J) << "sample " << k;
+  }
+#endif
 }
 
 }  // namespace

@@ -90,3 +90,39 @@ TEST(ParallelForParts, EveryIndexRunsOnceOnOneAndTwoThreads) {
 }
 
 }  // namespace
+
+// EqualChunks: the chunks cover 0 .. n-1 in order, depend on n alone, and
+// above one chunk come in a multiple of `multiple` of equal size (to one
+// item), so that the halves, quarters and eighths a static schedule hands
+// to 2, 4 or 8 threads hold the same number of items to within a chunk's
+// rounding.
+TEST(EqualChunks, CoverInOrderWithEqualSizesAndAMultipleOfTheThreads) {
+  for (std::size_t n : {0ul, 1ul, 1000ul, 1024ul, 1025ul, 4096ul, 11000ul, 110000ul, 1234567ul}) {
+    const fq::EqualChunks c(n, 1024, 8);
+    // Expected count: ceil(n / 1024), and above 1 rounded up to a multiple of 8.
+    const std::size_t plain = (n + 1023) / 1024;
+    const std::size_t expected = plain <= 1 ? plain : (plain + 7) / 8 * 8;
+    ASSERT_EQ(c.count, expected) << n;
+    if (c.count == 0) continue;
+    EXPECT_EQ(c.begin(0), 0u);
+    EXPECT_EQ(c.begin(c.count), n);
+    std::size_t smallest = n, largest = 0;
+    for (std::size_t k = 0; k < c.count; ++k) {
+      const std::size_t size = c.begin(k + 1) - c.begin(k);
+      smallest = std::min(smallest, size);
+      largest = std::max(largest, size);
+    }
+    EXPECT_LE(largest - smallest, 1u) << n;
+    EXPECT_LE(largest, 1024u) << n;  // never larger than asked
+    // Two threads, static schedule: chunks [0, count/2) and [count/2, count).
+    if (c.count > 1) {
+      const std::size_t first_half = c.begin(c.count / 2), second_half = n - first_half;
+      EXPECT_LE(std::max(first_half, second_half) - std::min(first_half, second_half), 1u) << n;
+    }
+  }
+  // The 1e4-body lattice (10 000 elements and 1 000 fixed bases): fixed
+  // chunks of 1024 gave one thread 6 chunks (6 144 bodies) and the other 4 856.
+  const fq::EqualChunks lattice(11000, 1024, 8);
+  EXPECT_EQ(lattice.count, 16u);
+  EXPECT_EQ(lattice.begin(8), 5500u);
+}

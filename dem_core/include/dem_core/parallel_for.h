@@ -13,6 +13,7 @@
 // the thread count.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -87,6 +88,22 @@ inline void parallel_for_parts(const std::vector<std::int64_t>& first, bool para
 #endif
   for (std::int64_t i = first.front(); i < first.back(); ++i) body(i);
 }
+
+// n items cut into chunks of about `target` items each for sums that must
+// not depend on the thread count: each chunk is summed alone and the chunk
+// sums are added in chunk order, so the chunks depend on n alone. Above one
+// chunk, their number is rounded up to a multiple of `multiple` and they are
+// of equal size to one item, so a static schedule over the chunks gives each
+// of `multiple`'s divisors of threads the same number of items. Chunk c is
+// [begin(c), begin(c + 1)).
+struct EqualChunks {
+  std::size_t items = 0, count = 0;
+  EqualChunks(std::size_t n, std::size_t target, std::size_t multiple) : items(n) {
+    count = (n + target - 1) / target;
+    if (count > 1) count = (count + multiple - 1) / multiple * multiple;
+  }
+  std::size_t begin(std::size_t c) const { return c * items / count; }
+};
 
 // Dynamic schedule, one index at a time (chunks of uneven cost).
 template <class Body>
