@@ -69,10 +69,18 @@ FreeRotorDrift free_rotor_drift(const Quat& q0, const Vec3& angular_momentum_wor
 
 void free_rotor_drift4(const Quat q0[4], const Vec3 angular_momentum_world[4], const Vec3 inverse_inertia_body[4],
                        double dt_s, int n, FreeRotorDrift out[4]) {
-#if FQ_HAVE_AVX2_KERNELS
-  if (active_lane_isa() == LaneIsa::Avx2)
-    return free_rotor_drift4_avx2(q0, angular_momentum_world, inverse_inertia_body, dt_s, n, out);
+  switch (active_lane_isa()) {
+#if FQ_HAVE_AVX512VL_KERNELS
+    case LaneIsa::Avx512vl:
+      return free_rotor_drift4_avx512vl(q0, angular_momentum_world, inverse_inertia_body, dt_s, n, out);
 #endif
+#if FQ_HAVE_AVX2_KERNELS
+    case LaneIsa::Avx2:
+      return free_rotor_drift4_avx2(q0, angular_momentum_world, inverse_inertia_body, dt_s, n, out);
+#endif
+    default:
+      break;
+  }
   free_rotor_drift4_sse2(q0, angular_momentum_world, inverse_inertia_body, dt_s, n, out);
 }
 

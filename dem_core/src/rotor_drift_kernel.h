@@ -1,8 +1,9 @@
 // free_rotor_drift4 (rotation.h), written once and compiled once per SIMD
-// form (dem_core/lanes.h): by rotor_drift_sse2.cpp for the x86-64 baseline
-// and by rotor_drift_avx2.cpp with -mavx2; FQ_LANE_KERNEL(name) names each
-// form's function. No include guard: this file is the body of those two
-// translation units and is included by nothing else.
+// form (dem_core/lanes.h): by rotor_drift_sse2.cpp for the x86-64 baseline,
+// by rotor_drift_avx2.cpp with -mavx2 and by rotor_drift_avx512vl.cpp with
+// -mavx512f -mavx512vl; FQ_LANE_KERNEL(name) names each form's function. No
+// include guard: this file is the body of those translation units and is
+// included by nothing else.
 //
 // Each function below is the lane form of the scalar code of rotation.cpp
 // (and of Eigen's quaternion operations it calls), operation for operation.

@@ -1,10 +1,11 @@
 // The lane kernels of the joint system (joint_system.h, "Lane kernel"),
 // written once and compiled once per SIMD form (dem_core/lanes.h): by
-// joint_lanes_sse2.cpp for the x86-64 baseline and by joint_lanes_avx2.cpp
-// with -mavx2. FQ_LANE_KERNEL(name) gives each form's member function its
-// own name (update_lane_frames_sse2_, ..._avx2_); JointSystem picks one at
-// prepare time (dem_core/lane_isa.h). No include guard: this file is the
-// body of those two translation units and is included by nothing else.
+// joint_lanes_sse2.cpp for the x86-64 baseline, by joint_lanes_avx2.cpp
+// with -mavx2 and by joint_lanes_avx512vl.cpp with -mavx512f -mavx512vl.
+// FQ_LANE_KERNEL(name) gives each form's member function its own name
+// (update_lane_frames_sse2_, ..._avx2_, ..._avx512vl_); JointSystem picks
+// one at prepare time (dem_core/lane_isa.h). No include guard: this file is
+// the body of those translation units and is included by nothing else.
 //
 // What the kernels compute is what joint_step_ and update_joint_frame_
 // compute, with the same expressions in the same order per point, so every

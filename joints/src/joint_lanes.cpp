@@ -46,7 +46,7 @@ void JointSystem::prepare_lanes_() {
   joint_lane_law_.assign(2 * nj, -1);
   joint_lane_dashpot_Nspm_.assign(2 * nj, 0.0);
   lane_laws_.clear();
-  lanes_avx2_ = active_lane_isa() == LaneIsa::Avx2;
+  lane_form_ = active_lane_isa();
   point_plain_.assign(point_first_.empty() ? 0 : point_first_.size() - 1, 0);
   auto lane_law_of = [&](std::size_t s, LaneLaw& out) {
     const auto k = std::size_t(law_index_[s]);
@@ -105,25 +105,51 @@ void JointSystem::prepare_lanes_() {
   }
 }
 
+// The form prepare_lanes_ chose (a form the build lacks is never chosen:
+// lane_isa_available).
 void JointSystem::update_lane_frames_(const BodyStore& bodies, std::size_t first, std::size_t last) {
-#if FQ_HAVE_AVX2_KERNELS
-  if (lanes_avx2_) return update_lane_frames_avx2_(bodies, first, last);
+  switch (lane_form_) {
+#if FQ_HAVE_AVX512VL_KERNELS
+    case LaneIsa::Avx512vl:
+      return update_lane_frames_avx512vl_(bodies, first, last);
 #endif
-  update_lane_frames_sse2_(bodies, first, last);
+#if FQ_HAVE_AVX2_KERNELS
+    case LaneIsa::Avx2:
+      return update_lane_frames_avx2_(bodies, first, last);
+#endif
+    default:
+      return update_lane_frames_sse2_(bodies, first, last);
+  }
 }
 
 void JointSystem::joint_step_lanes_(const BodyStore& bodies, std::size_t j) {
-#if FQ_HAVE_AVX2_KERNELS
-  if (lanes_avx2_) return joint_step_lanes_avx2_(bodies, j);
+  switch (lane_form_) {
+#if FQ_HAVE_AVX512VL_KERNELS
+    case LaneIsa::Avx512vl:
+      return joint_step_lanes_avx512vl_(bodies, j);
 #endif
-  joint_step_lanes_sse2_(bodies, j);
+#if FQ_HAVE_AVX2_KERNELS
+    case LaneIsa::Avx2:
+      return joint_step_lanes_avx2_(bodies, j);
+#endif
+    default:
+      return joint_step_lanes_sse2_(bodies, j);
+  }
 }
 
 void JointSystem::dashpot_books_lanes_(const BodyStore& bodies, std::size_t j, double dt, double first_step_share) {
-#if FQ_HAVE_AVX2_KERNELS
-  if (lanes_avx2_) return dashpot_books_lanes_avx2_(bodies, j, dt, first_step_share);
+  switch (lane_form_) {
+#if FQ_HAVE_AVX512VL_KERNELS
+    case LaneIsa::Avx512vl:
+      return dashpot_books_lanes_avx512vl_(bodies, j, dt, first_step_share);
 #endif
-  dashpot_books_lanes_sse2_(bodies, j, dt, first_step_share);
+#if FQ_HAVE_AVX2_KERNELS
+    case LaneIsa::Avx2:
+      return dashpot_books_lanes_avx2_(bodies, j, dt, first_step_share);
+#endif
+    default:
+      return dashpot_books_lanes_sse2_(bodies, j, dt, first_step_share);
+  }
 }
 
 std::size_t JointSystem::lane_joint_count() const {

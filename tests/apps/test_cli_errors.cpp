@@ -222,7 +222,7 @@ TEST(CliErrors, MissingCaseFile) {
 }
 
 // FRAMEQUAKE_SIMD chooses the SIMD form of the lane kernels
-// (dem_core/lane_isa.h): auto, sse2 or avx2. A bad value is bad input: exit
+// (dem_core/lane_isa.h): auto, sse2, avx2 or avx512vl. A bad value is bad input: exit
 // 2, the variable and the accepted values named, no output folder. sse2 is
 // available everywhere and runs the same case to the end.
 TEST(CliErrors, BadSimdFormIsRefusedNamingTheVariable) {
@@ -234,7 +234,7 @@ TEST(CliErrors, BadSimdFormIsRefusedNamingTheVariable) {
   EXPECT_EQ(bad.app.code, 2) << bad.app.err;
   EXPECT_FALSE(bad.out_folder_exists);
   EXPECT_NE(bad.app.err.find("FRAMEQUAKE_SIMD='avx9'"), std::string::npos) << bad.app.err;
-  EXPECT_NE(bad.app.err.find("expected auto, sse2 or avx2"), std::string::npos) << bad.app.err;
+  EXPECT_NE(bad.app.err.find("expected auto, sse2, avx2 or avx512vl"), std::string::npos) << bad.app.err;
   EXPECT_EQ(baseline.app.code, 0) << baseline.app.err;
   EXPECT_TRUE(baseline.out_folder_exists);
 }

@@ -389,5 +389,14 @@ TEST(TorqueFreeRotation, FourLaneDriftAvx2FormIsBitwiseTheScalarDrift) {
 #endif
 }
 
+TEST(TorqueFreeRotation, FourLaneDriftAvx512vlFormIsBitwiseTheScalarDrift) {
+#if FQ_HAVE_AVX512VL_KERNELS
+  if (!lane_isa_available(LaneIsa::Avx512vl)) GTEST_SKIP() << "no AVX-512VL on this processor";
+  expect_drift4_is_the_scalar_drift(free_rotor_drift4_avx512vl, "avx512vl");
+#else
+  GTEST_SKIP() << "built with FQ_AVX512VL_KERNELS=OFF";
+#endif
+}
+
 }  // namespace
 }  // namespace fq

@@ -204,5 +204,11 @@ TEST(JointLanes, Avx2FormSameBitsAsTheGeneralCode) {
   expect_same_bits_as_the_general_code(LaneIsa::Avx2);
 }
 
+TEST(JointLanes, Avx512vlFormSameBitsAsTheGeneralCode) {
+  if (!lane_isa_available(LaneIsa::Avx512vl))
+    GTEST_SKIP() << "no AVX-512VL kernels in this build or no AVX-512VL on this processor";
+  expect_same_bits_as_the_general_code(LaneIsa::Avx512vl);
+}
+
 }  // namespace
 }  // namespace fq

@@ -10,8 +10,10 @@
 //     where mismatched store and load widths stall the pipeline;
 //   - AVX2 (one 256-bit register per v4d), used where the translation unit
 //     is compiled with -mavx2: the kernels are compiled once in each form
-//     and chosen at run time (dem_core/lane_isa.h).
-// Each form lives in its own inline namespace, so the two never meet at
+//     and chosen at run time (dem_core/lane_isa.h). The AVX-512VL form is
+//     this code compiled with -mavx512f -mavx512vl as well (32 registers);
+//     it has its own namespace but no code of its own here.
+// Each form lives in its own inline namespace, so the forms never meet at
 // link time.
 //
 // Every operation is the IEEE operation of one lane, and comparisons are
@@ -26,7 +28,9 @@
 
 // The inline namespace of this translation unit's form (quat_lanes.h and
 // the kernels put their own lane helpers in it too).
-#if defined(__AVX2__)
+#if defined(__AVX512VL__)
+#define FQ_LANES_ISA avx512vl
+#elif defined(__AVX2__)
 #define FQ_LANES_ISA avx2
 #else
 #define FQ_LANES_ISA sse2

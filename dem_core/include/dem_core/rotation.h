@@ -35,15 +35,19 @@ FreeRotorDrift free_rotor_drift(const Quat& q, const Vec3& angular_momentum_worl
 // each bitwise what free_rotor_drift gives for that body: the same
 // operations in the same order per lane. A lane whose sub-rotation angle
 // leaves the range of fast_sincos's series is redone by free_rotor_drift.
-// It runs the SIMD form lane_isa.h chooses; the two forms, which give the
-// same bits, are also callable by name (free_rotor_drift4_avx2 exists only
-// when FQ_HAVE_AVX2_KERNELS, and must run only where AVX2 is available).
+// It runs the SIMD form lane_isa.h chooses; the forms, which give the same
+// bits, are also callable by name (free_rotor_drift4_avx2 exists only when
+// FQ_HAVE_AVX2_KERNELS, and must run only where AVX2 is available;
+// free_rotor_drift4_avx512vl likewise with FQ_HAVE_AVX512VL_KERNELS and
+// AVX-512VL).
 void free_rotor_drift4(const Quat q[4], const Vec3 angular_momentum_world[4], const Vec3 inverse_inertia_body[4],
                        double dt_s, int n, FreeRotorDrift out[4]);
 void free_rotor_drift4_sse2(const Quat q[4], const Vec3 angular_momentum_world[4],
                             const Vec3 inverse_inertia_body[4], double dt_s, int n, FreeRotorDrift out[4]);
 void free_rotor_drift4_avx2(const Quat q[4], const Vec3 angular_momentum_world[4],
                             const Vec3 inverse_inertia_body[4], double dt_s, int n, FreeRotorDrift out[4]);
+void free_rotor_drift4_avx512vl(const Quat q[4], const Vec3 angular_momentum_world[4],
+                                const Vec3 inverse_inertia_body[4], double dt_s, int n, FreeRotorDrift out[4]);
 
 // cos and sin of `angle` (rad); a Taylor series for small angles, where it is
 // exact to double precision and several times faster than std::sin/cos.

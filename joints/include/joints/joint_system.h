@@ -66,6 +66,7 @@
 
 #include "dem_core/bonded_pairs.h"
 #include "dem_core/force_provider.h"
+#include "dem_core/lane_isa.h"
 #include "joints/fracture.h"
 #include "joints/joint_layout.h"
 
@@ -197,11 +198,13 @@ class JointSystem final : public ForceProvider {
   void update_lane_frames_(const BodyStore& bodies, std::size_t first, std::size_t last);
   void joint_step_lanes_(const BodyStore& bodies, std::size_t j);
   // The two above in each SIMD form (joint_lane_kernels.h); they call the
-  // form prepare_lanes_ chose (dem_core/lane_isa.h): the same bits either way.
+  // form prepare_lanes_ chose (dem_core/lane_isa.h): the same bits in every form.
   void update_lane_frames_sse2_(const BodyStore& bodies, std::size_t first, std::size_t last);
   void joint_step_lanes_sse2_(const BodyStore& bodies, std::size_t j);
   void update_lane_frames_avx2_(const BodyStore& bodies, std::size_t first, std::size_t last);
   void joint_step_lanes_avx2_(const BodyStore& bodies, std::size_t j);
+  void update_lane_frames_avx512vl_(const BodyStore& bodies, std::size_t first, std::size_t last);
+  void joint_step_lanes_avx512vl_(const BodyStore& bodies, std::size_t j);
   // What the dashpot books of joint j read of its bodies at step n
   // (finish_step): positions x(n) = x(n+1) - dt v(n+1/2), velocities at
   // n+1/2, and w_a + w_b.
@@ -216,6 +219,7 @@ class JointSystem final : public ForceProvider {
   void dashpot_books_lanes_(const BodyStore& bodies, std::size_t j, double dt, double first_step_share);
   void dashpot_books_lanes_sse2_(const BodyStore& bodies, std::size_t j, double dt, double first_step_share);
   void dashpot_books_lanes_avx2_(const BodyStore& bodies, std::size_t j, double dt, double first_step_share);
+  void dashpot_books_lanes_avx512vl_(const BodyStore& bodies, std::size_t j, double dt, double first_step_share);
   bool spring_is_plain_(std::size_t s) const;
   void refresh_point_plain_(std::size_t p);
   // Stage 2 of joint_step_ for point p (its springs along the joint axes):
@@ -224,8 +228,8 @@ class JointSystem final : public ForceProvider {
   void point_springs_general_(std::size_t p, const double d_axis[3], const double v_axis[3], double f_axis[3],
                               double fd_axis[3], JointSpringSummary& sum, bool strain_limit, bool& any_event);
   // Live spring s at deformation delta (m) into the joint's summary (fracture.h).
-  // (Always inlined: the AVX2 kernels must not emit a shared copy, CMake's
-  // check_avx2_objects.)
+  // (Always inlined: the AVX2 and AVX-512VL kernels must not emit a shared
+  // copy, CMake's check_avx2_objects.)
   [[gnu::always_inline]] void count_alive_(JointSpringSummary& sum, std::size_t s, double delta,
                                            bool strain_limit) const {
     ++sum.springs_alive;
@@ -238,7 +242,7 @@ class JointSystem final : public ForceProvider {
   std::vector<double> joint_lane_dashpot_Nspm_;  // 2 j: normal, 2 j + 1: shear (N s/m)
   std::vector<LaneLaw> lane_laws_;
   std::vector<std::uint8_t> point_plain_;  // every spring of point p is plain (see above)
-  bool lanes_avx2_ = false;                // the AVX2 form of the kernels runs (prepare_lanes_)
+  LaneIsa lane_form_ = LaneIsa::Sse2;      // the SIMD form of the kernels that runs (prepare_lanes_)
 
   BondedPairs* bonded_;
   JointSystemSettings settings_;
