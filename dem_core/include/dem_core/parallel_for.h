@@ -93,9 +93,9 @@ inline void parallel_for_parts(const std::vector<std::int64_t>& first, bool para
 // not depend on the thread count: each chunk is summed alone and the chunk
 // sums are added in chunk order, so the chunks depend on n alone. Above one
 // chunk, their number is rounded up to a multiple of `multiple` and they are
-// of equal size to one item, so a static schedule over the chunks gives each
-// of `multiple`'s divisors of threads the same number of items. Chunk c is
-// [begin(c), begin(c + 1)).
+// of equal size to one item, so a static schedule over the chunks gives
+// every thread the same number of items (to one item per chunk) whenever the
+// thread count divides `multiple`. Chunk c is [begin(c), begin(c + 1)).
 struct EqualChunks {
   std::size_t items = 0, count = 0;
   EqualChunks(std::size_t n, std::size_t target, std::size_t multiple) : items(n) {
