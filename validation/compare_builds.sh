@@ -6,7 +6,11 @@
 #
 # usage: bash validation/compare_builds.sh OLD_BUILD_DIR NEW_BUILD_DIR [ROUNDS] [SCENES]
 #   OLD_BUILD_DIR, NEW_BUILD_DIR  build directories holding validation/bench_*
-#                                 (Release builds; e.g. a git worktree's build)
+#                                 (Release builds; e.g. a git worktree's build);
+#                                 DIR@FORM runs that side with
+#                                 FRAMEQUAKE_SIMD=FORM (sse2, avx2, avx512vl),
+#                                 so build@avx2 build@avx512vl compares two
+#                                 SIMD forms of one build
 #   ROUNDS   rounds of both builds (default 4)
 #   SCENES   comma-separated, any of (default frames,joints):
 #              frames       bench_frames, engine alone, one thread, 20 record s
@@ -23,7 +27,8 @@ set -euo pipefail
 usage() {
   cat <<'EOF_USAGE'
 usage: bash validation/compare_builds.sh OLD_BUILD_DIR NEW_BUILD_DIR [ROUNDS] [SCENES]
-  OLD_BUILD_DIR, NEW_BUILD_DIR  build directories holding validation/bench_*
+  OLD_BUILD_DIR, NEW_BUILD_DIR  build directories holding validation/bench_*;
+           DIR@FORM runs that side with FRAMEQUAKE_SIMD=FORM (sse2, avx2, avx512vl)
   ROUNDS   rounds of both builds (default 4)
   SCENES   comma-separated: frames, joints, joints_sse2, contacts (default frames,joints)
 Run from the repository root. Exit status: 0 when every state hash agrees,
@@ -34,7 +39,15 @@ die() { echo "compare_builds.sh: $*" >&2; exit 1; }
 usage_error() { echo "compare_builds.sh: $*" >&2; exit 2; }
 if [ "${1:-}" = --help ] || [ "${1:-}" = -h ]; then usage; exit 0; fi
 [ $# -ge 2 ] && [ $# -le 4 ] || usage_error "two build directories expected, then ROUNDS and SCENES if wanted (--help)"
-old_dir=$1 new_dir=$2 rounds=${3:-4} scenes=${4:-frames,joints}
+old_dir=${1%@*} new_dir=${2%@*} rounds=${3:-4} scenes=${4:-frames,joints}
+old_form=""; [[ $1 == *@* ]] && old_form=${1##*@}
+new_form=""; [[ $2 == *@* ]] && new_form=${2##*@}
+for f in "$old_form" "$new_form"; do
+  case "$f" in
+    "" | sse2 | avx2 | avx512vl) ;;
+    *) usage_error "unknown SIMD form '$f' after @ (sse2, avx2, avx512vl)" ;;
+  esac
+done
 [[ $rounds =~ ^[1-9][0-9]*$ ]] || usage_error "ROUNDS must be a positive whole number, got '$rounds'"
 [ -f cases/frame_B.yaml ] || usage_error "run from the repository root (cases/frame_B.yaml not found)"
 
@@ -57,18 +70,19 @@ done
 log=${FQ_COMPARE_LOG:-compare_builds_$(date -u +%Y-%m-%dT%H%M%S).txt}
 export OMP_NUM_THREADS=1 OMP_WAIT_POLICY=passive
 {
-  echo "# compare_builds.sh: old = $old_dir, new = $new_dir, $rounds rounds, scenes $scenes"
+  echo "# compare_builds.sh: old = $old_dir${old_form:+ (FRAMEQUAKE_SIMD=$old_form)}, new = $new_dir${new_form:+ (FRAMEQUAKE_SIMD=$new_form)}, $rounds rounds, scenes $scenes"
   echo "# host: $(nproc --all) CPUs, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//')"
   echo "# start $(date -u)"
 } > "$log"
 for r in $(seq 1 "$rounds"); do
   echo "[compare_builds] round $r of $rounds" >&2
   for b in old new; do
-    dir=$old_dir; [ $b = new ] && dir=$new_dir
+    dir=$old_dir side_form=$old_form
+    [ $b = new ] && dir=$new_dir side_form=$new_form
     for s in "${scene_list[@]}"; do
       form=""; [ "$s" = joints_sse2 ] && form=sse2
       echo "## round $r build ${b}${form:+_$form} $s" >> "$log"
-      FRAMEQUAKE_SIMD=${form:-${FRAMEQUAKE_SIMD:-}} "$dir/validation/${bench[$s]}" \
+      FRAMEQUAKE_SIMD=${form:-${side_form:-${FRAMEQUAKE_SIMD:-}}} "$dir/validation/${bench[$s]}" \
         --benchmark_filter="${filter[$s]}" --benchmark_min_time=0 2>/dev/null | grep -E '^BM_' >> "$log" ||
         die "${bench[$s]} of $dir failed in round $r (log: $log)"
     done

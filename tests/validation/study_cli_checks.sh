@@ -86,6 +86,11 @@ expect 2 "two build directories expected" err -- timeout 60 bash "$source_dir/va
 expect 2 "ROUNDS must be a positive whole number, got 'x'" err -- \
   timeout 60 bash "$source_dir/validation/compare_builds.sh" fake/old fake/new x
 expect 2 "unknown scene 'frame'" err -- timeout 60 bash "$source_dir/validation/compare_builds.sh" fake/old fake/new 2 frame
+expect 2 "unknown SIMD form 'avx9' after @" err -- \
+  timeout 60 bash "$source_dir/validation/compare_builds.sh" fake/old fake/new@avx9 2 frames
+# DIR@FORM: the form is cut off the directory before the directory is checked.
+expect 2 "compare_builds.sh: fake/old/validation/bench_frames not found" err -- \
+  timeout 60 bash "$source_dir/validation/compare_builds.sh" fake/old@avx2 fake/new@avx512vl 2 frames
 expect 2 "fake/old/validation/bench_frames not found" err -- \
   timeout 60 bash "$source_dir/validation/compare_builds.sh" fake/old fake/new 2 frames
 rm cases/frame_B.yaml
