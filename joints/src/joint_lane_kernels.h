@@ -95,6 +95,19 @@ struct PointGroup {
   }
 };
 
+// f(PointGroup) for the groups of four points of [first, last): full groups,
+// then a partial one if the count is not a multiple of four.
+template <class F>
+[[gnu::always_inline]] inline void for_each_point_group(std::size_t first, std::size_t last, F&& f) {
+  for (std::size_t group = first; group < last; group += lanes::kWidth) {
+    const int n = int(std::min<std::size_t>(lanes::kWidth, last - group));
+    if (n == lanes::kWidth)
+      f(PointGroup<true>{group, n});
+    else
+      f(PointGroup<false>{group, n});
+  }
+}
+
 // A spring on the initial linear branch of its law, in lanes: the law
 // force F* = k0 delta (trilinear_trial with a zero offset), and in `ok`
 // the lanes where it holds: not past the ultimate deformation
@@ -269,13 +282,7 @@ void JointSystem::FQ_LANE_KERNEL(joint_step_lanes_)(const BodyStore& bodies, std
       sum_torque_yz = sum_torque_yz + point_yz[i];
     }
   };
-  for (std::size_t group = first_point; group < last_point; group += lanes::kWidth) {
-    const int n = int(std::min<std::size_t>(lanes::kWidth, last_point - group));
-    if (n == lanes::kWidth)
-      group_step(PointGroup<true>{group, n});
-    else
-      group_step(PointGroup<false>{group, n});
-  }
+  for_each_point_group(first_point, last_point, group_step);
   // force_on_a = sums[0..2], torque_on_a = sums[3..5]
   double sums[2 * lanes::kWidth];
   lanes::store(sums, sum_force_torque);
@@ -316,13 +323,7 @@ void JointSystem::FQ_LANE_KERNEL(dashpot_books_lanes_)(const BodyStore& bodies, 
   if (last_point - first_point == lanes::kWidth) {
     group_books(PointGroup<true>{first_point, lanes::kWidth});
   } else {
-    for (std::size_t group = first_point; group < last_point; group += lanes::kWidth) {
-      const int n = int(std::min<std::size_t>(lanes::kWidth, last_point - group));
-      if (n == lanes::kWidth)
-        group_books(PointGroup<true>{group, n});
-      else
-        group_books(PointGroup<false>{group, n});
-    }
+    for_each_point_group(first_point, last_point, group_books);
   }
 }
 
