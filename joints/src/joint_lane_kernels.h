@@ -154,8 +154,10 @@ void JointSystem::FQ_LANE_KERNEL(joint_step_lanes_)(const BodyStore& bodies, std
   sum.normal_springs = joint_normal_count_[j];
   bool any_pending = false;
   // Sums over the points, in point order per component: lanes of
-  // (F_x, F_y, F_z, T_x) and (T_y, T_z, -, -) of the force and torque on a.
-  v4d sum_force_torque = lanes::splat(0.0), sum_torque_yz = lanes::splat(0.0);
+  // (F_x, F_y, F_z, T_x) and (T_y, T_z, M_y, M_z) of the force and torque
+  // on a and of the dashpot moment about x_a, and (Fd_x, Fd_y, Fd_z, M_x)
+  // of the dashpot force.
+  v4d sum_force_torque = lanes::splat(0.0), sum_torque_yz = lanes::splat(0.0), sum_dashpot = lanes::splat(0.0);
 
   const auto first_point = std::size_t(joint_first_point_[j]), last_point = std::size_t(joint_first_point_[j + 1]);
   // One group of up to four points (PointGroup); compiled twice, for a full
@@ -251,80 +253,41 @@ void JointSystem::FQ_LANE_KERNEL(joint_step_lanes_)(const BodyStore& bodies, std
       for (int c = 0; c < 3; ++c) fa[c] = lanes::load(f_axis[c]), fda[c] = lanes::load(fd_axis[c]);
     }
 
-    // Stage 3: world force and dashpot force of each point, the dashpot
-    // power at n-1/2, and the torque on a about x_a (joint_step_).
+    // Stage 3: world force and dashpot force of each point, and their
+    // moments about x_a (joint_step_).
     v4d force[3], dashpot[3];
     for (int r = 0; r < 3; ++r) {
       force[r] = F[r] * fa[0] + F[3 + r] * fa[1] + F[6 + r] * fa[2];
       dashpot[r] = F[r] * fda[0] + F[3 + r] * fda[1] + F[6 + r] * fda[2];
     }
-    points.out(point_dashpot_force_N_.x, dashpot[0]);
-    points.out(point_dashpot_force_N_.y, dashpot[1]);
-    points.out(point_dashpot_force_N_.z, dashpot[2]);
-    const v4d dxf0 = d[1] * dashpot[2] - d[2] * dashpot[1], dxf1 = d[2] * dashpot[0] - d[0] * dashpot[2],
-              dxf2 = d[0] * dashpot[1] - d[1] * dashpot[0];
-    points.out(point_power_prev_W_,
-        (dashpot[0] * vrel[0] + dashpot[1] * vrel[1] + dashpot[2] * vrel[2]) -
-            0.5 * (dxf0 * (Wa[0] + lanes::splat(Wb[0])) + dxf1 * (Wa[1] + lanes::splat(Wb[1])) +
-                   dxf2 * (Wa[2] + lanes::splat(Wb[2]))));
     const v4d m0 = am[0] + 0.5 * d[0], m1 = am[1] + 0.5 * d[1], m2 = am[2] + 0.5 * d[2];
     // Stage 4: sums in point order. The lanes of (F_x, F_y, F_z, T_x) and
     // (T_y, T_z) transposed into one vector per point, which the two sums
     // add in turn: each component gets ((0 + p0) + p1) + ..., the order of
     // joint_step_.
     v4d point[4] = {force[0], force[1], force[2], m1 * force[2] - m2 * force[1]};
-    v4d point_yz[4] = {m2 * force[0] - m0 * force[2], m0 * force[1] - m1 * force[0], lanes::splat(0.0),
-                       lanes::splat(0.0)};
+    v4d point_yz[4] = {m2 * force[0] - m0 * force[2], m0 * force[1] - m1 * force[0],
+                       m2 * dashpot[0] - m0 * dashpot[2], m0 * dashpot[1] - m1 * dashpot[0]};
+    v4d point_dashpot[4] = {dashpot[0], dashpot[1], dashpot[2], m1 * dashpot[2] - m2 * dashpot[1]};
     lanes::transpose(point[0], point[1], point[2], point[3]);
     lanes::transpose(point_yz[0], point_yz[1], point_yz[2], point_yz[3]);
+    lanes::transpose(point_dashpot[0], point_dashpot[1], point_dashpot[2], point_dashpot[3]);
     for (int i = 0; i < n; ++i) {
       sum_force_torque = sum_force_torque + point[i];
       sum_torque_yz = sum_torque_yz + point_yz[i];
+      sum_dashpot = sum_dashpot + point_dashpot[i];
     }
   };
   for_each_point_group(first_point, last_point, group_step);
-  // force_on_a = sums[0..2], torque_on_a = sums[3..5]
-  double sums[2 * lanes::kWidth];
+  // force_on_a = sums[0..2], torque_on_a = sums[3..5], dashpot moment
+  // about x_a = sums[11], sums[6..7]; dashpot force = sums[8..10].
+  double sums[3 * lanes::kWidth];
   lanes::store(sums, sum_force_torque);
   lanes::store(sums + lanes::kWidth, sum_torque_yz);
-  finish_joint_(j, Xa, Xb, sums, sums + 3, sum, any_pending);
-}
-
-// The dashpot books of lane joint j's points at step n (finish_step: the
-// loop there, "Energy" in joint_system.h), four points per vector with the
-// same expressions in the same order per point.
-void JointSystem::FQ_LANE_KERNEL(dashpot_books_lanes_)(const BodyStore& bodies, std::size_t j, double dt,
-                                                       double first_step_share) {
-  const BooksKinematics k = books_kinematics_(bodies, j, dt);
-  const double *xa = k.xa, *xb = k.xb, *va = k.va, *vb = k.vb, *wa = k.wa, *wb = k.wb, *w_sum = k.w_sum;
-  const double half_dt = dt * 0.5;
-  const auto first_point = std::size_t(joint_first_point_[j]), last_point = std::size_t(joint_first_point_[j + 1]);
-  auto group_books = [&](auto p) __attribute__((always_inline)) {
-    const v4d f0 = p.in(point_dashpot_force_N_.x), f1 = p.in(point_dashpot_force_N_.y), f2 = p.in(point_dashpot_force_N_.z);
-    const v4d pa0 = p.in(point_end_a_m_.x), pa1 = p.in(point_end_a_m_.y), pa2 = p.in(point_end_a_m_.z);
-    const v4d pb0 = p.in(point_end_b_m_.x), pb1 = p.in(point_end_b_m_.y), pb2 = p.in(point_end_b_m_.z);
-    const v4d ra0 = pa0 - xa[0], ra1 = pa1 - xa[1], ra2 = pa2 - xa[2];
-    const v4d rb0 = pb0 - xb[0], rb1 = pb1 - xb[1], rb2 = pb2 - xb[2];
-    const v4d v0 = (vb[0] + (wb[1] * rb2 - wb[2] * rb1)) - (va[0] + (wa[1] * ra2 - wa[2] * ra1));
-    const v4d v1 = (vb[1] + (wb[2] * rb0 - wb[0] * rb2)) - (va[1] + (wa[2] * ra0 - wa[0] * ra2));
-    const v4d v2 = (vb[2] + (wb[0] * rb1 - wb[1] * rb0)) - (va[2] + (wa[0] * ra1 - wa[1] * ra0));
-    const v4d d0 = pb0 - pa0, d1 = pb1 - pa1, d2 = pb2 - pa2;
-    const v4d c0 = d1 * f2 - d2 * f1, c1 = d2 * f0 - d0 * f2, c2 = d0 * f1 - d1 * f0;
-    const v4d power_next = (f0 * v0 + f1 * v1 + f2 * v2) - 0.5 * (c0 * w_sum[0] + c1 * w_sum[1] + c2 * w_sum[2]);
-    const v4d term = half_dt * (p.in(point_power_prev_W_) + power_next);
-    p.out(point_viscous_done_J_, p.in(point_viscous_done_J_) + first_step_share * term);
-    p.out(point_viscous_half_J_, 0.5 * term);
-  };
-  // A four-point joint (the frames' and the lattice's) without a loop: in a
-  // loop GCC broadcasts the seven body vectors once before it and keeps
-  // them on the stack, which cost 27 more instructions per joint (callgrind)
-  // than broadcasting them where a single pass uses them. (The kernel above
-  // is the other way round, by 6 instructions.)
-  if (last_point - first_point == lanes::kWidth) {
-    group_books(PointGroup<true>{first_point, lanes::kWidth});
-  } else {
-    for_each_point_group(first_point, last_point, group_books);
-  }
+  lanes::store(sums + 2 * lanes::kWidth, sum_dashpot);
+  const double dashpot_moment_a[3] = {sums[11], sums[6], sums[7]};
+  finish_joint_(j, Xa, Xb, sums, sums + 3, sums + 8, dashpot_moment_a, BodyVelocities{Va, Vb, Wa, Wb}, sum,
+                any_pending);
 }
 
 }  // namespace fq

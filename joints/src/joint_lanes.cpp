@@ -137,21 +137,6 @@ void JointSystem::joint_step_lanes_(const BodyStore& bodies, std::size_t j) {
   }
 }
 
-void JointSystem::dashpot_books_lanes_(const BodyStore& bodies, std::size_t j, double dt, double first_step_share) {
-  switch (lane_form_) {
-#if FQ_HAVE_AVX512VL_KERNELS
-    case LaneIsa::Avx512vl:
-      return dashpot_books_lanes_avx512vl_(bodies, j, dt, first_step_share);
-#endif
-#if FQ_HAVE_AVX2_KERNELS
-    case LaneIsa::Avx2:
-      return dashpot_books_lanes_avx2_(bodies, j, dt, first_step_share);
-#endif
-    default:
-      return dashpot_books_lanes_sse2_(bodies, j, dt, first_step_share);
-  }
-}
-
 std::size_t JointSystem::lane_joint_count() const {
   return std::size_t(std::count(joint_lanes_.begin(), joint_lanes_.end(), std::uint8_t(1)));
 }

@@ -178,10 +178,7 @@ void JointSystem::prepare(const BodyStore& bodies) {
   const std::size_t np = point_attach_a_m_.size();
   point_end_a_m_.assign(np);
   point_end_b_m_.assign(np);
-  point_dashpot_force_N_.assign(np);
-  point_power_prev_W_.assign(np, 0.0);
-  point_viscous_done_J_.assign(np, 0.0);
-  point_viscous_half_J_.assign(np, 0.0);
+  dashpot_books_.assign(nj, DashpotBooks{});
   spring_geometry_current_ = false;
   slot_force_N_.assign(2 * nj, Vec3::Zero());
   slot_torque_Nm_.assign(2 * nj, Vec3::Zero());
@@ -415,7 +412,6 @@ void JointSystem::joint_step_(const BodyStore& bodies, std::size_t j) {
   const Vec3 xa = bodies.position_m[a], xb = bodies.position_m[b];
   const Vec3 va = bodies.velocity_mps[a], vb = bodies.velocity_mps[b];
   const Vec3 wa = bodies.angular_velocity_radps[a], wb = bodies.angular_velocity_radps[b];
-  const Vec3 w_sum = wa + wb;
   const std::int32_t* __restrict point_first = point_first_.data();
   const std::int8_t* __restrict axis = spring_axis_.data();
   // Written by evaluate_spring_ as well: no __restrict.
@@ -433,6 +429,7 @@ void JointSystem::joint_step_(const BodyStore& bodies, std::size_t j) {
   const double* rb_m = rb.data();
   const double* fr = frame.data();  // columns t1, t2, n
   double force_on_a[3] = {0.0, 0.0, 0.0}, torque_on_a[3] = {0.0, 0.0, 0.0};
+  double dashpot_on_a[3] = {0.0, 0.0, 0.0}, dashpot_moment_a[3] = {0.0, 0.0, 0.0};
 
   // The joint's points in chunks. Stages 1 and 3 are loops over points with
   // no branch, on columns of doubles (structures of arrays), which the
@@ -538,12 +535,11 @@ void JointSystem::joint_step_(const BodyStore& bodies, std::size_t j) {
       }
     }
 
-    // Stage 3: per point its world force F (on a) and dashpot force, the
-    // dashpot power at n-1/2 (completed in finish_step), F_d . v_rel -
-    // (1/2) (d x F_d) . (w_a + w_b), and its torque on a about x_a:
-    // F on a and -F on b both act at the mid-point (joint_system.h), so the
-    // torque is (arm_a + d/2) x F.
-    double force[3][kChunk], dashpot[3][kChunk], torque[3][kChunk];
+    // Stage 3: per point its world force F (on a) and dashpot force F_d,
+    // and their moments about x_a: F on a and -F on b both act at the
+    // mid-point (joint_system.h), so the torque is (arm_a + d/2) x F. The
+    // dashpot's go to the joint's books (the power at n-1/2 and n+1/2).
+    double force[3][kChunk], dashpot[3][kChunk], torque[3][kChunk], dashpot_moment[3][kChunk];
     for (std::size_t i = 0; i < n; ++i)
       for (int r = 0; r < 3; ++r) {
         force[r][i] = fr[r] * f_axis[0][i] + fr[3 + r] * f_axis[1][i] + fr[6 + r] * f_axis[2][i];
@@ -556,35 +552,26 @@ void JointSystem::joint_step_(const BodyStore& bodies, std::size_t j) {
             force[r][i] = link_force[r][i];
             dashpot[r][i] = link_dashpot[r][i];
           }
-    {
-      double* __restrict fd_x = point_dashpot_force_N_.x.data() + chunk;
-      double* __restrict fd_y = point_dashpot_force_N_.y.data() + chunk;
-      double* __restrict fd_z = point_dashpot_force_N_.z.data() + chunk;
-      double* __restrict power_prev_W = point_power_prev_W_.data() + chunk;
-#pragma GCC ivdep
-      for (std::size_t i = 0; i < n; ++i) {
-        const double dx = d[0][i], dy = d[1][i], dz = d[2][i];
-        const double f0 = dashpot[0][i], f1 = dashpot[1][i], f2 = dashpot[2][i];
-        fd_x[i] = f0;
-        fd_y[i] = f1;
-        fd_z[i] = f2;
-        const double dxf0 = dy * f2 - dz * f1, dxf1 = dz * f0 - dx * f2, dxf2 = dx * f1 - dy * f0;
-        power_prev_W[i] = (f0 * vrel[0][i] + f1 * vrel[1][i] + f2 * vrel[2][i]) -
-                          0.5 * (dxf0 * w_sum[0] + dxf1 * w_sum[1] + dxf2 * w_sum[2]);
-        const double m0 = arm_a[0][i] + 0.5 * dx, m1 = arm_a[1][i] + 0.5 * dy, m2 = arm_a[2][i] + 0.5 * dz;
-        torque[0][i] = m1 * force[2][i] - m2 * force[1][i];
-        torque[1][i] = m2 * force[0][i] - m0 * force[2][i];
-        torque[2][i] = m0 * force[1][i] - m1 * force[0][i];
-      }
+    for (std::size_t i = 0; i < n; ++i) {
+      const double m0 = arm_a[0][i] + 0.5 * d[0][i], m1 = arm_a[1][i] + 0.5 * d[1][i], m2 = arm_a[2][i] + 0.5 * d[2][i];
+      torque[0][i] = m1 * force[2][i] - m2 * force[1][i];
+      torque[1][i] = m2 * force[0][i] - m0 * force[2][i];
+      torque[2][i] = m0 * force[1][i] - m1 * force[0][i];
+      dashpot_moment[0][i] = m1 * dashpot[2][i] - m2 * dashpot[1][i];
+      dashpot_moment[1][i] = m2 * dashpot[0][i] - m0 * dashpot[2][i];
+      dashpot_moment[2][i] = m0 * dashpot[1][i] - m1 * dashpot[0][i];
     }
     // Stage 4: sums in point order.
     for (std::size_t i = 0; i < n; ++i)
       for (int r = 0; r < 3; ++r) {
         force_on_a[r] += force[r][i];
         torque_on_a[r] += torque[r][i];
+        dashpot_on_a[r] += dashpot[r][i];
+        dashpot_moment_a[r] += dashpot_moment[r][i];
       }
   }
-  finish_joint_(j, xa.data(), xb.data(), force_on_a, torque_on_a, sum, any_pending);
+  finish_joint_(j, xa.data(), xb.data(), force_on_a, torque_on_a, dashpot_on_a, dashpot_moment_a,
+                BodyVelocities{va.data(), vb.data(), wa.data(), wb.data()}, sum, any_pending);
 }
 
 void JointSystem::materialise_spring_geometry_() const {
@@ -634,61 +621,28 @@ void JointSystem::kill_spring_(std::size_t s) {
 void JointSystem::finish_step(const BodyStore& bodies, const StepInfo& step, EventLog& events) {
   const std::size_t nj = joint_body_a_.size();
   // Dashpot dissipation of step n, as the ledger counts work: dt P(v_n) with
-  // v_n = (v(n-1/2) + v(n+1/2)) / 2 on the geometry of step n. The bodies now
-  // hold v(n+1/2) and x(n+1) = x(n) + dt v(n+1/2), so the arms of step n are
-  // end_n - (x(n+1) - dt v(n+1/2)).
-  const auto nj_i = std::int64_t(nj);
-  const double dt = step.dt_s;
-  parallel_for_static(nj_i, parallel_(spring_joint_.size()), [&](std::int64_t ji) {
+  // v_n = (v(n-1/2) + v(n+1/2)) / 2 on the geometry of step n, that is the
+  // trapezoid of the resultant's power at n-1/2 (the force pass) and at
+  // n+1/2 (the velocities the bodies now hold).
+  const double half_dt = 0.5 * step.dt_s;
+  // The ledger's kinetic energy at n is KE_0 + (t_0/2 + t_1 + ... +
+  // t_{n-1} + t_n/2) (the start shifts v back half a step), so the first
+  // step counts half.
+  const double first_step_share = step.step == 0 ? 0.5 : 1.0;
+  parallel_for_static(std::int64_t(nj), parallel_(spring_joint_.size()), [&](std::int64_t ji) {
     const auto j = std::size_t(ji);
+    DashpotBooks& books = dashpot_books_[j];
     if (joint_broken_[j]) {  // its last dashpot term is now complete
-      for (auto p = std::size_t(joint_first_point_[j]); p < std::size_t(joint_first_point_[j + 1]); ++p)
-        point_viscous_half_J_[p] = 0.0;
+      books.viscous_half_J = 0.0;
       return;
     }
-    const double first_step_share = step.step == 0 ? 0.5 : 1.0;
-    if (joint_lanes_[j]) return dashpot_books_lanes_(bodies, j, dt, first_step_share);
-    // Loop invariants as plain scalars, so that the point loop runs in SIMD
-    // lanes (as in joint_step_; every lane does what one point would).
-    const BooksKinematics k = books_kinematics_(bodies, j, dt);
-    const double *xa = k.xa, *xb = k.xb, *va = k.va, *vb = k.vb, *wa = k.wa, *wb = k.wb, *w_sum = k.w_sum;
-    const double half_dt = dt * 0.5;  // a local: the closure's dt would be re-read after every store
-    const auto first_point = std::size_t(joint_first_point_[j]), last_point = std::size_t(joint_first_point_[j + 1]);
-    const double* __restrict fd_x = point_dashpot_force_N_.x.data() + first_point;
-    const double* __restrict fd_y = point_dashpot_force_N_.y.data() + first_point;
-    const double* __restrict fd_z = point_dashpot_force_N_.z.data() + first_point;
-    const double* __restrict pa_x = point_end_a_m_.x.data() + first_point;
-    const double* __restrict pa_y = point_end_a_m_.y.data() + first_point;
-    const double* __restrict pa_z = point_end_a_m_.z.data() + first_point;
-    const double* __restrict pb_x = point_end_b_m_.x.data() + first_point;
-    const double* __restrict pb_y = point_end_b_m_.y.data() + first_point;
-    const double* __restrict pb_z = point_end_b_m_.z.data() + first_point;
-    const double* __restrict power_prev = point_power_prev_W_.data() + first_point;
-    double* __restrict done = point_viscous_done_J_.data() + first_point;
-    double* __restrict half = point_viscous_half_J_.data() + first_point;
-    const std::size_t n = last_point - first_point;
-#pragma GCC ivdep
-    for (std::size_t p = 0; p < n; ++p) {
-      // A point without dashpot force (F_d = 0 at n-1/2 and n+1/2) books a
-      // term of exactly +-0, which changes no sum.
-      const double f0 = fd_x[p], f1 = fd_y[p], f2 = fd_z[p];
-      const double ra0 = pa_x[p] - xa[0], ra1 = pa_y[p] - xa[1], ra2 = pa_z[p] - xa[2];
-      const double rb0 = pb_x[p] - xb[0], rb1 = pb_y[p] - xb[1], rb2 = pb_z[p] - xb[2];
-      // v_rel = (v_b + w_b x r_b) - (v_a + w_a x r_a)
-      const double v0 = (vb[0] + (wb[1] * rb2 - wb[2] * rb1)) - (va[0] + (wa[1] * ra2 - wa[2] * ra1));
-      const double v1 = (vb[1] + (wb[2] * rb0 - wb[0] * rb2)) - (va[1] + (wa[2] * ra0 - wa[0] * ra2));
-      const double v2 = (vb[2] + (wb[0] * rb1 - wb[1] * rb0)) - (va[2] + (wa[0] * ra1 - wa[1] * ra0));
-      const double d0 = pb_x[p] - pa_x[p], d1 = pb_y[p] - pa_y[p], d2 = pb_z[p] - pa_z[p];
-      const double c0 = d1 * f2 - d2 * f1, c1 = d2 * f0 - d0 * f2, c2 = d0 * f1 - d1 * f0;
-      // P_d(n+1/2) = F_d . v_rel - (1/2) (d x F_d) . (w_a + w_b)
-      const double power_next = (f0 * v0 + f1 * v1 + f2 * v2) - 0.5 * (c0 * w_sum[0] + c1 * w_sum[1] + c2 * w_sum[2]);
-      const double term = half_dt * (power_prev[p] + power_next);
-      // The ledger's kinetic energy at n is KE_0 + (t_0/2 + t_1 + ... +
-      // t_{n-1} + t_n/2) (the start shifts v back half a step), so the
-      // first step counts half.
-      done[p] += first_step_share * term;
-      half[p] = 0.5 * term;
-    }
+    const BodyId a = joint_body_a_[j], b = joint_body_b_[j];
+    const double power_next = dashpot_power_W_(books, bodies.velocity_mps[a].data(), bodies.velocity_mps[b].data(),
+                                               bodies.angular_velocity_radps[a].data(),
+                                               bodies.angular_velocity_radps[b].data());
+    const double term = half_dt * (books.power_prev_W + power_next);
+    books.viscous_done_J += first_step_share * term;
+    books.viscous_half_J = 0.5 * term;
   });
   for (std::size_t j = 0; j < nj; ++j) {
     if (!joint_event_pending_[j]) continue;
@@ -747,10 +701,7 @@ void JointSystem::finish_step(const BodyStore& bodies, const StepInfo& step, Eve
 }
 
 double JointSystem::joint_viscous_J(std::size_t j) const {
-  double viscous = 0.0;
-  for (auto p = std::size_t(joint_first_point_[j]); p < std::size_t(joint_first_point_[j + 1]); ++p)
-    viscous += point_viscous_done_J_[p] - point_viscous_half_J_[p];
-  return viscous;
+  return dashpot_books_[j].viscous_done_J - dashpot_books_[j].viscous_half_J;
 }
 
 void JointSystem::report_energy(EnergyLedger& ledger) const {
@@ -760,8 +711,7 @@ void JointSystem::report_energy(EnergyLedger& ledger) const {
     plastic += plastic_J_[s];
   }
   // Through n: all of step n-1, half of step n.
-  for (std::size_t p = 0; p < point_viscous_done_J_.size(); ++p)
-    viscous += point_viscous_done_J_[p] - point_viscous_half_J_[p];
+  for (const DashpotBooks& books : dashpot_books_) viscous += books.viscous_done_J - books.viscous_half_J;
   ledger.elastic_J += elastic;
   ledger.dissipated_plastic_J += plastic;
   ledger.dissipated_viscous_J += viscous;

@@ -16,7 +16,8 @@ namespace {
 // 2: force slots per joint (were per spring); dashpot books on a point's first spring.
 // 3: no copies of what a spring's deformation and law force give (previous
 //    values, total and dashpot force, stored energy); dashpot books per point.
-constexpr std::uint32_t kJointStateVersion = 3;
+// 4: dashpot books per joint (the dashpot resultant, joint_system.h "Energy").
+constexpr std::uint32_t kJointStateVersion = 4;
 
 template <class T>
 void read_into(StateReader& in, std::vector<T>& out_values, const char* what) {
@@ -59,9 +60,14 @@ void JointSystem::save_state(StateWriter& out) const {
   out.vec(has_prev_);
   out.vec(work_J_);
   out.vec(plastic_J_);
-  out.vec(point_power_prev_W_);
-  out.vec(point_viscous_done_J_);
-  out.vec(point_viscous_half_J_);
+  for (const DashpotBooks& books : dashpot_books_) {
+    for (double v : books.force_N) out.f64(v);
+    for (double v : books.moment_a_Nm) out.f64(v);
+    for (double v : books.moment_b_Nm) out.f64(v);
+    out.f64(books.power_prev_W);
+    out.f64(books.viscous_done_J);
+    out.f64(books.viscous_half_J);
+  }
   out.vec3s(slot_force_N_);
   out.vec3s(slot_torque_Nm_);
 
@@ -123,9 +129,14 @@ void JointSystem::load_state(StateReader& in) {
   read_into(in, has_prev_, "history flags");
   read_into(in, work_J_, "spring work");
   read_into(in, plastic_J_, "spring plastic energy");
-  read_into(in, point_power_prev_W_, "dashpot powers");
-  read_into(in, point_viscous_done_J_, "point viscous energy");
-  read_into(in, point_viscous_half_J_, "point viscous half step");
+  for (DashpotBooks& books : dashpot_books_) {
+    for (double& v : books.force_N) v = in.f64("joint dashpot books");
+    for (double& v : books.moment_a_Nm) v = in.f64("joint dashpot books");
+    for (double& v : books.moment_b_Nm) v = in.f64("joint dashpot books");
+    books.power_prev_W = in.f64("joint dashpot books");
+    books.viscous_done_J = in.f64("joint dashpot books");
+    books.viscous_half_J = in.f64("joint dashpot books");
+  }
   read_into(in, slot_force_N_, "joint force slots");
   read_into(in, slot_torque_Nm_, "joint torque slots");
   // Point ends from the springs' (the springs of a point share them).

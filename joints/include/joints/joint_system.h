@@ -46,8 +46,15 @@
 // the geometry of step n with v_n = (v(n-1/2) + v(n+1/2))/2 -- exactly the
 // work the ledger's leapfrog bookkeeping sees (completed in finish_step,
 // when v(n+1/2) is known). Per point, with F_d the sum of its dashpot
-// forces: P_d = F_d . v_rel - (1/2)(d x F_d) . (w_a + w_b); it is booked per
-// point. Reported through step n as t_0/2 + t_1 + ... +
+// forces: P_d = F_d . v_rel - (1/2)(d x F_d) . (w_a + w_b). Written with the
+// mid-point m = (p_a + p_b)/2 where the point's forces act, v_rel = (v_b +
+// w_b x (p_b - x_b)) - (v_a + w_a x (p_a - x_a)) and d = p_b - p_a, this
+// is P_d = F_d . (v_b - v_a) + w_b . ((m - x_b) x F_d) - w_a . ((m - x_a) x
+// F_d): the power of the dashpot forces taking part in the rigid motions of
+// a and b. Summed over the points it needs only the joint's dashpot
+// resultant -- the force sum F and its moments M_a, M_b about x_a and x_b
+// (DashpotBooks) -- so the books are kept per joint: P = F . (v_b - v_a) +
+// w_b . M_b - w_a . M_a. Reported through step n as t_0/2 + t_1 + ... +
 // t_{n-1} + t_n/2: the ledger's kinetic energy at n equals KE_0 plus exactly
 // that trapezoid sum of the work terms, because the start shifts v back
 // half a step.
@@ -123,7 +130,7 @@ class JointSystem final : public ForceProvider {
   // Checkpoints (force_provider.h; joint_system_state.cpp): broken and
   // pending flags, every spring's deformation, rate and law force (the
   // previous values of the next step), history (law states, alive/yielded,
-  // failure force and mode), work books, the points' dashpot books, and the
+  // failure force and mode), work books, the joints' dashpot books, and the
   // force slots.
   void save_state(StateWriter& out) const override;
   void load_state(StateReader& in) override;
@@ -163,8 +170,16 @@ class JointSystem final : public ForceProvider {
   Mat3 update_joint_frame_(const BodyStore& bodies, std::size_t j);
   // The end of a joint's step: its summed force and torque on a (about x_a)
   // into its two slots, the fracture test and the event flag.
+  // With it, the joint's dashpot resultant (force sum on a and its moment
+  // about x_a, summed over points like the force) into its books, with the
+  // dashpot power at n-1/2 (velocities va, vb, wa, wb).
+  struct BodyVelocities {
+    const double *va, *vb, *wa, *wb;  // (m/s), (rad/s), world
+  };
   [[gnu::always_inline]] inline void finish_joint_(std::size_t j, const double xa[3], const double xb[3],
                                                    const double force_on_a[3], const double torque_on_a[3],
+                                                   const double dashpot_force_on_a[3],
+                                                   const double dashpot_moment_a[3], const BodyVelocities& v,
                                                    const JointSpringSummary& sum, bool any_event);
   // Law of spring s (alive) at deformation delta and rate: stores delta,
   // rate and the law force, keeps the books and flags, and returns the law
@@ -205,21 +220,6 @@ class JointSystem final : public ForceProvider {
   void joint_step_lanes_avx2_(const BodyStore& bodies, std::size_t j);
   void update_lane_frames_avx512vl_(const BodyStore& bodies, std::size_t first, std::size_t last);
   void joint_step_lanes_avx512vl_(const BodyStore& bodies, std::size_t j);
-  // What the dashpot books of joint j read of its bodies at step n
-  // (finish_step): positions x(n) = x(n+1) - dt v(n+1/2), velocities at
-  // n+1/2, and w_a + w_b.
-  struct BooksKinematics {
-    double xa[3], xb[3], va[3], vb[3], wa[3], wb[3], w_sum[3];
-  };
-  // Inline (below): called per joint from the lane kernels, whose files
-  // would otherwise call out for 60 instructions of loads.
-  [[gnu::always_inline]] inline BooksKinematics books_kinematics_(const BodyStore& bodies, std::size_t j,
-                                                                   double dt) const;
-  // The dashpot books of a lane joint's points (finish_step) in lanes.
-  void dashpot_books_lanes_(const BodyStore& bodies, std::size_t j, double dt, double first_step_share);
-  void dashpot_books_lanes_sse2_(const BodyStore& bodies, std::size_t j, double dt, double first_step_share);
-  void dashpot_books_lanes_avx2_(const BodyStore& bodies, std::size_t j, double dt, double first_step_share);
-  void dashpot_books_lanes_avx512vl_(const BodyStore& bodies, std::size_t j, double dt, double first_step_share);
   bool spring_is_plain_(std::size_t s) const;
   void refresh_point_plain_(std::size_t p);
   // Stage 2 of joint_step_ for point p (its springs along the joint axes):
@@ -288,10 +288,20 @@ class JointSystem final : public ForceProvider {
   };
   Vec3Columns point_attach_a_m_, point_attach_b_m_;  // body frames (m)
   Vec3Columns point_end_a_m_, point_end_b_m_;        // world, this step (m)
-  Vec3Columns point_dashpot_force_N_;                // sum of its dashpot forces f_d e (N), on a
-  // Dashpot books per point: dissipated power at v(n-1/2) on the geometry of
-  // step n (W), and the trapezoid sums (J) (see Energy above).
-  std::vector<double> point_power_prev_W_, point_viscous_done_J_, point_viscous_half_J_;
+  // Dashpot books per joint (see Energy above): the dashpot resultant of
+  // step n -- force on a (N, world) and its moments about x_a and x_b (N m),
+  // the forces acting at the points' mid-points -- its power at v(n-1/2)
+  // (W), and the trapezoid sums (J). One record per joint, read together.
+  struct DashpotBooks {
+    double force_N[3], moment_a_Nm[3], moment_b_Nm[3];
+    double power_prev_W, viscous_done_J, viscous_half_J;
+  };
+  std::vector<DashpotBooks> dashpot_books_;
+  // P = F . (v_b - v_a) + w_b . M_b - w_a . M_a (W): the dashpot power of
+  // a joint at the given velocities, the same expression at n-1/2 and n+1/2.
+  [[gnu::always_inline]] static inline double dashpot_power_W_(const DashpotBooks& books, const double va[3],
+                                                                const double vb[3], const double wa[3],
+                                                                const double wb[3]);
   std::vector<std::int32_t> joint_spring_count_, joint_normal_count_;
   // Springs: per step. Ends and directions of springs are filled from the
   // points on demand (mutable cache), except link directions (their
@@ -344,26 +354,20 @@ class JointSystem final : public ForceProvider {
   Batch<CureeLaw, CureeState> curee_;
 };
 
-inline JointSystem::BooksKinematics JointSystem::books_kinematics_(const BodyStore& bodies, std::size_t j,
-                                                                  double dt) const {
-  const BodyId a = joint_body_a_[j], b = joint_body_b_[j];
-  BooksKinematics k;
-  for (int r = 0; r < 3; ++r) {
-    k.xa[r] = bodies.position_m[a][r] - dt * bodies.velocity_mps[a][r];
-    k.xb[r] = bodies.position_m[b][r] - dt * bodies.velocity_mps[b][r];
-    k.va[r] = bodies.velocity_mps[a][r];
-    k.vb[r] = bodies.velocity_mps[b][r];
-    k.wa[r] = bodies.angular_velocity_radps[a][r];
-    k.wb[r] = bodies.angular_velocity_radps[b][r];
-    k.w_sum[r] = k.wa[r] + k.wb[r];
-  }
-  return k;
+inline double JointSystem::dashpot_power_W_(const DashpotBooks& books, const double va[3], const double vb[3],
+                                           const double wa[3], const double wb[3]) {
+  const double* f = books.force_N;
+  const double *ma = books.moment_a_Nm, *mb = books.moment_b_Nm;
+  return (f[0] * (vb[0] - va[0]) + f[1] * (vb[1] - va[1]) + f[2] * (vb[2] - va[2])) +
+         (wb[0] * mb[0] + wb[1] * mb[1] + wb[2] * mb[2]) - (wa[0] * ma[0] + wa[1] * ma[1] + wa[2] * ma[2]);
 }
 
 // Inline: called once per joint from joint_step_ and the lane kernels, for
 // some 30 instructions whose call and argument copies cost as many again.
 inline void JointSystem::finish_joint_(std::size_t j, const double xa[3], const double xb[3], const double force_on_a[3],
-                                const double torque_on_a[3], const JointSpringSummary& sum, bool any_event) {
+                                       const double torque_on_a[3], const double dashpot_force_on_a[3],
+                                       const double dashpot_moment_a[3], const BodyVelocities& v,
+                                       const JointSpringSummary& sum, bool any_event) {
   // Torque on b: -(m - x_b) x F = -(m - x_a) x F + (x_b - x_a) x F, summed over points.
   const double* f = force_on_a;
   const double ab[3] = {xb[0] - xa[0], xb[1] - xa[1], xb[2] - xa[2]};
@@ -379,6 +383,16 @@ inline void JointSystem::finish_joint_(std::size_t j, const double xa[3], const 
   slot_ta[0] = torque_on_a[0], slot_ta[1] = torque_on_a[1], slot_ta[2] = torque_on_a[2];
   slot_tb[0] = ab_x_f[0] - torque_on_a[0], slot_tb[1] = ab_x_f[1] - torque_on_a[1];
   slot_tb[2] = ab_x_f[2] - torque_on_a[2];
+  // The dashpot resultant the same way: M_b = M_a - (x_b - x_a) x F.
+  DashpotBooks& books = dashpot_books_[j];
+  const double* fd = dashpot_force_on_a;
+  books.force_N[0] = fd[0], books.force_N[1] = fd[1], books.force_N[2] = fd[2];
+  books.moment_a_Nm[0] = dashpot_moment_a[0], books.moment_a_Nm[1] = dashpot_moment_a[1];
+  books.moment_a_Nm[2] = dashpot_moment_a[2];
+  books.moment_b_Nm[0] = dashpot_moment_a[0] - (ab[1] * fd[2] - ab[2] * fd[1]);
+  books.moment_b_Nm[1] = dashpot_moment_a[1] - (ab[2] * fd[0] - ab[0] * fd[2]);
+  books.moment_b_Nm[2] = dashpot_moment_a[2] - (ab[0] * fd[1] - ab[1] * fd[0]);
+  books.power_prev_W = dashpot_power_W_(books, v.va, v.vb, v.wa, v.wb);
   const bool brk = joint_should_break(joint_break_[j], sum);
   joint_break_pending_[j] = brk ? 1 : 0;
   // Kept until finish_step emits the events (an evaluation without a
