@@ -701,6 +701,7 @@ void JointSystem::finish_step(const BodyStore& bodies, const StepInfo& step, Eve
 }
 
 double JointSystem::joint_viscous_J(std::size_t j) const {
+  if (j >= dashpot_books_.size()) return 0.0;  // not prepared yet: no step, no dissipation
   return dashpot_books_[j].viscous_done_J - dashpot_books_[j].viscous_half_J;
 }
 

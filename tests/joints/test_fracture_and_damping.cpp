@@ -137,5 +137,62 @@ TEST(JointDashpot, DampingRatioGivesLogarithmicDecrement) {
   std::printf("dashpot: log decrement %.5f, expected %.5f\n", decrement, expected);
 }
 
+TEST(JointDashpot, ViscousBooksOfTwoStepsAreTheLeapfrogDashpotWork) {
+  // Two normal springs, each with a dashpot of c = 40 N s/m, at opposite
+  // offsets from the centres (their torques cancel exactly, so the box
+  // does not turn), the free box translating along the joint normal (no
+  // gravity). Each point's rate is then v_z of the box, its dashpot force
+  // at step n is c v(n-1/2), and the ledger's dissipation of step n
+  // (joint_system.h, Energy) is t_n = dt/2 (2 c v(n-1/2)^2 + 2 c v(n-1/2)
+  // v(n+1/2)); after two steps the books report t_0/2 + t_1/2. Step 0's
+  // forces are those Simulation::initialize evaluates at the initial
+  // velocity v0, before it shifts v back half a step, so in t_0 v0 stands
+  // for v(-1/2). The velocities are read from the bodies, so the expected
+  // value uses nothing of the joint code. Before the first step: nothing
+  // dissipated.
+  BodyStore bodies = test::two_boxes();
+  const double k = 1e5, c = 40.0;
+  SimulationSettings settings;
+  settings.gravity_mps2 = Vec3::Zero();
+  settings.dt_s = 1e-4;
+  settings.duration_s = 1.0;
+  bodies.velocity_mps[1] = Vec3(0, 0, 0.02);
+  Simulation sim(std::move(bodies), settings);
+  auto owned = std::make_unique<JointSystem>(&sim.bonded_pairs());
+  JointSystem* js = owned.get();
+  JointDef d;
+  d.body_a = 0;
+  d.body_b = 1;
+  SpringPointDef p;
+  p.has_shear = false;
+  p.normal = linear_spring(k);
+  p.normal.dashpot.coefficient_Nspm = c;
+  p.normal.dashpot.damping_ratio = 0.0;
+  p.offset_m = Vec3(0.03, 0.0, 0.0);
+  d.layout.points.push_back(p);
+  p.offset_m = Vec3(-0.03, 0.0, 0.0);
+  d.layout.points.push_back(p);
+  js->add_joint(sim.bodies(), d);
+  sim.add_force_provider(std::move(owned));
+  EXPECT_EQ(js->joint_viscous_J(0), 0.0);
+  double v[3];
+  v[0] = sim.bodies().velocity_mps[1].z();  // v0, at which step 0's forces are evaluated
+  sim.initialize();
+  for (int n = 0; n < 2; ++n) {
+    sim.step();
+    v[n + 1] = sim.bodies().velocity_mps[1].z();  // v(n+1/2)
+    EXPECT_EQ(sim.bodies().angular_velocity_radps[1].norm(), 0.0);
+  }
+  const double dt = settings.dt_s;
+  const double t0 = 0.5 * dt * 2.0 * (c * v[0] * v[0] + c * v[0] * v[1]);
+  const double t1 = 0.5 * dt * 2.0 * (c * v[1] * v[1] + c * v[1] * v[2]);
+  const double expected = 0.5 * t0 + 0.5 * t1;
+  EXPECT_GT(expected, 0.0);
+  EXPECT_NEAR(js->joint_viscous_J(0), expected, 1e-12 * expected);
+  EnergyLedger books;
+  js->report_energy(books);
+  EXPECT_NEAR(books.dissipated_viscous_J, expected, 1e-12 * expected);
+}
+
 }  // namespace
 }  // namespace fq
