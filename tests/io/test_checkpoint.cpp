@@ -205,6 +205,33 @@ TEST(Checkpoint, StateForAnotherSceneIsRefusedWithAReason) {
     EXPECT_NE(std::string(e.what()).find("providers"), std::string::npos) << e.what();
   }
 
+  // A joint section of another layout (version 3 kept dashpot books per
+  // point, joint_system_state.cpp) is refused with both versions named.
+  {
+    std::string other = saved.bytes();
+    // A section is its marker (state_io.h), its name's length and its name;
+    // the simulation frames each provider's state in a section of the
+    // provider's name, in which JointSystem::save_state opens its own.
+    const std::string tag = std::string("\x4E\x10\xC7\x5E\x06\0\0\0\0\0\0\0", 12) + "joints";
+    const std::size_t framed = other.find(tag + tag);
+    ASSERT_NE(framed, std::string::npos);
+    const std::size_t at = framed + tag.size();
+    std::uint32_t version = 0;
+    std::memcpy(&version, other.data() + at + tag.size(), sizeof version);
+    EXPECT_EQ(version, 4u);
+    version = 3;
+    std::memcpy(other.data() + at + tag.size(), &version, sizeof version);
+    Scene c = build_scene(def);
+    StateReader old_layout(other);
+    try {
+      c.simulation->load_state(old_layout);
+      ADD_FAILURE() << "a joint state of version 3 was accepted";
+    } catch (const StateFormatError& e) {
+      EXPECT_NE(std::string(e.what()).find("joint state version 3, this build reads 4"), std::string::npos)
+          << e.what();
+    }
+  }
+
   // Every truncation of the state is refused by the reader, never read past.
   for (std::size_t cut : {std::size_t(0), std::size_t(7), saved.bytes().size() / 2, saved.bytes().size() - 1}) {
     Scene c = build_scene(def);
