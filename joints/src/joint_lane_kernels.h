@@ -261,10 +261,10 @@ void JointSystem::FQ_LANE_KERNEL(joint_step_lanes_)(const BodyStore& bodies, std
       dashpot[r] = F[r] * fda[0] + F[3 + r] * fda[1] + F[6 + r] * fda[2];
     }
     const v4d m0 = am[0] + 0.5 * d[0], m1 = am[1] + 0.5 * d[1], m2 = am[2] + 0.5 * d[2];
-    // Stage 4: sums in point order. The lanes of (F_x, F_y, F_z, T_x) and
-    // (T_y, T_z) transposed into one vector per point, which the two sums
-    // add in turn: each component gets ((0 + p0) + p1) + ..., the order of
-    // joint_step_.
+    // Stage 4: sums in point order. The lanes of (F_x, F_y, F_z, T_x),
+    // (T_y, T_z, M_y, M_z) and (Fd_x, Fd_y, Fd_z, M_x) transposed into one
+    // vector per point, which the three sums add in turn: each component
+    // gets ((0 + p0) + p1) + ..., the order of joint_step_.
     v4d point[4] = {force[0], force[1], force[2], m1 * force[2] - m2 * force[1]};
     v4d point_yz[4] = {m2 * force[0] - m0 * force[2], m0 * force[1] - m1 * force[0],
                        m2 * dashpot[0] - m0 * dashpot[2], m0 * dashpot[1] - m1 * dashpot[0]};

@@ -712,7 +712,7 @@ void JointSystem::report_energy(EnergyLedger& ledger) const {
     plastic += plastic_J_[s];
   }
   // Through n: all of step n-1, half of step n.
-  for (const DashpotBooks& books : dashpot_books_) viscous += books.viscous_done_J - books.viscous_half_J;
+  for (std::size_t j = 0; j < dashpot_books_.size(); ++j) viscous += joint_viscous_J(j);
   ledger.elastic_J += elastic;
   ledger.dissipated_plastic_J += plastic;
   ledger.dissipated_viscous_J += viscous;
