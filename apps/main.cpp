@@ -181,6 +181,10 @@ RunArgs parse_run_args(int argc, char** argv, int first, const char* help, bool 
   return a;
 }
 
+// A run's warnings (io/case_runner.h, the kWarn* checks) as they arise; they are
+// also in summary.json.
+void print_warning(const std::string& text) { std::cerr << "framequake: warning: " << text << "\n"; }
+
 int command_run(int argc, char** argv) {
   const RunArgs args = parse_run_args(argc, argv, 2, kRunHelp, true);
 #if defined(_OPENMP)
@@ -201,6 +205,7 @@ int command_run(int argc, char** argv) {
   options.integrator = args.integrator;
   options.stop_requested = &g_stop_requested;
   options.checkpoint_every_s = args.checkpoint_every_s;
+  options.on_warning = print_warning;
   std::optional<fq::ProgressDisplay> progress;
   if (!args.quiet && isatty(fileno(stderr))) {
     progress.emplace(def.name, stderr);
@@ -265,6 +270,7 @@ int command_resume(int argc, char** argv) {
   std::signal(SIGINT, on_sigint);
   fq::CaseRunOptions options;
   options.stop_requested = &g_stop_requested;
+  options.on_warning = print_warning;
   std::optional<fq::ProgressDisplay> progress;
   if (!quiet && isatty(fileno(stderr))) {
     progress.emplace(std::filesystem::path(folder).filename().string(), stderr);

@@ -237,6 +237,7 @@ void print_done(std::size_t, const fq::BatchJob& job, const fq::BatchOutcome& ou
     for (const fq::StoreyOutcome& s : r.storeys)
       line << "; storey " << s.number << " " << fq::storey_verdict_name(s.verdict) << " (peak "
            << fixed(s.drift.peak_ratio_rad, 3) << " rad)";
+    for (const std::string& w : r.warnings) line << "\n  warning: " << w;
   }
   std::cerr << line.str() << "\n";
 }

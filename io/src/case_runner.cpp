@@ -11,6 +11,7 @@
 #include "io/checkpoint.h"
 #include "io/input_error.h"
 #include "io/joint_builder.h"
+#include "io/json_writer.h"
 #include "io/model.h"
 #include "io/run_output.h"
 #include "scene_output.h"
@@ -127,8 +128,29 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
   }
 
   CaseRunReport report;
+  auto warn = [&](const std::string& text) {
+    report.warnings.push_back(text);
+    if (options.on_warning) options.on_warning(text);
+  };
+  if (const double dt = sim.settings().dt_s; dt > scene.stable_time_step.dt_crit_s) {
+    std::ostringstream w;
+    w << std::setprecision(4) << "dt_s = " << dt << " s is " << dt / scene.stable_time_step.dt_crit_s
+      << " times the stable time step of " << integrator_name(sim.settings().integrator) << ", "
+      << scene.stable_time_step.dt_crit_s << " s, set by " << scene.stable_time_step.stiffest_element
+      << "; the run was forced: compare its results with a run below the limit";
+    warn(w.str());
+  }
   report.result = sim.run(options.stop_requested);
+  // An unstable run has already failed with its own message.
+  if (report.result.status != RunStatus::Unstable)
+    for (const std::string& w : energy_warnings(sim.ledger())) warn(w);
   try {
+    {
+      std::string list = "[";
+      for (std::size_t k = 0; k < report.warnings.size(); ++k)
+        list += (k ? ", " : "") + JsonWriter::quote(report.warnings[k]);
+      writer.add_summary_field("warnings", list + "]");
+    }
     if (scene.joints) add_joint_summary(writer, *scene.joints, sim.events());
     if (!scene.storeys.empty()) add_storey_summary(writer, storeys);
     char hash[19];
@@ -159,6 +181,27 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
 }
 
 }  // namespace
+
+std::vector<std::string> energy_warnings(const EnergyLedger& l) {
+  std::vector<std::string> warnings;
+  const double error = l.balance_error_relative();
+  if (std::fabs(error) > kWarnBalanceErrorRelative) {
+    std::ostringstream w;
+    w << std::setprecision(3) << "the energy balance does not close: error " << error
+      << " of the largest energy in play (warned above " << kWarnBalanceErrorRelative
+      << "); the time step does not resolve the motion: run again with a smaller dt_s";
+    warnings.push_back(w.str());
+  }
+  if (l.dissipated_viscous_J < -kWarnViscousGainRelative * l.scale_J) {
+    std::ostringstream w;
+    w << std::setprecision(3) << "the dashpots gained " << -l.dissipated_viscous_J << " J ("
+      << -l.dissipated_viscous_J / l.scale_J
+      << " of the largest energy in play); a dashpot only dissipates, so some damped mode (a stiff contact or "
+         "joint) is unstable at this time step: run again with a smaller dt_s";
+    warnings.push_back(w.str());
+  }
+  return warnings;
+}
 
 Scene build_scene(const CaseDef& def) {
   Model model = build_model(def);

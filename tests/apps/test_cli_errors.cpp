@@ -221,6 +221,40 @@ TEST(CliErrors, MissingCaseFile) {
   EXPECT_FALSE(fs::exists(out));
 }
 
+// A time step above the stable estimate is refused (exit 2, nothing
+// written); with --force the run goes ahead, exits 0, and says on stderr
+// and in summary.json that it was forced (io/case_runner.h, kWarn*). The
+// cube on the ground has its stable estimate at 3.04e-4 s (contact twist
+// mode: contacts/README.md); 1e-3 s is 3.3 times that.
+TEST(CliErrors, TimeStepAboveTheLimitIsRefusedAndWhenForcedRunsWithAWarning) {
+  const char* const cube =
+      "framequake_case: 1\n"
+      "name: cube\n"
+      "time: {dt_s: 1.0e-3, duration_s: 0.05}\n"
+      "materials: [{name: spruce, density_kg_per_m3: 450}]\n"
+      "ground: {level_m: 0.0}\n"
+      "blocks: [{id: cube, size_m: [0.1, 0.1, 0.1], center_m: [0, 0, 0.05], material: spruce}]\n"
+      "contact: {ground: {normal_stiffness_N_per_m: 1.0e6, restitution: 0.5, friction_coefficient: 0.4}}\n";
+  TempDir dir;
+  std::ofstream(dir.path() / "case.yaml", std::ios::binary) << cube;
+  const fs::path out = dir.path() / "out";
+  const std::vector<std::string> args = {"run", (dir.path() / "case.yaml").string(), "--out", out.string(), "--quiet"};
+  const auto refused = run_app(args, dir.path());
+  EXPECT_EQ(refused.code, 2) << refused.err;
+  EXPECT_NE(refused.err.find("case.yaml:3: field 'time.dt_s'"), std::string::npos) << refused.err;
+  EXPECT_NE(refused.err.find("exceeds the stable time step"), std::string::npos) << refused.err;
+  EXPECT_FALSE(fs::exists(out));
+
+  std::vector<std::string> forced_args = args;
+  forced_args.push_back("--force");
+  const auto forced = run_app(forced_args, dir.path());
+  EXPECT_EQ(forced.code, 0) << forced.err;
+  EXPECT_NE(forced.err.find("framequake: warning: dt_s = 0.001 s is 3.2"), std::string::npos) << forced.err;
+  EXPECT_NE(forced.err.find("the run was forced"), std::string::npos) << forced.err;
+  const std::string summary = fq_test::read_text(out / "summary.json");
+  EXPECT_NE(summary.find("\"warnings\": [\"dt_s = 0.001 s is 3.2"), std::string::npos) << summary;
+}
+
 // FRAMEQUAKE_SIMD chooses the SIMD form of the lane kernels
 // (dem_core/lane_isa.h): auto, sse2, avx2 or avx512vl. A bad value is bad input: exit
 // 2, the variable and the accepted values named, no output folder. sse2 is
