@@ -1,0 +1,83 @@
+#!/usr/bin/env bash
+# Frames A, B and C at time steps around the engine's estimate of the
+# stable step: what a forced run gives, and what its warnings say.
+#
+# Each run is the shipped case with dt_s set to FACTOR x the estimate that
+# `framequake info` prints (the same for the three frames: a contact of a
+# column at the start), run with --force; the shipped dt_s = 1e-5 s is the
+# first row. For every run the table gives the storey drifts and verdicts,
+# the broken joints, the energy balance error, the dashpots' net loss as a
+# fraction of the largest energy in play (negative: they gained energy) and
+# the warnings of the ledger (io/case_runner.h, kWarn*; every run above the
+# estimate also carries the forced-step warning, not listed).
+#
+# Writes validation/results/frames_time_step.md.
+# Usage: bash validation/frames_time_step.sh     (21 runs, about a minute on 2 cores)
+set -euo pipefail
+usage='usage: bash validation/frames_time_step.sh   (no arguments)'
+case ${1:-} in -h|--help) echo "$usage"; exit 0 ;; esac
+[[ $# -eq 0 ]] || { echo "frames_time_step.sh: no arguments expected, got: $*" >&2; echo "$usage" >&2; exit 2; }
+cd "$(dirname "$0")/.."
+app=./build/apps/framequake
+[[ -x $app ]] || { echo "build first: bash scripts/build.sh" >&2; exit 2; }
+work=$(mktemp -d /tmp/fq_time_step_XXXXXX)
+trap 'rm -rf "$work"' EXIT
+mkdir -p validation/results
+target=validation/results/frames_time_step.md
+cp -r cases/ground_motions "$work/"
+
+factors="1.5 2 2.5 3"
+run_one() {  # run_one CASE FACTOR|shipped
+  local c=$1 f=$2 file=$work/${1}_$2.yaml
+  if [[ $f == shipped ]]; then
+    cp "cases/frame_$c.yaml" "$file"
+  else
+    local estimate dt
+    estimate=$("$app" info "cases/frame_$c.yaml" | sed -n 's/.*stable limit \([0-9.e+-]*\) s.*/\1/p')
+    [[ -n $estimate ]] || { echo "frames_time_step.sh: no stable limit in 'framequake info' of frame_$c" >&2; exit 1; }
+    dt=$(awk -v e="$estimate" -v f="$f" 'BEGIN { printf "%.6g", e * f }')
+    sed -e "s/^  dt_s: .*/  dt_s: $dt/" "cases/frame_$c.yaml" > "$file"
+  fi
+  "$app" run "$file" --out "$work/out_${c}_$f" --quiet --force --threads 1 > "$work/log_${c}_$f" 2>&1 ||
+    echo "exit $?" >> "$work/log_${c}_$f"
+}
+
+for c in A B C; do
+  for f in shipped 1 $factors; do
+    run_one "$c" "$f" &
+    # two at a time (the machine's two cores)
+    while (( $(jobs -rp | wc -l) >= 2 )); do wait -n; done
+  done
+done
+wait
+
+python3 - "$work" > "$work/report.md" <<'PY'
+import json, os, sys
+work = sys.argv[1]
+print("# Frames A, B, C at time steps around the stable estimate\n")
+print("Produced by `bash validation/frames_time_step.sh`. The estimate is the one `framequake info` prints")
+print("(central difference, 2/omega_max with the dashpot correction); the cases ship with dt = 1e-5 s.")
+print("Dashpot loss: dissipated_viscous_J / scale_J (negative: the dashpots gained energy).")
+print("Warnings: the ledger's (io/case_runner.h), besides the forced-step warning of every run above the estimate.\n")
+for c in "ABC":
+    print(f"## Frame {c}\n")
+    print("| dt / estimate | dt (s) | status | storey 1 peak drift (rad), verdict | storey 2 | broken joints | balance error | dashpot loss | ledger warnings |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    for f in ["shipped", "1", "1.5", "2", "2.5", "3"]:
+        path = os.path.join(work, f"out_{c}_{f}", "summary.json")
+        if not os.path.exists(path):
+            log = open(os.path.join(work, f"log_{c}_{f}")).read().strip().splitlines()
+            print(f"| {f} | | no summary: {log[-1] if log else ''} | | | | | | |")
+            continue
+        d = json.load(open(path))
+        e = d["energy"]
+        ratio = d["dt_s"] / d["stable_dt_s"]
+        s = d.get("storeys", [])
+        cell = lambda k: f"{s[k]['peak_drift_ratio_rad']:.4f}, {s[k]['verdict']}" if len(s) > k else ""
+        ledger = [w.split(":")[0].split(";")[0] for w in d.get("warnings", []) if not w.startswith("dt_s =")]
+        print(f"| {ratio:.3g} | {d['dt_s']:.4g} | {d['status']} | {cell(0)} | {cell(1)} | {d['joints']['broken']} / {d['joints']['total']} | "
+              f"{e['balance_error_relative']:.2e} | {e['dissipated_viscous_J'] / e['scale_J']:+.3f} | {'; '.join(ledger) or 'none'} |")
+    print()
+PY
+mv "$work/report.md" "$target"
+echo "frames_time_step.sh: wrote $target"
