@@ -134,10 +134,15 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
   };
   if (const double dt = sim.settings().dt_s; dt > scene.stable_time_step.dt_crit_s) {
     std::ostringstream w;
-    w << std::setprecision(4) << "dt_s = " << dt << " s is " << dt / scene.stable_time_step.dt_crit_s
-      << " times the stable time step of " << integrator_name(sim.settings().integrator) << ", "
-      << scene.stable_time_step.dt_crit_s << " s, set by " << scene.stable_time_step.stiffest_element
-      << "; the run was forced: compare its results with a run below the limit";
+    w << std::setprecision(4) << "dt_s = " << dt << " s ";
+    if (scene.stable_time_step.dt_crit_s > 0.0)
+      w << "is " << dt / scene.stable_time_step.dt_crit_s << " times the stable time step of "
+        << integrator_name(sim.settings().integrator) << ", " << scene.stable_time_step.dt_crit_s << " s,";
+    else  // forward Euler: no stable step on an undamped mode
+      w << "has no stable limit with " << integrator_name(sim.settings().integrator) << " on the mode";
+    w << " set by " << scene.stable_time_step.stiffest_element << "; the run was forced: "
+      << (scene.stable_time_step.dt_crit_s > 0.0 ? "compare its results with a run below the limit"
+                                                 : "check its results with another integrator");
     warn(w.str());
   }
   report.result = sim.run(options.stop_requested);

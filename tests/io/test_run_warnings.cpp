@@ -20,6 +20,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -67,9 +68,11 @@ struct Outcome {
   std::string summary;  // summary.json
 };
 
-Outcome run_cube(const test::TempDir& dir, double dt_s, const std::string& name) {
+Outcome run_cube(const test::TempDir& dir, double dt_s, const std::string& name,
+                 std::optional<Integrator> integrator = std::nullopt) {
   const CaseDef def = load_case_file(dir.write(name + ".yaml", cube_case(dt_s)));
   CaseRunOptions options;
+  options.integrator = integrator;
   options.output_folder = dir.path() / name;
   options.allow_unstable_time_step = true;
   Outcome o;
@@ -123,6 +126,13 @@ TEST(RunWarnings, ForcedStepNamesItsFactorAndTheStiffestElementAndASoundRunHasNo
   const std::string& w = forced.report.warnings.front();
   EXPECT_NE(w.find("is 1.25 times the stable time step of central_difference"), std::string::npos) << w;
   EXPECT_NE(w.find(sound.report.stable_time_step.stiffest_element), std::string::npos) << w;
+
+  // Forward Euler has no stable step on an undamped mode (estimate 0 s):
+  // the warning says so instead of a factor.
+  const Outcome euler = run_cube(dir, 1e-5, "euler", Integrator::ForwardEuler);
+  ASSERT_FALSE(euler.report.warnings.empty());
+  EXPECT_NE(euler.report.warnings.front().find("has no stable limit with forward_euler"), std::string::npos)
+      << euler.report.warnings.front();
 }
 
 TEST(RunWarnings, LedgerChecksFireAtTheirThresholds) {
