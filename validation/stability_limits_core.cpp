@@ -27,6 +27,21 @@ StiffestMode chain_stiffest_mode(int links) {
   return probe.stiffest_mode(store);
 }
 
+StiffestMode damped_chain_stiffest_mode(double damping_ratio) {
+  const BodyStore store = chain_bodies(5);
+  JointSystem probe(nullptr);
+  test::add_irregular_chain_joints(probe, store, damping_ratio);
+  return probe.stiffest_mode(store);
+}
+
+double damped_chain_amplitude(double damping_ratio, double dt_s, int steps) {
+  return test::chain_amplitude(dt_s, steps, damping_ratio);
+}
+
+double largest_displacement(Simulation& sim, int steps, double stop_m) {
+  return test::largest_displacement(sim, steps, stop_m);
+}
+
 double mechanical_energy_J(const Simulation& sim, const std::vector<const ForceProvider*>& elastic) {
   const BodyStore& b = sim.bodies();
   double energy = 0.0;

@@ -81,6 +81,17 @@ GrowthRun chain_growth(Integrator method, double dt_s, int steps, bool stop_when
 // steps, by bisection in [0.5, 1.5] x estimate_s to 1e-4 relative.
 double bisect_stable_dt(Integrator method, double estimate_s, int steps);
 
+// The 5-box chain with a spring-level damping ratio on every spring: its
+// stiffest mode (the damped estimate) and the largest distance (m) a body
+// moves from its start in `steps` central-difference steps at dt_s
+// (test::chain_amplitude: infinity when the step loop stops as unstable).
+StiffestMode damped_chain_stiffest_mode(double damping_ratio);
+double damped_chain_amplitude(double damping_ratio, double dt_s, int steps);
+// test::largest_displacement for any simulation (stability_limits.cpp's
+// case scenes): the largest distance (m) of a body from its start over up
+// to `steps` steps, early once above stop_m, infinity when unstable.
+double largest_displacement(Simulation& sim, int steps, double stop_m = 1.0);
+
 // Modulus of RK4's amplification factor on the undamped oscillator at
 // omega dt = x: |1 + z + z^2/2 + z^3/6 + z^4/24| at z = i x.
 double rk4_amplification(double x);

@@ -730,9 +730,10 @@ StiffestMode JointSystem::stiffest_mode(const BodyStore& bodies) const {
   // percent for joint networks, where the top modes are well separated.
   // Central difference with a dashpot reading v(n-1/2) is stable for
   // dt <= (2 / omega)(sqrt(1 + zeta^2) - zeta) in a mode of damping ratio
-  // zeta; with zeta <= lambda_C / (2 omega) this gives
-  //   dt_crit = 2 / (sqrt(omega^2 + lambda_C^2 / 4) + lambda_C / 2),
-  // reported as omega_eff = 2 / dt_crit. Dashpots matter: a spring-level
+  // zeta; with zeta <= lambda_C / (2 omega) this gives the lower bound
+  //   dt_bound = 2 / (sqrt(omega^2 + lambda_C^2 / 4) + lambda_C / 2),
+  // from which the limit itself is found (below), reported as
+  // omega_eff = 2 / dt_crit. Dashpots matter: a spring-level
   // ratio of 0.3 can overdamp a light rotational mode (zeta > 1) and halve
   // the stable step. Fixed bodies have zero inverse mass and drop out.
   const std::size_t nb = bodies.size();
@@ -773,12 +774,14 @@ StiffestMode JointSystem::stiffest_mode(const BodyStore& bodies) const {
   using Vec6 = Eigen::Matrix<double, 6, 1>;
   std::vector<Vec6> x(nb), y(nb);
   // Largest eigenvalue of sum_rows coef(row) c c^T; leaves its vector in x.
-  auto top_eigenvalue = [&](auto coef) {
-    // Deterministic start vector with a component along every degree of freedom.
-    for (std::size_t i = 0; i < nb; ++i)
-      for (int d = 0; d < 6; ++d) x[i][d] = 1.0 + 0.1 * std::sin(double(7 * i + d + 1));
+  auto top_eigenvalue = [&](auto coef, int iterations = 400, bool warm_start = false) {
+    // Deterministic start vector with a component along every degree of
+    // freedom, or the vector x left by the previous call.
+    if (!warm_start)
+      for (std::size_t i = 0; i < nb; ++i)
+        for (int d = 0; d < 6; ++d) x[i][d] = 1.0 + 0.1 * std::sin(double(7 * i + d + 1));
     double lambda = 0.0;
-    for (int it = 0; it < 400; ++it) {
+    for (int it = 0; it < iterations; ++it) {
       for (Vec6& v : y) v.setZero();
       for (const Row& r : rows) {
         const double proj = r.ca.dot(x[std::size_t(r.a)]) + r.cb.dot(x[std::size_t(r.b)]);
@@ -801,14 +804,61 @@ StiffestMode JointSystem::stiffest_mode(const BodyStore& bodies) const {
   const double lambda_c = top_eigenvalue([](const Row& r) { return r.c; });
   const double omega2 = top_eigenvalue([](const Row& r) { return r.k; });  // x: top stiffness mode
   if (!(omega2 > 0.0)) return mode;
-  // The spring storing most energy in the top mode names where it lives.
+  // The damped limit itself. With x(n) = (-1)^n phi the update gives
+  // -4 phi = -(dt^2 K~ + 2 dt C~) phi (K~, C~ the mass-scaled stiffness and
+  // dashpot matrices), so r = -1 is a root of the step's amplification
+  // exactly when 4 is an eigenvalue of dt^2 K~ + 2 dt C~: the step is
+  // stable up to the dt where lambda_max(dt^2 K~ + 2 dt C~) = 4 (one mode:
+  // dt = (2 / omega)(sqrt(1 + zeta^2) - zeta), as above). Both matrices sum
+  // the same rows, so the combined one is top_eigenvalue with coefficient
+  // dt^2 k + 2 dt c. The bound above takes omega and lambda_C from two
+  // different modes when the stiffest mode is not the most damped: on the
+  // breaking-cantilever demo it gave 7.15e-5 s where this gives 7.78e-5 s,
+  // and runs with every mode excited are bounded at 0.99 of the latter and
+  // not at 1.01 (docs/speed_accuracy.md).
+  // Iteration: dt <- the root of a dt^2 + 2 b dt = 4, a and b the Rayleigh
+  // quotients of K~ and C~ in the top eigenvector at the current dt; the
+  // root is its only fixed point, and by lambda_max(A + B) <= lambda_max(A)
+  // + lambda_max(B) it lies between the bound and 2 / omega.
+  const double dt_bound = 2.0 / (std::sqrt(omega2 + 0.25 * lambda_c * lambda_c) + 0.5 * lambda_c);
+  const double dt_undamped = 2.0 / std::sqrt(omega2);
+  double dt_crit = dt_bound;
+  if (lambda_c > 0.0) {
+    double dt = dt_bound;
+    for (int outer = 0; outer < 12; ++outer) {
+      top_eigenvalue([dt](const Row& r) { return dt * dt * r.k + 2.0 * dt * r.c; }, outer == 0 ? 400 : 100,
+                     /*warm_start=*/outer > 0);
+      double xx = 0.0, a = 0.0, b = 0.0;
+      for (const Row& r : rows) {
+        const double proj = r.ca.dot(x[std::size_t(r.a)]) + r.cb.dot(x[std::size_t(r.b)]);
+        a += r.k * proj * proj;
+        b += r.c * proj * proj;
+      }
+      for (std::size_t i = 0; i < nb; ++i) xx += x[i].squaredNorm();
+      if (!(xx > 0.0) || !(a > 0.0)) break;
+      a /= xx;
+      b /= xx;
+      const double next = 2.0 / (std::sqrt(a + 0.25 * b * b) + 0.5 * b);  // root of a dt^2 + 2 b dt = 4
+      const bool settled = std::fabs(next - dt) <= 1e-9 * dt;
+      dt = next;
+      if (settled) break;
+    }
+    dt_crit = std::clamp(dt, dt_bound, dt_undamped);
+  } else {
+    dt_crit = dt_undamped;
+  }
+  // The spring storing most energy in the mode that sets the limit (the
+  // last top eigenvector: of K~, or of dt^2 K~ + 2 dt C~ with dashpots)
+  // names where it lives.
+  const double w_k = lambda_c > 0.0 ? dt_crit * dt_crit : 1.0, w_c = lambda_c > 0.0 ? 2.0 * dt_crit : 0.0;
   std::size_t best = 0;
   double best_energy = -1.0;
   for (std::size_t k = 0; k < rows.size(); ++k) {
     const Row& r = rows[k];
     const double proj = r.ca.dot(x[std::size_t(r.a)]) + r.cb.dot(x[std::size_t(r.b)]);
-    if (r.k * proj * proj > best_energy) {
-      best_energy = r.k * proj * proj;
+    const double energy = (w_k * r.k + w_c * r.c) * proj * proj;
+    if (energy > best_energy) {
+      best_energy = energy;
       best = k;
     }
   }
@@ -821,7 +871,7 @@ StiffestMode JointSystem::stiffest_mode(const BodyStore& bodies) const {
       break;
     }
   }
-  mode.omega_radps = std::sqrt(omega2 + 0.25 * lambda_c * lambda_c) + 0.5 * lambda_c;
+  mode.omega_radps = lambda_c > 0.0 ? 2.0 / dt_crit : std::sqrt(omega2);  // undamped: omega itself, to the bit
   std::ostringstream m;
   m << "joint " << joint << " (bodies " << joint_body_a_[joint] << " '" << bodies.info[joint_body_a_[joint]].name
     << "' - " << joint_body_b_[joint] << " '" << bodies.info[joint_body_b_[joint]].name << "')";

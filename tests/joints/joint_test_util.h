@@ -5,8 +5,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <memory>
 #include <random>
 #include <string>
 #include <vector>
@@ -200,6 +202,38 @@ inline void set_small_random_motion(BodyStore& store) {
     store.angular_velocity_radps[b] = w;
     store.angular_momentum_Nms[b] = r * store.principal_inertia_kgm2[b].asDiagonal() * (r.transpose() * w);
   }
+}
+
+// Largest distance (m) of a body centre from where it stood before the
+// first of up to `steps` steps of `sim`; returns early once it passes
+// stop_m, and infinity when the step loop stops as unstable.
+inline double largest_displacement(Simulation& sim, int steps, double stop_m = 1.0) {
+  const std::vector<Vec3> start = sim.bodies().position_m;
+  double amplitude = 0.0;
+  for (int s = 0; s < steps; ++s) {
+    if (!sim.step()) return INFINITY;
+    for (std::size_t b = 0; b < start.size(); ++b)
+      amplitude = std::max(amplitude, (sim.bodies().position_m[b] - start[b]).norm());
+    if (amplitude > stop_m) return amplitude;
+  }
+  return amplitude;
+}
+
+// The 5-box irregular chain (no gravity) with small random velocities
+// (set_small_random_motion) and the given spring-level damping ratio, run
+// `steps` central-difference steps at dt_s: largest_displacement.
+inline double chain_amplitude(double dt_s, int steps, double damping_ratio = 0.0) {
+  BodyStore store = irregular_chain_bodies(5);
+  set_small_random_motion(store);
+  SimulationSettings settings;
+  settings.dt_s = dt_s;
+  settings.duration_s = dt_s * steps;
+  settings.gravity_mps2 = Vec3::Zero();
+  Simulation sim(std::move(store), settings);
+  auto js = std::make_unique<JointSystem>(&sim.bonded_pairs());
+  add_irregular_chain_joints(*js, sim.bodies(), damping_ratio);
+  sim.add_force_provider(std::move(js));
+  return largest_displacement(sim, steps);
 }
 
 // Finite-difference stiffness (-dQ/du) of all free bodies, Q = (force,

@@ -8,6 +8,8 @@
 
 #include <cmath>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "dem_core/simulation.h"
 #include "joint_test_util.h"
@@ -22,25 +24,7 @@ using test::irregular_chain_bodies;
 
 // Largest |displacement| from rest reached over `steps` steps at dt.
 double run_amplitude(double dt_s, int steps, double damping_ratio = 0.0) {
-  BodyStore store = irregular_chain_bodies(5);
-  test::set_small_random_motion(store);
-  const std::vector<Vec3> rest = store.position_m;
-  SimulationSettings settings;
-  settings.dt_s = dt_s;
-  settings.duration_s = dt_s * steps;
-  settings.gravity_mps2 = Vec3::Zero();
-  Simulation sim(std::move(store), settings);
-  auto js = std::make_unique<JointSystem>(&sim.bonded_pairs());
-  add_irregular_chain_joints(*js, sim.bodies(), damping_ratio);
-  sim.add_force_provider(std::move(js));
-  double amplitude = 0.0;
-  for (int s = 0; s < steps; ++s) {
-    if (!sim.step()) return INFINITY;
-    for (std::size_t b = 1; b < sim.bodies().size(); ++b)
-      amplitude = std::max(amplitude, (sim.bodies().position_m[b] - rest[b]).norm());
-    if (amplitude > 1.0) return amplitude;
-  }
-  return amplitude;
+  return test::chain_amplitude(dt_s, steps, damping_ratio);
 }
 
 TEST(StableTimeStep, EstimateMatchesTheObservedStabilityLimit) {
@@ -79,6 +63,90 @@ TEST(StableTimeStep, DashpotsLowerTheEstimateAndItStaysStable) {
   EXPECT_LT(run_amplitude(0.97 * dt_damped, 4000, 0.5), 1e-2);
   EXPECT_GT(run_amplitude(0.97 * dt_undamped, 4000, 0.5), 1.0)
       << "with these dashpots the undamped limit is unstable, so the damped estimate must be lower";
+}
+
+// Two oscillators in one joint system, closed form. Each free cube (0.1 m,
+// 450 kg/m^3, m = 0.45 kg) hangs on the fixed base by two normal springs of
+// stiffness k and dashpot c at +-30 mm along t1 (their torques cancel in
+// the bounce), so its bounce along n has omega = sqrt(2k/m) and damping
+// ratio zeta = c / sqrt(2 k m); its rocking about t2 is softer (2 k x^2 /
+// I = 0.54 x 2k/m) and less damped. Central difference with a dashpot read
+// at v(n-1/2) keeps a mode bounded for dt <= (2/omega)(sqrt(1 + zeta^2) -
+// zeta), so the system's limit is the smaller of the two bounces':
+//   stiff cube: k = 1e6 N/m, zeta = 0.01 -> omega 2108 rad/s, limit 9.39e-4 s
+//   soft cube:  k = 1e5 N/m, zeta = 1.0  -> omega  667 rad/s, limit 1.24e-3 s.
+// A bound that pairs the highest frequency with the strongest damping
+// (here from different cubes) would give 6.9e-4 s, 26 % low.
+double two_oscillators_limit(double dt_s, int steps, StiffestMode* estimate) {
+  BodyStore store;
+  BoxBodyDef base;
+  base.name = "base";
+  base.size_m = Vec3::Constant(0.1);
+  base.density_kg_per_m3 = 450.0;
+  base.fixed = true;
+  store.add_box(base);
+  BoxBodyDef cube = base;
+  cube.fixed = false;
+  cube.name = "stiff";
+  cube.position_m = Vec3(0, 0, 0.1);
+  store.add_box(cube);
+  cube.name = "soft";
+  cube.position_m = Vec3(1, 0, 0.1);
+  store.add_box(cube);
+  store.update_rotations();
+  // Small initial bounce and rocking velocities: every mode excited.
+  store.velocity_mps[1] = Vec3(0, 0, 1e-4);
+  store.velocity_mps[2] = Vec3(0, 0, -1e-4);
+  const Vec3 w(0, 1e-3, 0);
+  for (BodyId b : {1, 2}) {
+    store.angular_velocity_radps[b] = w;
+    store.angular_momentum_Nms[b] = store.principal_inertia_kgm2[b].asDiagonal() * w;
+  }
+  const double m = store.mass_kg[1];
+  SimulationSettings settings;
+  settings.dt_s = dt_s;
+  settings.duration_s = dt_s * steps;
+  settings.gravity_mps2 = Vec3::Zero();
+  Simulation sim(std::move(store), settings);
+  auto js = std::make_unique<JointSystem>(&sim.bonded_pairs());
+  for (BodyId b : {1, 2}) {
+    const double k = b == 1 ? 1e6 : 1e5, zeta = b == 1 ? 0.01 : 1.0;
+    JointDef d;
+    d.body_a = 0;
+    d.body_b = b;
+    d.origin_m = sim.bodies().position_m[b] - Vec3(0, 0, 0.05);
+    SpringPointDef p;
+    p.has_shear = false;
+    p.normal = linear_spring(k);
+    p.normal.dashpot.damping_ratio = 0.0;
+    p.normal.dashpot.coefficient_Nspm = zeta * std::sqrt(2.0 * k * m);
+    for (double x : {0.03, -0.03}) {
+      p.offset_m = Vec3(x, 0, 0);
+      d.layout.points.push_back(p);
+    }
+    js->add_joint(sim.bodies(), d);
+  }
+  *estimate = js->stiffest_mode(sim.bodies());
+  sim.add_force_provider(std::move(js));
+  return test::largest_displacement(sim, steps);
+}
+
+TEST(StableTimeStep, DampedLimitIsTheSmallestModeLimitNotTheStiffestModeWithTheStrongestDashpot) {
+  const double m = 450.0 * 1e-3;
+  auto limit = [](double omega, double zeta) { return 2.0 / omega * (std::sqrt(1.0 + zeta * zeta) - zeta); };
+  const double stiff = limit(std::sqrt(2e6 / m), 0.01), soft = limit(std::sqrt(2e5 / m), 1.0);
+  ASSERT_LT(stiff, soft);
+  StiffestMode mode;
+  two_oscillators_limit(1e-5, 1, &mode);
+  const double estimate = 2.0 / mode.omega_radps;
+  EXPECT_NE(mode.where.find("'stiff'"), std::string::npos) << mode.where;
+  // Power iteration from below: the estimate may exceed the closed form by
+  // its convergence error, well under 1e-3 for modes this far apart.
+  EXPECT_NEAR(estimate / stiff, 1.0, 1e-3) << "estimate " << estimate << " s, closed form " << stiff << " s";
+  // And the engine's own runs agree: bounded just below, unbounded just above.
+  StiffestMode unused;
+  EXPECT_LT(two_oscillators_limit(0.98 * estimate, 4000, &unused), 1e-2);
+  EXPECT_GT(two_oscillators_limit(1.02 * estimate, 4000, &unused), 1.0);
 }
 
 }  // namespace
