@@ -9,7 +9,9 @@
 # the broken joints, the energy balance error, the dashpots' net loss as a
 # fraction of the largest energy in play (negative: they gained energy) and
 # the warnings of the ledger (io/case_runner.h, kWarn*; every run above the
-# estimate also carries the forced-step warning, not listed).
+# estimate also carries the forced-step warning, not listed), and the
+# engine's time (summary.json stage_seconds without the output stage,
+# sampled by the engine's profile; one thread, two runs at a time).
 #
 # Writes validation/results/frames_time_step.md.
 # Usage: bash validation/frames_time_step.sh     (21 runs, about a minute on 2 cores)
@@ -58,16 +60,17 @@ print("# Frames A, B, C at time steps around the stable estimate\n")
 print("Produced by `bash validation/frames_time_step.sh`. The estimate is the one `framequake info` prints")
 print("(central difference, 2/omega_max with the dashpot correction); the cases ship with dt = 1e-5 s.")
 print("Dashpot loss: dissipated_viscous_J / scale_J (negative: the dashpots gained energy).")
-print("Warnings: the ledger's (io/case_runner.h), besides the forced-step warning of every run above the estimate.\n")
+print("Warnings: the ledger's (io/case_runner.h), besides the forced-step warning of every run above the estimate.")
+print("Engine: the step's stages without output (summary.json stage_seconds minus observe), one thread, two runs at a time.\n")
 for c in "ABC":
     print(f"## Frame {c}\n")
-    print("| dt / estimate | dt (s) | status | storey 1 peak drift (rad), verdict | storey 2 | broken joints | balance error | dashpot loss | ledger warnings |")
-    print("|---|---|---|---|---|---|---|---|---|")
+    print("| dt / estimate | dt (s) | steps | engine (s) | status | storey 1 peak drift (rad), verdict | storey 2 | broken joints | balance error | dashpot loss | ledger warnings |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
     for f in ["shipped", "1", "1.5", "2", "2.5", "3"]:
         path = os.path.join(work, f"out_{c}_{f}", "summary.json")
         if not os.path.exists(path):
             log = open(os.path.join(work, f"log_{c}_{f}")).read().strip().splitlines()
-            print(f"| {f} | | no summary: {log[-1] if log else ''} | | | | | | |")
+            print(f"| {f} | | | | no summary: {log[-1] if log else ''} | | | | | | |")
             continue
         d = json.load(open(path))
         e = d["energy"]
@@ -75,7 +78,8 @@ for c in "ABC":
         s = d.get("storeys", [])
         cell = lambda k: f"{s[k]['peak_drift_ratio_rad']:.4f}, {s[k]['verdict']}" if len(s) > k else ""
         ledger = [w.split(":")[0].split(";")[0] for w in d.get("warnings", []) if not w.startswith("dt_s =")]
-        print(f"| {ratio:.3g} | {d['dt_s']:.4g} | {d['status']} | {cell(0)} | {cell(1)} | {d['joints']['broken']} / {d['joints']['total']} | "
+        engine = sum(v for k, v in d["stage_seconds"].items() if k != "observe")
+        print(f"| {ratio:.3g} | {d['dt_s']:.4g} | {d['steps']} | {engine:.2f} | {d['status']} | {cell(0)} | {cell(1)} | {d['joints']['broken']} / {d['joints']['total']} | "
               f"{e['balance_error_relative']:.2e} | {e['dissipated_viscous_J'] / e['scale_J']:+.3f} | {'; '.join(ledger) or 'none'} |")
     print()
 PY
