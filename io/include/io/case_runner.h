@@ -113,7 +113,7 @@ struct CaseRunReport {
 //    unilateral contact can keep such a mode bounded, so the energy guard
 //    of the step loop does not fire). Sound runs book +0.03 to +0.8 of the
 //    energy in play as viscous loss.
-// A warning is a sure sign of a bad run; its absence is no proof of a good
+// A warning marks a run not to be trusted; its absence is no proof of a good
 // one: frame B forced to 2.5 times the estimate collapses where it stands
 // below, with neither ledger warning (frames_time_step.md). Only the
 // forced-step warning covers that run, which is why dt above the estimate
