@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <sstream>
 #include <string>
@@ -102,6 +103,28 @@ TEST(StudyCommands, CompareWritesEachRunTheTableAndTheFigure) {
   EXPECT_NE(md.find("| demo_portal_frame | completed |"), std::string::npos) << md;
   EXPECT_NE(r.out.find("| demo_portal_frame |"), std::string::npos);  // the table is also printed
   EXPECT_TRUE(is_png(out / "first_storey_drift.png"));
+  EXPECT_EQ(r.err.find("warning:"), std::string::npos) << "sound runs carry no warnings: " << r.err;
+}
+
+// A forced run's warnings (io/case_runner.h, kWarn*) are printed under its
+// line: a cube on the ground at 1e-3 s, 3.3 times its stable estimate.
+TEST(StudyCommands, CompareShowsTheWarningsOfAForcedRun) {
+  TempDir dir;
+  std::ofstream(dir.path() / "cube.yaml")
+      << "framequake_case: 1\n"
+         "name: cube\n"
+         "time: {dt_s: 1.0e-3, duration_s: 0.05}\n"
+         "materials: [{name: spruce, density_kg_per_m3: 450}]\n"
+         "ground: {level_m: 0.0}\n"
+         "blocks: [{id: cube, size_m: [0.1, 0.1, 0.1], center_m: [0, 0, 0.05], material: spruce}]\n"
+         "contact: {ground: {normal_stiffness_N_per_m: 1.0e6, restitution: 0.5, friction_coefficient: 0.4}}\n";
+  const fs::path out = dir.path() / "cmp";
+  const auto r = run_app({"compare", (dir.path() / "cube.yaml").string(), "--out", out.string(), "--force",
+                          "--no-figure"},
+                         dir.path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("cube: completed"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("\n  warning: dt_s = 0.001 s is 3.2"), std::string::npos) << r.err;
 }
 
 TEST(StudyCommands, SweepScalesTheMotionAndFindsNoCollapseInTheDemoPortal) {
