@@ -27,7 +27,6 @@
 // writes OUT_PREFIX.csv and OUT_PREFIX.md and prints the markdown table;
 // --help prints the usage, any other option is refused (exit 2).
 #include <cmath>
-#include <random>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
@@ -57,17 +56,7 @@ double damped_case_amplitude(fq::CaseDef def, double dt_s, int steps) {
   def.ground_motion.reset();
   fq::Scene scene = fq::build_scene(def);
   fq::Simulation& sim = *scene.simulation;
-  fq::BodyStore& store = sim.bodies();
-  std::mt19937 rng(12345);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  for (fq::BodyId b = 0; b < fq::BodyId(store.size()); ++b) {
-    if (store.is_fixed[b]) continue;
-    store.velocity_mps[b] = 1e-4 * fq::Vec3(u(rng), u(rng), u(rng));
-    const fq::Vec3 w = 1e-3 * fq::Vec3(u(rng), u(rng), u(rng));
-    const fq::Mat3& r = store.rotation[b];
-    store.angular_velocity_radps[b] = w;
-    store.angular_momentum_Nms[b] = r * store.principal_inertia_kgm2[b].asDiagonal() * (r.transpose() * w);
-  }
+  fq::stability::set_small_random_motion(sim.bodies());
   return fq::stability::largest_displacement(sim, steps);
 }
 

@@ -42,6 +42,8 @@ double largest_displacement(Simulation& sim, int steps, double stop_m) {
   return test::largest_displacement(sim, steps, stop_m);
 }
 
+void set_small_random_motion(BodyStore& store) { test::set_small_random_motion(store); }
+
 double mechanical_energy_J(const Simulation& sim, const std::vector<const ForceProvider*>& elastic) {
   const BodyStore& b = sim.bodies();
   double energy = 0.0;

@@ -91,6 +91,9 @@ double damped_chain_amplitude(double damping_ratio, double dt_s, int steps);
 // case scenes): the largest distance (m) of a body from its start over up
 // to `steps` steps, early once above stop_m, infinity when unstable.
 double largest_displacement(Simulation& sim, int steps, double stop_m = 1.0);
+// test::set_small_random_motion: small random velocities and spins (fixed
+// seed) on every free body of `store`.
+void set_small_random_motion(BodyStore& store);
 
 // Modulus of RK4's amplification factor on the undamped oscillator at
 // omega dt = x: |1 + z + z^2/2 + z^3/6 + z^4/24| at z = i x.

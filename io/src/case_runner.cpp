@@ -151,10 +151,10 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
     for (const std::string& w : energy_warnings(sim.ledger())) warn(w);
   try {
     {
-      std::string list = "[";
-      for (std::size_t k = 0; k < report.warnings.size(); ++k)
-        list += (k ? ", " : "") + JsonWriter::quote(report.warnings[k]);
-      writer.add_summary_field("warnings", list + "]");
+      JsonWriter list(0);
+      list.begin_array();
+      for (const std::string& w : report.warnings) list.value(w);
+      writer.add_summary_field("warnings", list.end_array().str());
     }
     if (scene.joints) add_joint_summary(writer, *scene.joints, sim.events());
     if (!scene.storeys.empty()) add_storey_summary(writer, storeys);

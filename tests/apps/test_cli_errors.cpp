@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "app_process.h"
+#include "forced_cube_case.h"
 
 namespace {
 
@@ -224,19 +225,12 @@ TEST(CliErrors, MissingCaseFile) {
 // A time step above the stable estimate is refused (exit 2, nothing
 // written); with --force the run goes ahead, exits 0, and says on stderr
 // and in summary.json that it was forced (io/case_runner.h, kWarn*). The
-// cube on the ground has its stable estimate at 3.04e-4 s (contact twist
-// mode: contacts/README.md); 1e-3 s is 3.3 times that.
+// case is forced_cube_case.h; the factor printed is dt over the engine's
+// own estimate (tests/io/test_run_warnings.cpp checks what the warnings
+// say against physics).
 TEST(CliErrors, TimeStepAboveTheLimitIsRefusedAndWhenForcedRunsWithAWarning) {
-  const char* const cube =
-      "framequake_case: 1\n"
-      "name: cube\n"
-      "time: {dt_s: 1.0e-3, duration_s: 0.05}\n"
-      "materials: [{name: spruce, density_kg_per_m3: 450}]\n"
-      "ground: {level_m: 0.0}\n"
-      "blocks: [{id: cube, size_m: [0.1, 0.1, 0.1], center_m: [0, 0, 0.05], material: spruce}]\n"
-      "contact: {ground: {normal_stiffness_N_per_m: 1.0e6, restitution: 0.5, friction_coefficient: 0.4}}\n";
   TempDir dir;
-  std::ofstream(dir.path() / "case.yaml", std::ios::binary) << cube;
+  std::ofstream(dir.path() / "case.yaml", std::ios::binary) << fq_test::kForcedCubeCase;
   const fs::path out = dir.path() / "out";
   const std::vector<std::string> args = {"run", (dir.path() / "case.yaml").string(), "--out", out.string(), "--quiet"};
   const auto refused = run_app(args, dir.path());

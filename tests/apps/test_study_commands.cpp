@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "app_process.h"
+#include "forced_cube_case.h"
 
 namespace {
 
@@ -107,17 +108,10 @@ TEST(StudyCommands, CompareWritesEachRunTheTableAndTheFigure) {
 }
 
 // A forced run's warnings (io/case_runner.h, kWarn*) are printed under its
-// line: a cube on the ground at 1e-3 s, 3.3 times its stable estimate.
+// line (the case: forced_cube_case.h).
 TEST(StudyCommands, CompareShowsTheWarningsOfAForcedRun) {
   TempDir dir;
-  std::ofstream(dir.path() / "cube.yaml")
-      << "framequake_case: 1\n"
-         "name: cube\n"
-         "time: {dt_s: 1.0e-3, duration_s: 0.05}\n"
-         "materials: [{name: spruce, density_kg_per_m3: 450}]\n"
-         "ground: {level_m: 0.0}\n"
-         "blocks: [{id: cube, size_m: [0.1, 0.1, 0.1], center_m: [0, 0, 0.05], material: spruce}]\n"
-         "contact: {ground: {normal_stiffness_N_per_m: 1.0e6, restitution: 0.5, friction_coefficient: 0.4}}\n";
+  std::ofstream(dir.path() / "cube.yaml") << fq_test::kForcedCubeCase;
   const fs::path out = dir.path() / "cmp";
   const auto r = run_app({"compare", (dir.path() / "cube.yaml").string(), "--out", out.string(), "--force",
                           "--no-figure"},

@@ -9,9 +9,9 @@
 // difference with a dashpot reading v(n-1/2) keeps it bounded only for
 //   dt <= dt_b = (2 / omega_b) (sqrt(1 + zeta^2) - zeta)
 // (the same limit the joints' estimate uses: test_stable_time_step.cpp).
-// The engine's estimate is lower (the twist about the normal, 12 k_t / m,
-// is the cube's top mode: contacts/README.md), but a cube settling straight
-// down under gravity excites only the bounce, so runs forced past the
+// The engine's estimate is lower (it is set by the cube's stiffest contact
+// mode: contacts/README.md), but a cube settling straight down under
+// gravity excites only the bounce, so runs forced past the
 // estimate show the bounce limit: below dt_b the dashpots dissipate what
 // the settling gives them; above it the bounce grows until the cube leaves
 // the ground, and the dashpots, now pushing with the velocity of the step
@@ -100,11 +100,11 @@ TEST(RunWarnings, DashpotsGainEnergyJustAboveTheClosedFormBounceLimitAndNotJustB
   const Outcome above = run_cube(dir, 1.05 * dt_b, "above");
   ASSERT_EQ(below.report.result.status, RunStatus::Completed);
   ASSERT_EQ(above.report.result.status, RunStatus::Completed);
-  // Both are above the engine's estimate (the twist mode), so both carry
+  // Both are above the engine's estimate (a stiffer mode), so both carry
   // the forced-step warning; only the run past the bounce limit has
   // dashpots that gained energy.
   const double estimate = below.report.stable_time_step.dt_crit_s;
-  ASSERT_LT(estimate, 0.95 * dt_b) << "the cube's twist mode sets a lower estimate than its bounce";
+  ASSERT_LT(estimate, 0.95 * dt_b) << "the cube's stiffest contact mode sets a lower estimate than its bounce";
   EXPECT_TRUE(mentions(below.report.warnings, "the run was forced"));
   EXPECT_TRUE(mentions(above.report.warnings, "the run was forced"));
   EXPECT_FALSE(mentions(below.report.warnings, "dashpots gained")) << "dt = 0.95 dt_b must dissipate";

@@ -191,11 +191,12 @@ inline void add_irregular_chain_joints(JointSystem& js, const BodyStore& store, 
   }
 }
 // Small random velocities and spins of every free body (fixed seed), to
-// excite all modes of a chain at once.
+// excite all modes of a scene at once.
 inline void set_small_random_motion(BodyStore& store) {
   std::mt19937 rng(12345);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  for (BodyId b = 1; b < BodyId(store.size()); ++b) {
+  for (BodyId b = 0; b < BodyId(store.size()); ++b) {
+    if (store.is_fixed[b]) continue;
     store.velocity_mps[b] = 1e-4 * Vec3(u(rng), u(rng), u(rng));
     const Vec3 w = 1e-3 * Vec3(u(rng), u(rng), u(rng));
     const Mat3& r = store.rotation[b];
