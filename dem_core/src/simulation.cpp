@@ -109,6 +109,13 @@ Simulation::Simulation(BodyStore bodies, SimulationSettings settings, GroundMoti
     throw std::invalid_argument("time step dt_s must be a positive number of seconds");
   if (!(settings_.duration_s >= 0.0) || !std::isfinite(settings_.duration_s))
     throw std::invalid_argument("duration_s must be a non-negative number of seconds");
+  if (!(settings_.duration_s / settings_.dt_s <= kMaxSimulationSteps)) {
+    std::ostringstream m;
+    m << "duration_s / dt_s = " << settings_.duration_s << " s / " << settings_.dt_s << " s is "
+      << settings_.duration_s / settings_.dt_s << " steps; at most " << kMaxSimulationSteps
+      << " are accepted (check the units of dt_s and duration_s)";
+    throw std::invalid_argument(m.str());
+  }
   if (settings_.profile_every_steps < 1) settings_.profile_every_steps = 1;
   // The SIMD form of the lane kernels, read here, outside any parallel
   // region: a bad FRAMEQUAKE_SIMD throws now (lane_isa.h), not inside a step.

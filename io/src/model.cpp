@@ -202,6 +202,22 @@ Model build_model(const CaseDef& def_in) {
   // side: a member toppling about its base lands up to its height away.
   if (def.ground || !def.supports.empty()) {
     const double level_m = def.ground ? def.ground->level_m : 0.0;
+    // With ground contact, a member below the ground would start inside it:
+    // the contact throws it out at the first step, breaking its joints (a
+    // support node below the ground is a mistake in the node heights or in
+    // level_m, an untrimmed brace end one in trim_m). Without ground contact
+    // members pass through the ground and may start in it.
+    const bool ground_contact = def.contact && def.contact->ground;
+    for (std::size_t i = 0; ground_contact && i < def.members.size(); ++i) {
+      Vec3 mlo = Vec3::Constant(std::numeric_limits<double>::infinity());
+      Vec3 mhi = -mlo;
+      extend_bounds(member_boxes[i].position_m, member_boxes[i].orientation, member_boxes[i].size_m, mlo, mhi);
+      if (mlo.z() < level_m - kGroundTolerance_m)
+        fail(def.members[i].line, item_path("members", i) + ".nodes",
+             "the member '" + def.members[i].id + "' reaches " + fmt(level_m - mlo.z()) +
+                 " m below the ground surface (z = " + fmt(level_m) +
+                 " m); raise its nodes, trim it clear of the ground (trim_m) or lower ground.level_m");
+    }
     for (std::size_t i = 0; i < def.blocks.size(); ++i) {
       Vec3 blo = Vec3::Constant(std::numeric_limits<double>::infinity());
       Vec3 bhi = -blo;
@@ -267,6 +283,11 @@ Model build_model(const CaseDef& def_in) {
   }
   if (!(model.settings.duration_s > 0.0) || !std::isfinite(model.settings.duration_s))
     fail(time_line, "time.duration_s", "expected a positive duration in s");
+  if (const double steps = model.settings.duration_s / model.settings.dt_s; !(steps <= kMaxSimulationSteps))
+    fail(time_line, def.time.duration_s ? "time.duration_s" : "time.dt_s",
+         "duration " + fmt(model.settings.duration_s) + " s at dt_s = " + fmt(model.settings.dt_s) + " s is " +
+             fmt(steps) + " steps; at most " + fmt(kMaxSimulationSteps) +
+             " are accepted (check the units of dt_s and duration_s)");
   return model;
 }
 

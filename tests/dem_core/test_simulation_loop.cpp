@@ -263,6 +263,12 @@ TEST(SimulationLoop, RefusesUnusableSettingsAndLateProviders) {
     EXPECT_THROW(Simulation(two_boxes(), settings(dt, 1.0)), std::invalid_argument) << dt;
   for (double d : {-1.0, nan, std::numeric_limits<double>::infinity()})
     EXPECT_THROW(Simulation(two_boxes(), settings(1e-3, d)), std::invalid_argument) << d;
+  // More steps than kMaxSimulationSteps: a unit mistake, and past 2^63 the
+  // step count would overflow (a run of "0 steps" reported as completed).
+  // 1e12 steps exactly are accepted.
+  for (const auto& [dt, d] : {std::pair{1e-300, 0.2}, std::pair{1e-4, 1e16}, std::pair{1e-5, 1.0000001e7}})
+    EXPECT_THROW(Simulation(two_boxes(), settings(dt, d)), std::invalid_argument) << dt << " " << d;
+  EXPECT_EQ(Simulation(two_boxes(), settings(1e-5, 1e7)).total_steps(), std::int64_t(1e12));
   Simulation sim(two_boxes(), settings(1e-3, 0.01));
   ASSERT_TRUE(sim.step());
   EXPECT_THROW(sim.add_force_provider(std::make_unique<PoisonProvider>(0, 0, false)), std::logic_error);

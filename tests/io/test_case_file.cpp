@@ -606,6 +606,65 @@ TEST(CaseFile, BuilderRejectsBlockBelowGround) {
   EXPECT_EQ(m.def.output.folder, fs::path("out/case"));
 }
 
+TEST(CaseFile, BuilderRejectsMoreStepsThanTheLimit) {
+  // dt_s in the wrong unit: 0.2 s at 1e-300 s would be 2e299 steps (past
+  // 2^63 the step count overflowed and the run "completed" after 0 steps).
+  TempDir dir;
+  const fs::path file = dir.write("steps.yaml", "framequake_case: 1\ntime: {dt_s: 1.0e-300, duration_s: 0.2}\n"
+                                                "materials: [{name: spruce, density_kg_per_m3: 450}]\n" +
+                                                    kBlock);
+  try {
+    fq::build_model(fq::load_case_file(file));
+    FAIL();
+  } catch (const fq::InputError& e) {
+    EXPECT_EQ(e.file(), file.string());
+    EXPECT_EQ(e.line(), 2);
+    EXPECT_EQ(e.field(), "time.duration_s");
+    for (const char* phrase : {"2e+299 steps", "at most 1e+12", "units of dt_s and duration_s"})
+      EXPECT_NE(std::string(e.what()).find(phrase), std::string::npos) << e.what();
+  }
+}
+
+TEST(CaseFile, BuilderRejectsMemberBelowGroundWhenItHasGroundContact) {
+  // A column whose foot node is 0.1 m under the ground surface: with ground
+  // contact it would start 0.1 m inside the ground.
+  fq::CaseDef def;
+  def.time.duration_s = 1.0;
+  def.materials.push_back({"spruce", 450.0, 0});
+  def.sections.push_back({"col", 0.01, 0.02, 0});
+  def.nodes.push_back({"a", fq::Vec3(0, 0, -0.1), 0});
+  def.nodes.push_back({"b", fq::Vec3(0, 0, 0.2), 0});
+  fq::MemberDef m;
+  m.id = "c";
+  m.kind = fq::MemberKind::Column;
+  m.node_a = "a";
+  m.node_b = "b";
+  m.section = "col";
+  m.material = "spruce";
+  m.line = 9;
+  def.members.push_back(m);
+  def.ground = fq::GroundDef{0.0};
+  // Without ground contact the member passes through the ground: accepted.
+  EXPECT_NO_THROW(fq::build_model(def));
+  def.contact = fq::ContactDef{};
+  def.contact->ground = fq::ContactParams{};
+  try {
+    fq::build_model(def);
+    FAIL();
+  } catch (const fq::InputError& e) {
+    EXPECT_EQ(e.line(), 9);
+    EXPECT_EQ(e.field(), "members[0].nodes");
+    EXPECT_NE(std::string(e.what()).find("'c' reaches 0.1 m below the ground surface"), std::string::npos)
+        << e.what();
+  }
+  // Standing on the surface (the foot's face at z = 0) is fine.
+  def.nodes[0].xyz_m.z() = 0.0;
+  EXPECT_NO_THROW(fq::build_model(def));
+  // So is a foot 1 mm above it; 1 mm below is not.
+  def.nodes[0].xyz_m.z() = -0.001;
+  EXPECT_THROW(fq::build_model(def), fq::InputError);
+}
+
 TEST(CaseFile, BuilderRejectsUnknownReferenceInCodeBuiltCase) {
   fq::CaseDef def;
   def.time.duration_s = 1.0;

@@ -31,6 +31,12 @@
 
 namespace fq {
 
+// The most steps a simulation accepts (duration_s / dt_s, rounded): 1e12
+// steps take weeks even at a microsecond each, so a larger count is a
+// mistake in the units of dt_s or duration_s; and the step counter and
+// t = step dt stay exact integers and times far below it (2^53).
+inline constexpr double kMaxSimulationSteps = 1e12;
+
 struct SimulationSettings {
   double dt_s = 1e-5;                                  // time step (s)
   double duration_s = 1.0;                             // simulated time (s)
