@@ -143,6 +143,12 @@ void ContactSystem::accumulate_forces(BodyStore& bodies, const StepInfo& step) {
   }
   std::swap(previous_, contacts_);
   narrow_phase(bodies, step);
+  if (step.step == 0 && !initial_overlaps_checked_) {
+    initial_overlaps_checked_ = true;
+    // Again, now with the overlapping pairs starting from their overlap
+    // (previous_ is unchanged, contacts_ is rewritten).
+    if (soft_start_initial_overlaps_()) narrow_phase(bodies, step);
+  }
   if (!soft_start_pairs_.empty()) {
     // A released pair without any contact point has separated: from now on
     // it is an ordinary pair. contacts_ is sorted by pair key.
@@ -352,6 +358,30 @@ void ContactSystem::apply_law(ContactPoint* first, ContactPoint* last, const Ste
       c.elastic_tangential_prev_J = c.elastic_tangential_J;
     }
   }
+}
+
+bool ContactSystem::soft_start_initial_overlaps_() {
+  // contacts_ is sorted by pair key, ground contacts last (key high word
+  // all ones); one entry per pair with its deepest point.
+  std::vector<InitialOverlap> found;
+  std::vector<std::uint64_t> keys;
+  for (const ContactPoint& c : contacts_) {
+    if ((c.pair_key & kGroundKeyHigh) == kGroundKeyHigh) continue;
+    if (!(c.depth_m - c.reference_depth_m > kInitialOverlapTolerance_m)) continue;
+    if (keys.empty() || keys.back() != c.pair_key) {
+      keys.push_back(c.pair_key);
+      found.push_back({c.body_a, c.body_b, 0.0});
+    }
+    found.back().depth_m = std::max(found.back().depth_m, c.depth_m);
+  }
+  if (keys.empty()) return false;
+  for (const std::uint64_t key : keys)
+    if (!std::binary_search(soft_start_pairs_.begin(), soft_start_pairs_.end(), key))
+      soft_start_pairs_.insert(std::lower_bound(soft_start_pairs_.begin(), soft_start_pairs_.end(), key), key);
+  std::stable_sort(found.begin(), found.end(),
+                   [](const InitialOverlap& x, const InitialOverlap& y) { return x.depth_m > y.depth_m; });
+  initial_overlaps_ = std::move(found);
+  return true;
 }
 
 void ContactSystem::narrow_phase(const BodyStore& bodies, const StepInfo& step) {

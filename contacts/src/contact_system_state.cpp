@@ -13,7 +13,7 @@ namespace fq {
 
 namespace {
 
-constexpr std::uint32_t kContactStateVersion = 1;
+constexpr std::uint32_t kContactStateVersion = 2;  // 2: initial overlaps
 
 void save_point(StateWriter& out, const ContactPoint& c) {
   out.pod(c.body_a);
@@ -148,6 +148,13 @@ void ContactSystem::save_state(StateWriter& out) const {
   for (const ContactPoint& c : contacts_) save_point(out, c);
   out.vec(soft_start_pairs_);
   out.u64(released_read_);
+  out.boolean(initial_overlaps_checked_);
+  out.u64(initial_overlaps_.size());
+  for (const InitialOverlap& o : initial_overlaps_) {
+    out.u64(std::uint64_t(o.body_a));
+    out.u64(std::uint64_t(o.body_b));
+    out.f64(o.depth_m);
+  }
   out.f64(elastic_J_);
   out.f64(viscous_J_);
   out.f64(friction_J_);
@@ -180,6 +187,19 @@ void ContactSystem::load_state(StateReader& in) {
   for (std::uint64_t k = 0; k < n; ++k) contacts.push_back(load_point(in, body_material_.size(), coeffs_.size()));
   auto soft_start = in.vec<std::uint64_t>("released pairs in overlap");
   const std::uint64_t released_read = in.u64("released pairs read");
+  const bool overlaps_checked = in.boolean("initial overlaps checked flag");
+  const std::uint64_t overlap_count = in.u64("initial overlap count");
+  if (overlap_count > in.remaining() / 24) in.fail("initial overlap count larger than the data left");
+  std::vector<InitialOverlap> overlaps;
+  for (std::uint64_t k = 0; k < overlap_count; ++k) {
+    InitialOverlap o;
+    const std::uint64_t a = in.u64("initial overlap body a"), b = in.u64("initial overlap body b");
+    if (a >= body_material_.size() || b >= body_material_.size()) in.fail("initial overlap names a body out of range");
+    o.body_a = BodyId(a);
+    o.body_b = BodyId(b);
+    o.depth_m = in.f64("initial overlap depth");
+    overlaps.push_back(o);
+  }
   const double elastic = in.f64("contact elastic energy");
   const double viscous = in.f64("contact viscous energy");
   const double friction = in.f64("contact friction energy");
@@ -191,6 +211,8 @@ void ContactSystem::load_state(StateReader& in) {
   previous_.clear();
   soft_start_pairs_ = std::move(soft_start);
   released_read_ = std::size_t(released_read);
+  initial_overlaps_checked_ = overlaps_checked;
+  initial_overlaps_ = std::move(overlaps);
   elastic_J_ = elastic;
   viscous_J_ = viscous;
   friction_J_ = friction;

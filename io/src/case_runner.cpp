@@ -145,6 +145,13 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
                                                  : "check its results with another integrator");
     warn(w.str());
   }
+  // Step 0's forces (run() would do it first): the contacts then know which
+  // pairs overlap at the start.
+  sim.initialize();
+  if (scene.contacts) {
+    if (const std::string w = initial_overlap_warning(scene.contacts->initial_overlaps(), sim.bodies()); !w.empty())
+      warn(w);
+  }
   report.result = sim.run(options.stop_requested);
   // An unstable run has already failed with its own message.
   if (report.result.status != RunStatus::Unstable)
@@ -186,6 +193,24 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
 }
 
 }  // namespace
+
+std::string initial_overlap_warning(const std::vector<InitialOverlap>& overlaps, const BodyStore& bodies) {
+  if (overlaps.empty()) return "";
+  std::ostringstream w;
+  w << std::setprecision(3) << overlaps.size() << (overlaps.size() == 1 ? " pair" : " pairs")
+    << " of bodies not held by a joint overlap at the start (";
+  const std::size_t shown = std::min<std::size_t>(3, overlaps.size());
+  for (std::size_t k = 0; k < shown; ++k) {
+    const InitialOverlap& o = overlaps[k];
+    w << (k ? "; " : "") << "'" << bodies.info[std::size_t(o.body_a)].name << "' and '"
+      << bodies.info[std::size_t(o.body_b)].name << "' by " << o.depth_m * 1e3 << " mm";
+  }
+  if (overlaps.size() > shown) w << "; ...";
+  w << "): their contacts take the overlap as their rest state, as for members a broken joint releases, and "
+       "resist only further penetration; if the boxes should not overlap, trim the members (trim_m), turn "
+       "their sections (roll_deg) or move the blocks";
+  return w.str();
+}
 
 std::vector<std::string> energy_warnings(const EnergyLedger& l) {
   std::vector<std::string> warnings;

@@ -1,6 +1,7 @@
 // The warnings of a run that ran but may not mean what it seems
 // (io/case_runner.h, kWarn*): a time step forced above the stable estimate,
-// an energy ledger that does not close, dashpots that gained energy.
+// an energy ledger that does not close, dashpots that gained energy, bodies
+// that overlap at the start.
 //
 // The dashpot check is tested against a closed form. A 0.1 m cube resting
 // flat on the ground sits on four corner contacts (k_n each, dashpot c =
@@ -174,6 +175,36 @@ TEST(RunWarnings, LedgerChecksFireAtTheirThresholds) {
   small_gain.kinetic_J = 1.0 - small_gain.dissipated_viscous_J;
   small_gain.update_scale();
   EXPECT_TRUE(energy_warnings(small_gain).empty());
+}
+
+TEST(RunWarnings, BodiesOverlappingAtTheStartAreNamedWithTheirDepth) {
+  // Two blocks 1.5 mm into each other (centres 0.0985 m apart, 0.1 m cubes)
+  // and a third touching the second face to face: one pair overlaps.
+  test::TempDir dir;
+  const std::string text =
+      "framequake_case: 1\n"
+      "time: {dt_s: 1.0e-5, duration_s: 0.01}\n"
+      "materials: [{name: spruce, density_kg_per_m3: 450}]\n"
+      "ground: {level_m: 0.0}\n"
+      "blocks:\n"
+      "  - {id: left, size_m: [0.1, 0.1, 0.1], center_m: [0, 0, 0.05], material: spruce}\n"
+      "  - {id: middle, size_m: [0.1, 0.1, 0.1], center_m: [0.0985, 0, 0.05], material: spruce}\n"
+      "  - {id: right, size_m: [0.1, 0.1, 0.1], center_m: [0.1985, 0, 0.05], material: spruce}\n"
+      "contact:\n"
+      "  ground: {normal_stiffness_N_per_m: 1.0e6, restitution: 0.5, friction_coefficient: 0.4}\n"
+      "  default: {normal_stiffness_N_per_m: 1.0e6, restitution: 0.5, friction_coefficient: 0.4}\n"
+      "output: {frame_interval_s: 0.01, history_interval_s: 0.001}\n";
+  const CaseDef def = load_case_file(dir.write("overlap.yaml", text));
+  CaseRunOptions options;
+  options.output_folder = dir.path() / "overlap";
+  const CaseRunReport report = run_case(def, options);
+  ASSERT_EQ(report.result.status, RunStatus::Completed);
+  ASSERT_EQ(report.warnings.size(), 1u);
+  const std::string& w = report.warnings.front();
+  EXPECT_NE(w.find("1 pair of bodies not held by a joint overlap at the start ('left' and 'middle' by 1.5 mm)"),
+            std::string::npos)
+      << w;
+  EXPECT_EQ(w.find("'right'"), std::string::npos) << "touching is not overlapping: " << w;
 }
 
 }  // namespace

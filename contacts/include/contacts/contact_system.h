@@ -80,6 +80,17 @@
 // it has no contact point at all (DEM codes use the same idea for particles
 // generated in overlap).
 //
+// Pairs that overlap at the start: two bodies not held by a joint that
+// overlap by more than kInitialOverlapTolerance_m at the first force
+// evaluation (step 0) -- in a case file, a beam end inside a column it is
+// not jointed to, an untrimmed brace, blocks placed into each other -- start
+// from their overlap in the same way, instead of being thrown apart at the
+// first step with energy k d^2 / 2 that no load put in (a 3D frame without
+// trims stored 4 J that way and broke its joints within a millisecond).
+// initial_overlaps() lists them, deepest first, so that the run can warn.
+// The ground is not a pair: a body below the ground surface is refused by
+// the case builder instead (io/src/model.cpp).
+//
 // Per-point stiffness: contact_params.h, scaled by the point's weight s_i
 // (contact_manifold.h). Dashpot mass: the pair's reduced mass (m_a m_b /
 // (m_a + m_b), or the free body's mass against a fixed body or the ground)
@@ -105,6 +116,17 @@
 #include "dem_core/force_provider.h"
 
 namespace fq {
+
+// Overlaps below this depth at the start are round-off of the geometry
+// (corner heights of rotated boxes, node coordinates written in decimals);
+// 1 nm keeps any real mistake (tenths of millimetres and more).
+inline constexpr double kInitialOverlapTolerance_m = 1e-9;
+
+// A pair of bodies overlapping at the start (see above).
+struct InitialOverlap {
+  BodyId body_a = kNoBody, body_b = kNoBody;
+  double depth_m = 0.0;  // deepest point's overlap (m)
+};
 
 // One current contact point, readable for output.
 struct ContactPoint {
@@ -211,6 +233,9 @@ class ContactSystem : public ForceProvider {
   std::size_t candidate_pair_count() const { return broad_.pairs().size(); }
   double skin_m() const { return broad_.skin_m(); }
   double elastic_J() const { return elastic_J_; }
+  // Pairs of bodies that overlapped at the first force evaluation (step 0)
+  // and start from their overlap (header), deepest first; empty before it.
+  const std::vector<InitialOverlap>& initial_overlaps() const { return initial_overlaps_; }
   // Cumulative losses through the current step, as reported to the ledger (J).
   double dissipated_viscous_J() const { return viscous_J_ - viscous_half_J_; }
   double dissipated_friction_J() const { return friction_J_ - friction_half_J_; }
@@ -274,6 +299,12 @@ class ContactSystem : public ForceProvider {
   // how many entries of BondedPairs::released() have been read.
   std::vector<std::uint64_t> soft_start_pairs_;  // sorted
   std::size_t released_read_ = 0;
+  std::vector<InitialOverlap> initial_overlaps_;
+  // Step 0's overlaps found; once per simulation (a checkpoint carries it).
+  bool initial_overlaps_checked_ = false;
+  // After step 0's narrow phase: pairs overlapping by more than the
+  // tolerance join soft_start_pairs_ and initial_overlaps_; true if any did.
+  bool soft_start_initial_overlaps_();
   std::vector<std::int32_t> body_start_;     // CSR of contacts per body
   std::vector<std::int32_t> body_entries_;   // contact index * 2 + (0: a side, 1: b side)
   std::vector<Vec3> body_force_N_, body_torque_Nm_;  // one-thread gather: sums per body

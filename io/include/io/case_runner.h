@@ -98,6 +98,9 @@ struct CaseRunReport {
 
 // Thresholds of the run's warnings (summary.json "warnings"):
 //  - the time step exceeds the stable estimate (a run forced with --force);
+//  - bodies not held by a joint overlap at the start by more than
+//    kInitialOverlapTolerance_m (contacts/contact_system.h), which their
+//    contacts then take as their rest state (initial_overlap_warning);
 //  - the energy ledger does not close to kWarnBalanceErrorRelative of the
 //    largest energy in play: at a stable step it closes to second order in
 //    dt, 5e-10 to 1.1e-3 in the frame cases, the demos and the amplitude
@@ -124,6 +127,12 @@ constexpr double kWarnViscousGainRelative = 1e-3;
 // The ledger's two warnings above for the end of a run (empty when the
 // balance closes and the dashpots dissipated).
 std::vector<std::string> energy_warnings(const EnergyLedger& ledger);
+
+// The warning for bodies overlapping at the start (ContactSystem::
+// initial_overlaps: pairs not held by a joint that start inside each other,
+// which the contacts then take as their rest state): the count and the
+// three deepest pairs by name. Empty when there are none.
+std::string initial_overlap_warning(const std::vector<InitialOverlap>& overlaps, const BodyStore& bodies);
 
 // Runs the case and writes its output. Throws InputError (bad case values or
 // a time step above the stable limit, nothing written) or OutputError.
