@@ -56,7 +56,11 @@ Vec3 GroundMotion::acceleration(double t_s) const {
   Vec3 a = Vec3::Zero();
   for (const GroundMotionComponent& c : components_) {
     const double t_window = t_s / c.time_scale;
-    if (t_window < 0.0 || t_window > c.window_length_s) continue;
+    // The window's last instant counts. The step loop reaches it as n dt,
+    // and (n dt) / time_scale lands an ulp past the length (0.3162 and 20 s:
+    // 20.000000000000004 s), which dropped the last step's motion; the
+    // record's own end has the same tolerance (AccelerationRecord::at).
+    if (t_window < 0.0 || t_window > c.window_length_s + 1e-9 * c.record.dt_s) continue;
     a += (c.amplitude_scale * c.record.at(c.window_start_s + t_window)) * c.direction;
   }
   return a;

@@ -9,6 +9,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "dem_core/ground_motion.h"
@@ -162,6 +163,31 @@ TEST(GroundMotion, WindowSelectsPartOfTheRecordAndIsZeroOutside) {
   EXPECT_EQ(tail.acceleration(0.5).x(), 0.5);
   EXPECT_TRUE(tail.acceleration(0.75).isZero(0.0));
   EXPECT_EQ(tail.end_time_s(), 0.5);
+}
+
+TEST(GroundMotion, WindowEndIsReachedAtTheStepLoopsLastTime) {
+  // The step loop's last time is n dt with n = round(duration / dt), and
+  // (n dt) / time_scale can land an ulp past the window length: 20 record
+  // seconds at time scale 0.3162 (the frames) and dt = 1e-5 s end at
+  // t = 632400e-5 s, 20.000000000000004 record seconds. The last step must
+  // still feel the window's last sample.
+  AccelerationRecord r;
+  r.source = "ramp";
+  r.dt_s = 0.01;
+  for (int k = 0; k <= 3000; ++k) r.acceleration_mps2.push_back(1.0 + 0.001 * k);  // 1 + 0.1 t (m/s^2)
+  for (const auto& [time_scale, length_s] : {std::pair{0.3162, 20.0}, std::pair{0.2108, 3.0}, std::pair{0.5, 3.0}}) {
+    GroundMotionComponent c = component(r, Vec3::UnitX());
+    c.time_scale = time_scale;
+    c.window_length_s = length_s;
+    GroundMotion gm;
+    gm.add_component(c);
+    const double dt = 1e-5;
+    const auto n = std::llround(gm.end_time_s() / dt);
+    ASSERT_GT(double(n) * dt / time_scale, length_s) << "the case this test is about";
+    EXPECT_NEAR(gm.acceleration(double(n) * dt).x(), 1.0 + 0.1 * length_s, 1e-9) << time_scale << " " << length_s;
+    // A step later is outside.
+    EXPECT_TRUE(gm.acceleration(double(n + 1) * dt).isZero(0.0));
+  }
 }
 
 TEST(GroundMotion, ComponentsAlongDifferentDirectionsSum) {
