@@ -138,6 +138,7 @@ RunArgs parse_run_args(int argc, char** argv, int first, const char* help, bool 
     const std::string arg = argv[i];
     auto need_value = [&](const char* name) -> std::string {
       if (i + 1 >= argc) usage_error(std::string(name) + " needs a value", help);
+      if (argv[i + 1][0] == '\0') usage_error(std::string(name) + " needs a value, got an empty one", help);
       return argv[++i];
     };
     if (arg == "--help" || arg == "-h") {

@@ -114,6 +114,7 @@ StudyArgs parse_study_args(int argc, char** argv, const char* help, bool sweep) 
     const std::string arg = argv[i];
     auto value = [&](const char* name) -> std::string {
       if (i + 1 >= argc) usage_error(std::string(name) + " needs a value", help);
+      if (argv[i + 1][0] == '\0') usage_error(std::string(name) + " needs a value, got an empty one", help);
       return argv[++i];
     };
     if (arg == "--help" || arg == "-h") {

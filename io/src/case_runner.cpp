@@ -421,6 +421,9 @@ void describe_case(const CaseDef& def, std::ostream& out) {
   if (std::isfinite(scene.stable_time_step.dt_crit_s))
     out << "  (stable limit " << scene.stable_time_step.dt_crit_s << " s, set by "
         << scene.stable_time_step.stiffest_element << ")";
+  // What run will say (run_case refuses it unless forced).
+  if (s.dt_s > scene.stable_time_step.dt_crit_s)
+    out << "\n            ABOVE THE STABLE LIMIT: run refuses this time step unless --force is given";
   out << "\nduration    " << s.duration_s << " s = " << sim.total_steps() << " steps\n";
   const GroundMotion& gm = sim.ground_motion();
   if (gm.empty()) {

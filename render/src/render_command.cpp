@@ -73,6 +73,7 @@ Args parse(int argc, char** argv, int first) {
     const std::string arg = argv[i];
     auto value = [&](const char* name) -> std::string {
       if (i + 1 >= argc) throw UsageError{std::string(name) + " needs a value"};
+      if (argv[i + 1][0] == '\0') throw UsageError{std::string(name) + " needs a value, got an empty one"};
       return argv[++i];
     };
     if (arg == "--help" || arg == "-h") {

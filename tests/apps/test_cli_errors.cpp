@@ -191,6 +191,7 @@ TEST(CliErrors, TheBaseCaseIsValid) {
   std::ofstream(dir.path() / "rec.AT2") << kBaseRecord;
   const auto r = run_app({"info", (dir.path() / "case.yaml").string()}, dir.path());
   EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.out.find("ABOVE THE STABLE LIMIT"), std::string::npos) << r.out;
 }
 
 TEST(CliErrors, MalformedCaseFiles) {
@@ -233,6 +234,12 @@ TEST(CliErrors, TimeStepAboveTheLimitIsRefusedAndWhenForcedRunsWithAWarning) {
   std::ofstream(dir.path() / "case.yaml", std::ios::binary) << fq_test::kForcedCubeCase;
   const fs::path out = dir.path() / "out";
   const std::vector<std::string> args = {"run", (dir.path() / "case.yaml").string(), "--out", out.string(), "--quiet"};
+  // info says so before any run (and still describes the case: exit 0).
+  const auto info = run_app({"info", (dir.path() / "case.yaml").string()}, dir.path());
+  EXPECT_EQ(info.code, 0) << info.err;
+  EXPECT_NE(info.out.find("ABOVE THE STABLE LIMIT: run refuses this time step unless --force is given"),
+            std::string::npos)
+      << info.out;
   const auto refused = run_app(args, dir.path());
   EXPECT_EQ(refused.code, 2) << refused.err;
   EXPECT_NE(refused.err.find("case.yaml:3: field 'time.dt_s'"), std::string::npos) << refused.err;
@@ -305,6 +312,8 @@ TEST(CliUsage, UsageErrorsExitTwoWithUsageOnStderr) {
       {{"run", c, "--bogus"}, "unknown option '--bogus'"},
       {{"info", c, "--out", "x"}, "unknown option '--out'"},
       {{"run", c, "--out"}, "--out needs a value"},
+      {{"run", c, "--out", ""}, "--out needs a value, got an empty one"},
+      {{"compare", c, "--out", ""}, "--out needs a value, got an empty one"},
       {{"run", c, "--threads", "0"}, "--threads expects a whole number"},
       {{"run", c, "--threads", "two"}, "--threads expects a whole number"},
       {{"run", c, c}, "unexpected argument"},
