@@ -48,6 +48,15 @@ BodyId BodyStore::add_box(const BoxBodyDef& def) {
 
   const double m = box_mass_kg(def.size_m, def.density_kg_per_m3);
   const Vec3 inertia = box_principal_inertia_kgm2(def.size_m, m);
+  // Valid sizes and densities can still give a mass or inertia that is 0 or
+  // infinite in doubles (edges of 1e-200 m, densities of 1e300 kg/m^3); the
+  // first step would then divide by it.
+  if (!std::isnormal(m) || !std::isnormal(inertia.minCoeff()) || !inertia.allFinite() ||
+      !std::isnormal(1.0 / inertia.maxCoeff()))
+    throw std::invalid_argument("body '" + def.name + "': its mass and moments of inertia (" + std::to_string(m) +
+                                " kg, edges " + std::to_string(def.size_m.minCoeff()) + ".." +
+                                std::to_string(def.size_m.maxCoeff()) +
+                                " m) are not representable: check the units of its size and density");
   const Quat q = def.orientation.normalized();
   const Mat3 r = q.toRotationMatrix();
 

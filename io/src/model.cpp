@@ -240,15 +240,21 @@ Model build_model(const CaseDef& def_in) {
     model.ground_body = model.bodies.add_box(g);
   }
 
-  try {
-    for (std::size_t i = 0; i < member_boxes.size(); ++i)
+  // Sizes and densities were checked above; add_box still refuses a mass or
+  // inertia that doubles cannot hold (edges of 1e-200 m), named here.
+  for (std::size_t i = 0; i < member_boxes.size(); ++i) {
+    try {
       model.member_body.push_back(model.bodies.add_box(member_boxes[i]));
-    for (std::size_t i = 0; i < block_boxes.size(); ++i)
+    } catch (const std::invalid_argument& e) {
+      fail(def.members[i].line, item_path("members", i), e.what());
+    }
+  }
+  for (std::size_t i = 0; i < block_boxes.size(); ++i) {
+    try {
       model.block_body.push_back(model.bodies.add_box(block_boxes[i]));
-  } catch (const std::invalid_argument& e) {
-    // Every size and density was checked above; kept so a surprise still
-    // names the file.
-    fail(0, "", e.what());
+    } catch (const std::invalid_argument& e) {
+      fail(def.blocks[i].line, item_path("blocks", i) + ".size_m", e.what());
+    }
   }
 
   // Ground motion.

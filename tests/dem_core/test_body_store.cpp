@@ -161,6 +161,34 @@ TEST(BodyStore, InvalidSizeOrDensityThrowsAndNamesTheBody) {
     EXPECT_THROW(store.add_box(def), std::invalid_argument) << "density " << rho;
     EXPECT_EQ(store.size(), 0u);
   }
+  // Positive, finite sizes and densities whose mass or inertia doubles
+  // cannot hold: 1e-200 m edges (m = 0), 1e-100 m edges (I = 0), 1e200 m
+  // edges (m = inf), 1e-300 kg/m^3 on 1 mm edges (m = 1e-309, subnormal).
+  struct Extreme {
+    Vec3 size_m;
+    double density;
+  };
+  for (const Extreme& x : {Extreme{Vec3::Constant(1e-200), 450.0}, Extreme{Vec3::Constant(1e-100), 450.0},
+                           Extreme{Vec3::Constant(1e200), 450.0}, Extreme{Vec3::Constant(1e-3), 1e-300}}) {
+    BodyStore store;
+    BoxBodyDef def = generic_box();
+    def.name = "speck";
+    def.size_m = x.size_m;
+    def.density_kg_per_m3 = x.density;
+    try {
+      store.add_box(def);
+      ADD_FAILURE() << "size " << x.size_m.x() << " m, density " << x.density << " was accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("'speck'"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("not representable"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(store.size(), 0u);
+  }
+  // A 1 mm timber chip is fine.
+  BodyStore store;
+  BoxBodyDef chip = generic_box();
+  chip.size_m = Vec3::Constant(1e-3);
+  EXPECT_NO_THROW(store.add_box(chip));
 }
 
 }  // namespace
