@@ -51,4 +51,14 @@ ContactScene make_scene(BodyStore store, const SimulationSettings& settings, Con
   return scene;
 }
 
+// The boxes of `store` without gravity, dt = 1e-5 s, one contact material
+// (k_n = 1e5 N/m, e = 0.5, mu = 0.4): two boxes meeting as the test sets
+// them, with nothing else acting (test_bonded_release, test_initial_overlap).
+inline ContactScene weightless_scene(BodyStore store) {
+  SimulationSettings s;
+  s.dt_s = 1e-5;
+  s.gravity_mps2 = Vec3::Zero();
+  return make_scene(std::move(store), s, [](ContactSystem& c) { c.set_pair_params(0, 0, params(1e5, 0.5, 0.4)); });
+}
+
 }  // namespace fq::test

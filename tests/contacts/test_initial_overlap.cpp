@@ -13,16 +13,7 @@ namespace {
 
 using fq::Vec3;
 
-// The boxes of `store` without gravity, dt = 1e-5 s, one contact material
-// (k_n = 1e5 N/m, e = 0.5, mu = 0.4).
-fq::test::ContactScene weightless_scene(fq::BodyStore store) {
-  fq::SimulationSettings s;
-  s.dt_s = 1e-5;
-  s.gravity_mps2 = Vec3::Zero();
-  return fq::test::make_scene(std::move(store), s, [](fq::ContactSystem& c) {
-    c.set_pair_params(0, 0, fq::test::params(1e5, 0.5, 0.4));
-  });
-}
+using fq::test::weightless_scene;
 
 // Pair (0, 1) overlapping by 1 mm, pair (2, 3) face to face exactly, box 4 alone.
 fq::BodyStore overlapping_and_touching_boxes() {

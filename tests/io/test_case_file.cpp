@@ -625,24 +625,31 @@ TEST(CaseFile, BuilderRejectsMoreStepsThanTheLimit) {
   }
 }
 
-TEST(CaseFile, BuilderRejectsMemberBelowGroundWhenItHasGroundContact) {
-  // A column whose foot node is 0.1 m under the ground surface: with ground
-  // contact it would start 0.1 m inside the ground.
+// A case built in code: one column of section "col" (10 x 20 mm) from
+// (0, 0, foot_z) to (0, 0, top_z), its `section` as given, at line `line`.
+fq::CaseDef one_column_case(double foot_z_m, double top_z_m, const std::string& section, int line) {
   fq::CaseDef def;
   def.time.duration_s = 1.0;
   def.materials.push_back({"spruce", 450.0, 0});
   def.sections.push_back({"col", 0.01, 0.02, 0});
-  def.nodes.push_back({"a", fq::Vec3(0, 0, -0.1), 0});
-  def.nodes.push_back({"b", fq::Vec3(0, 0, 0.2), 0});
+  def.nodes.push_back({"a", fq::Vec3(0, 0, foot_z_m), 0});
+  def.nodes.push_back({"b", fq::Vec3(0, 0, top_z_m), 0});
   fq::MemberDef m;
   m.id = "c";
   m.kind = fq::MemberKind::Column;
   m.node_a = "a";
   m.node_b = "b";
-  m.section = "col";
+  m.section = section;
   m.material = "spruce";
-  m.line = 9;
+  m.line = line;
   def.members.push_back(m);
+  return def;
+}
+
+TEST(CaseFile, BuilderRejectsMemberBelowGroundWhenItHasGroundContact) {
+  // A column whose foot node is 0.1 m under the ground surface: with ground
+  // contact it would start 0.1 m inside the ground.
+  fq::CaseDef def = one_column_case(-0.1, 0.2, "col", 9);
   def.ground = fq::GroundDef{0.0};
   // Without ground contact the member passes through the ground: accepted.
   EXPECT_NO_THROW(fq::build_model(def));
@@ -657,30 +664,18 @@ TEST(CaseFile, BuilderRejectsMemberBelowGroundWhenItHasGroundContact) {
     EXPECT_NE(std::string(e.what()).find("'c' reaches 0.1 m below the ground surface"), std::string::npos)
         << e.what();
   }
-  // Standing on the surface (the foot's face at z = 0) is fine.
+  // Standing on the surface (the foot's face at z = 0) is fine, and so is a
+  // foot 1 mm above it; 1 mm below is not.
   def.nodes[0].xyz_m.z() = 0.0;
   EXPECT_NO_THROW(fq::build_model(def));
-  // So is a foot 1 mm above it; 1 mm below is not.
+  def.nodes[0].xyz_m.z() = 0.001;
+  EXPECT_NO_THROW(fq::build_model(def));
   def.nodes[0].xyz_m.z() = -0.001;
   EXPECT_THROW(fq::build_model(def), fq::InputError);
 }
 
 TEST(CaseFile, BuilderRejectsUnknownReferenceInCodeBuiltCase) {
-  fq::CaseDef def;
-  def.time.duration_s = 1.0;
-  def.materials.push_back({"spruce", 450.0, 0});
-  def.sections.push_back({"col", 0.01, 0.02, 0});
-  def.nodes.push_back({"a", fq::Vec3(0, 0, 0), 0});
-  def.nodes.push_back({"b", fq::Vec3(0, 0, 1), 0});
-  fq::MemberDef m;
-  m.id = "c";
-  m.kind = fq::MemberKind::Column;
-  m.node_a = "a";
-  m.node_b = "b";
-  m.section = "beam";
-  m.material = "spruce";
-  m.line = 12;
-  def.members.push_back(m);
+  const fq::CaseDef def = one_column_case(0.0, 1.0, "beam", 12);
   try {
     fq::build_model(def);
     FAIL();
