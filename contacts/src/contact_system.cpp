@@ -685,11 +685,34 @@ StiffestMode ContactSystem::stiffest_mode(const BodyStore& bodies) const {
   // dt = (2/w)(sqrt(1 + zeta^2) - zeta); it is folded into the w reported
   // with the largest damping ratio of any pair.
   StiffestMode mode;
+  const std::size_t nb = bodies.size();
+  auto is_free = [&](std::size_t i) { return !bodies.is_fixed[i] && bodies.info[i].kind != MemberKind::Ground; };
+  // Which contacts can occur at all: pairs need two bodies of which one is
+  // free (a fixed box that is not the ground counts as the other); the
+  // ground, a free body and the ground enabled. A lone block on the ground
+  // is then limited by the ground's stiffness alone, not by a pair
+  // stiffness no pair of this scene can have.
+  std::size_t free_bodies = 0, fixed_boxes = 0;
+  for (std::size_t i = 0; i < nb; ++i) {
+    if (is_free(i))
+      ++free_bodies;
+    else if (bodies.info[i].kind != MemberKind::Ground)
+      ++fixed_boxes;
+  }
+  const bool pairs_possible = free_bodies >= 2 || (free_bodies >= 1 && fixed_boxes >= 1);
   // Before prepare: the pairs set so far and the ground (the defaults only
   // when nothing is set); after: every coefficient set in use.
-  std::vector<ContactCoefficients> all = coeffs_;
-  if (!prepared_) {
-    for (const auto& [key, params] : pair_params_) all.push_back(make_contact_coefficients(params, "a pair"));
+  std::vector<ContactCoefficients> all;
+  if (prepared_) {
+    for (std::size_t k = 0; k < coeffs_.size(); ++k) {
+      const bool ground = ground_enabled_ && int(k) == ground_coeff_;
+      if (ground || pairs_possible) all.push_back(coeffs_[k]);
+    }
+  } else {
+    if (pairs_possible) {
+      for (const auto& [key, params] : pair_params_) all.push_back(make_contact_coefficients(params, "a pair"));
+      if (pair_params_.empty()) all.push_back(make_contact_coefficients(ContactParams{}, "the default pair"));
+    }
     if (ground_enabled_) all.push_back(make_contact_coefficients(ground_params_, "the ground"));
   }
   if (all.empty()) all.push_back(make_contact_coefficients(ContactParams{}, "the default pair"));
@@ -699,8 +722,6 @@ StiffestMode ContactSystem::stiffest_mode(const BodyStore& bodies) const {
     kt = std::max(kt, c.tangential_stiffness_N_per_m);
     zeta_max = std::max(zeta_max, c.damping_ratio);
   }
-  const std::size_t nb = bodies.size();
-  auto is_free = [&](std::size_t i) { return !bodies.is_fixed[i] && bodies.info[i].kind != MemberKind::Ground; };
 
   // (2) new contacts.
   double lambda_new = 0.0, top1 = 0.0, top2 = 0.0;
