@@ -118,7 +118,7 @@ TEST(StudyCommands, CompareShowsTheWarningsOfAForcedRun) {
                          dir.path());
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.err.find("cube: completed"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("\n  warning: dt_s = 0.001 s is 3.2"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("\n  warning: dt_s = 0.001 s is 3.4"), std::string::npos) << r.err;
 }
 
 TEST(StudyCommands, SweepScalesTheMotionAndFindsNoCollapseInTheDemoPortal) {

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 #include "contacts/contact_params.h"
@@ -55,14 +56,15 @@ TEST(BoxDrop, ComesToRestCarryingItsWeightWithoutCreep) {
   EXPECT_NEAR(scene.contacts->ground_normal_force_N(), weight, 1e-3 * weight);
 }
 
-TEST(BoxDrop, RestitutionOfAFlatDropMatchesTheClampedClosedForm) {
+TEST(BoxDrop, RestitutionOfAFlatDropIsTheRestitutionAskedFor) {
   // No gravity: the box approaches the ground flat at v0 and leaves at v1.
   // The four corner points share the box mass (m/4 each), so the flat
-  // impact is one linear spring-dashpot of stiffness 4k, mass m and damping
-  // ratio zeta(e). Without the clamp it would rebound with exactly e; the
+  // impact is one linear spring-dashpot of stiffness 4k and mass m. The
   // compression-only clamp lets the box go when k d + c d' = 0, before the
-  // overlap closes, which removes the dashpot's final pull: the closed form
-  // of that (contact_params.h) gives e' = 0.5503 for e = 0.5.
+  // overlap closes, and the contact's damping ratio is the one whose clamped
+  // impact rebounds with e (contact_params.h), so v1 / v0 = e: a drop from
+  // height h rebounds to e^2 h. (The free spring-dashpot's zeta(e) would
+  // give 0.5503 for e = 0.5.)
   // Start: the box touches the ground at t = 0 (overlap 1e-12 m, nothing
   // physically) so the first force evaluation already carries the dashpot
   // force c v0: the leapfrog start then sees the true initial force, and no
@@ -89,15 +91,11 @@ TEST(BoxDrop, RestitutionOfAFlatDropMatchesTheClampedClosedForm) {
     scene.sim->run();
     ASSERT_EQ(scene.contacts->contact_count(), 0u);
     const double measured = scene.sim->bodies().velocity_mps[0].z() / v0;
-    const double zeta = fq::damping_ratio_from_restitution(e);
-    const double expected = fq::clamped_restitution_from_damping_ratio(zeta);
+    const double zeta = fq::damping_ratio_for_clamped_restitution(e);
     const double w_dt = std::sqrt(4.0 * kK / scene.sim->bodies().mass_kg[0]) * s.dt_s;
     const double lag = std::numbers::pi * zeta * zeta * w_dt / std::pow(1.0 - zeta * zeta, 1.5);
-    EXPECT_NEAR(measured, expected, (lag + 2.0 * w_dt * w_dt) * expected) << "e = " << e;
-    // The clamp raises e (the dashpot no longer pulls at the end).
-    EXPECT_GT(measured, e);
-    // The unclamped closed form is the input itself (definition of zeta).
-    EXPECT_NEAR(fq::restitution_from_damping_ratio(zeta), e, 1e-14);
+    EXPECT_NEAR(measured, e, (lag + 2.0 * w_dt * w_dt) * e) << "e = " << e;
+    std::printf("e = %.2f: rebound %.5f (zeta %.4f, bound %.2e)\n", e, measured, zeta, lag + 2.0 * w_dt * w_dt);
     // The flat drop stays flat and centred (symmetric set-up).
     EXPECT_LT(scene.sim->bodies().angular_velocity_radps[0].norm(), 1e-9);
     EXPECT_LT(scene.sim->bodies().velocity_mps[0].head<2>().norm(), 1e-12);

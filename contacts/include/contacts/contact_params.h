@@ -7,7 +7,7 @@
 // a real face is stiffer than a corner. The dashpot is sized per point from
 // the pair's reduced mass shared among the points of its manifold (see
 // linear_contact_law.h), so a flat impact has exactly the damping ratio that
-// the restitution asks for.
+// the restitution asks for, and so its restitution.
 #pragma once
 
 namespace fq {
@@ -42,9 +42,10 @@ struct ContactParams {
 inline constexpr double kContactPoisson = 0.3;
 inline constexpr double kTangentialToNormalStiffness = 2.0 * (1.0 - kContactPoisson) / (2.0 - kContactPoisson);
 
-// Damping ratio of the linear spring-dashpot whose free response has
-// restitution e: zeta = -ln e / sqrt(pi^2 + ln^2 e) (closed form of
-// e = exp(-zeta pi / sqrt(1 - zeta^2)), no clamp). e = 1 gives 0.
+// Damping ratio of the linear spring-dashpot whose free response (no clamp:
+// the force may pull at the end) has restitution e: zeta = -ln e /
+// sqrt(pi^2 + ln^2 e) (closed form of e = exp(-zeta pi / sqrt(1 - zeta^2))).
+// e = 1 gives 0. Not what the contacts use (see below).
 double damping_ratio_from_restitution(double restitution);
 // Inverse: e = exp(-zeta pi / sqrt(1 - zeta^2)) for 0 <= zeta < 1.
 double restitution_from_damping_ratio(double zeta);
@@ -52,15 +53,22 @@ double restitution_from_damping_ratio(double zeta);
 // (compression only): the bodies separate when k d + c d' = 0, before the
 // overlap returns to zero. Time of force zero in the damped free response:
 // tan(w_d t) = -2 zeta sqrt(1 - zeta^2) / (1 - 2 zeta^2), and
-// e = exp(-zeta w t) |cos(w_d t) - zeta/sqrt(1 - zeta^2) sin(w_d t)|.
-// (Schwager & Poeschel, Phys. Rev. E 75, 051304 (2007), derive the same.)
+// e = exp(-zeta w t) |cos(w_d t) - zeta/sqrt(1 - zeta^2) sin(w_d t)|
+// (Schwager & Poeschel, Phys. Rev. E 75, 051304 (2007), derive the same);
+// e^-2 for zeta = 1 and the overdamped closed form above it (the .cpp). It is
+// higher than the unclamped restitution of the same zeta (0.55 against 0.5).
 double clamped_restitution_from_damping_ratio(double zeta);
+// Its inverse: the damping ratio whose compression-only contact rebounds
+// with restitution e, 0 < e <= 1 (bisection; above 1 for e < e^-2). This
+// is what make_contact_coefficients uses, so that `restitution` is the
+// restitution a centric normal impact has.
+double damping_ratio_for_clamped_restitution(double restitution);
 
 // What the law needs per material pair, derived once from ContactParams.
 struct ContactCoefficients {
   double normal_stiffness_N_per_m = 0.0;
   double tangential_stiffness_N_per_m = 0.0;
-  double damping_ratio = 0.0;  // zeta (-), same for normal and tangential dashpots
+  double damping_ratio = 0.0;  // zeta (-), same for normal and tangential dashpots (from the clamped restitution)
   double friction_coefficient = 0.0;
 };
 

@@ -12,10 +12,13 @@
 // Point stiffness: k_n and k_t of the pair times the point's share s
 // (ContactPointGeometry::weight); below, k_n and k_t mean the scaled values.
 // Normal:  F_n = max(0, k_n d + c_n d'),  c_n = 2 zeta sqrt(k_n m_eff),
-//          zeta from the restitution (contact_params.h). The clamp keeps the
-//          force from ever pulling; at the clamp the spring energy left in
-//          the overlap is lost (booked as viscous), which makes the real
-//          restitution slightly lower (clamped_restitution_from_damping_ratio).
+//          zeta the damping ratio whose clamped impact has the restitution
+//          asked for (contact_params.h, damping_ratio_for_clamped_
+//          restitution). The clamp keeps the force from ever pulling; the
+//          bodies let go while the overlap is still positive, and the spring
+//          energy left in it is lost (booked as viscous). The clamp alone
+//          would raise the restitution of a given zeta (0.5 -> 0.55), which
+//          is why zeta is taken from the clamped closed form.
 // Tangential (Cundall & Strack 1979): the spring force F_s (history) is
 //          first rotated into the current contact plane (normal component
 //          removed, magnitude kept), then incremented by -k_t v_t dt. With
