@@ -105,6 +105,18 @@ class CheckpointObserver final : public StepObserver {
   std::int64_t last_step_ = -1;
 };
 
+// The joints' and contacts' cell blocks and history columns. The blocks
+// keep their numbers in every scene (cell_block 0 bodies, 1 springs, 2
+// contacts; docs/paraview.md): a scene with contacts but no joints gets an
+// empty springs block, so a ParaView threshold on 2 finds its contacts.
+void attach_provider_output(RunOutput& writer, const Scene& scene) {
+  if (scene.joints)
+    attach_joint_output(writer, *scene.joints);
+  else if (scene.contacts)
+    writer.add_cell_block("springs", [](const Simulation&, VtkFrameBuilder&) {});
+  if (scene.contacts) attach_contact_output(writer, *scene.contacts);
+}
+
 // The part of a run shared by run_case and resume_case: observers, the
 // step loop and the summary.
 CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& options, const RunMeta* checkpoints,
@@ -336,8 +348,7 @@ CaseRunReport run_case(const CaseDef& case_def, const CaseRunOptions& options) {
   StoreyDriftMonitor storeys(scene.storeys, def.assessment);
   try {
     writer = std::make_unique<RunOutput>(output, def.name);
-    if (scene.joints) attach_joint_output(*writer, *scene.joints);
-    if (scene.contacts) attach_contact_output(*writer, *scene.contacts);
+    attach_provider_output(*writer, scene);
     if (!scene.storeys.empty()) attach_storey_output(*writer, storeys);
     writer->attach(sim);
   } catch (const std::exception& e) {
@@ -386,8 +397,7 @@ CaseRunReport resume_case(const std::filesystem::path& folder, const CaseRunOpti
     throw CheckpointError(damaged + e.what());
   }
   try {
-    if (scene.joints) attach_joint_output(*writer, *scene.joints);
-    if (scene.contacts) attach_contact_output(*writer, *scene.contacts);
+    attach_provider_output(*writer, scene);
     if (!scene.storeys.empty()) {
       attach_storey_output(*writer, storeys);
       // The peaks so far are in the rows kept from before the checkpoint.

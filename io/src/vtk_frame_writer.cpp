@@ -29,7 +29,34 @@ static_assert(static_cast<int>(VtkCellType::Hexahedron) == VTK_HEXAHEDRON);
 
 namespace {
 constexpr int kMaxComponents = 9;  // a 3x3 tensor is the largest thing a cell carries
+
+// Removes the L2-norm range caches VTK's writer puts into the XML as
+// <InformationKey> elements. They are not data (the reader recomputes them),
+// and for an array holding NaN (the fill value on the cells of other blocks)
+// VTK writes one that its own reader cannot parse, logging an error per
+// array. Only the XML before <AppendedData> is touched; the appended
+// offsets count from the start of that section, so they stay right.
+std::string without_range_caches(std::string xml) {
+  const std::size_t end_of_xml = std::min(xml.find("<AppendedData"), xml.size());
+  std::string out;
+  out.reserve(xml.size());
+  std::size_t pos = 0;
+  for (;;) {
+    std::size_t key = xml.find("<InformationKey name=\"L2_NORM", pos);
+    if (key == std::string::npos || key >= end_of_xml) break;
+    const std::size_t close = xml.find("</InformationKey>", key);
+    if (close == std::string::npos || close >= end_of_xml) break;
+    std::size_t from = key;  // from the start of its line
+    while (from > pos && (xml[from - 1] == ' ' || xml[from - 1] == '\t')) --from;
+    std::size_t to = close + std::string_view("</InformationKey>").size();
+    if (to < xml.size() && xml[to] == '\n') ++to;
+    out.append(xml, pos, from - pos);
+    pos = to;
+  }
+  out.append(xml, pos, std::string::npos);
+  return out;
 }
+}  // namespace
 
 // ---- VtkFrameBuilder ---------------------------------------------------------
 
@@ -252,7 +279,7 @@ void VtkFrameWriter::write(const Simulation& sim, const std::filesystem::path& f
   }
   if (writer->Write() != 1 || writer->GetErrorCode() != 0)
     throw std::runtime_error("VTK could not build frame '" + file.string() + "'");
-  detail::write_file_atomically(file, writer->GetOutputString());
+  detail::write_file_atomically(file, without_range_caches(writer->GetOutputString()));
 }
 
 }  // namespace fq

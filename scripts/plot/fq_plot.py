@@ -145,7 +145,7 @@ def plot_sweep(folder):
     ax.set_yscale("log")
     ax.set_xlabel("peak ground acceleration (g)")
     ax.set_ylabel("peak first-storey drift ratio (rad)")
-    ax.set_title("Amplitude sweep: x = a storey collapsed, o = standing")
+    ax.set_title("Amplitude sweep: x = a storey collapsed, o = none collapsed (standing or damaged)")
     ax.legend(loc="lower right", fontsize=8)
     fig.tight_layout()
     target = os.path.join(folder, "sweep.png")
