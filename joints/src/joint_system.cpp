@@ -689,9 +689,12 @@ void JointSystem::finish_step(const BodyStore& bodies, const StepInfo& step, Eve
       bool any_normal_dead = false;
       for (std::size_t s = first; s < last; ++s)
         if (!alive_[s] && spring_is_normal_[s]) any_normal_dead = true;
+      // How it failed, whatever the criterion: past its strain limit, or by
+      // deleted springs, among them a normal one (the tenon pulled out or
+      // crushed), or shear springs only (it slid or twisted out).
       e.mode = joint_break_[j].criterion == BreakCriterion::StrainLimit ? "strain_limit"
-               : any_normal_dead                                        ? "normal_springs_deleted"
-                                                                        : "springs_deleted";
+               : any_normal_dead                                        ? "normal_spring_deleted"
+                                                                        : "shear_spring_deleted";
       events.add(e);
       joint_broken_[j] = 1;
       for (std::size_t s = first; s < last; ++s) kill_spring_(s);

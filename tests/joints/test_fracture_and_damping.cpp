@@ -90,6 +90,40 @@ TEST(JointFracture, AllNormalSpringsDeletedNeedsEveryNormalSpring) {
   EXPECT_FALSE(bonded.bonded(0, 1));
   // Event order within the step: spring events (ascending spring), then the joint.
   EXPECT_EQ(log.all().back().kind, EventKind::JointBroken);
+  // Its mode says how it failed: normal springs among the deleted.
+  EXPECT_STREQ(log.all().back().mode, "normal_spring_deleted");
+}
+
+TEST(JointFracture, AJointThatSlidOutBreaksWithTheShearMode) {
+  // Linear normal springs, trilinear shear springs (ultimate 5 mm): a slip
+  // of 6 mm along x deletes the shear springs along x, and any_spring_deleted
+  // breaks the joint with mode shear_spring_deleted (no normal spring went).
+  BondedPairs bonded;
+  BodyStore store = test::two_boxes();
+  JointSystem js(&bonded);
+  TrilinearParams t;
+  t.yield_strain_tension = t.yield_strain_compression = 0.01;
+  t.yield_force_tension_N = t.yield_force_compression_N = 1000.0;
+  t.ultimate_strain_tension = t.ultimate_strain_compression = 0.05;  // 5 mm
+  t.ultimate_force_tension_N = t.ultimate_force_compression_N = 1200.0;
+  JointDef d;
+  d.body_a = 0;
+  d.body_b = 1;
+  d.layout = four_corner_layout(0.04, 0.04, 1.0, linear_spring(1e6), trilinear_spring(t, 0.1));
+  d.fracture.criterion = BreakCriterion::AnySpringDeleted;
+  js.add_joint(store, d);
+  js.prepare(store);
+  EventLog log;
+  test::drive(js, store, 1, store.position_m[1], store.orientation[1], Vec3(0.006, 0, 0), Vec3::Zero(),
+              Vec3::Zero(), 0);
+  js.finish_step(store, StepInfo{0, 0.0, 1e-3}, log);
+  ASSERT_EQ(log.count(EventKind::JointBroken), 1u);
+  for (const Event& e : log.all()) {
+    if (e.kind == EventKind::SpringDeleted) {
+      EXPECT_STREQ(e.mode, "shear");
+    }
+  }
+  EXPECT_STREQ(log.all().back().mode, "shear_spring_deleted");
 }
 
 TEST(JointDashpot, DampingRatioGivesLogarithmicDecrement) {
