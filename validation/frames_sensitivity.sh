@@ -10,16 +10,17 @@
 # Writes validation/results/frames_sensitivity.md (one table per variant
 # family, the rows of `framequake compare`).
 #
-# Also: the record scaled by 1 + 1e-12 (round-off sensitivity), and the
-# supports holding by their joints alone (the ground 1 mm below the feet).
+# Also: the record scaled by 1 + 1e-12 (round-off sensitivity), the
+# supports holding by their joints alone (the ground 1 mm below the feet),
+# and joint dashpots ten times stronger.
 #
-# Usage: bash validation/frames_sensitivity.sh            (18 runs)
+# Usage: bash validation/frames_sensitivity.sh            (21 runs)
 #        FQ_WINDOW="5 8" bash validation/frames_sensitivity.sh
 set -euo pipefail
 usage='usage: bash validation/frames_sensitivity.sh   (no arguments; FQ_WINDOW="START LENGTH" in record seconds for a quicker look)'
 case ${1:-} in -h|--help) echo "$usage"; exit 0 ;; esac
 # It takes no arguments: anything given is a mistake, not a request for the
-# 18-run study.
+# 21-run study.
 [[ $# -eq 0 ]] || { echo "frames_sensitivity.sh: no arguments expected, got: $*" >&2; echo "$usage" >&2; exit 2; }
 cd "$(dirname "$0")/.."
 app=./build/apps/framequake
@@ -100,5 +101,15 @@ for f in A B C; do
 done
 "$app" compare "${files[@]}" --out "$work/feet_clear" --no-figure > "$work/log" 2>&1 || true
 grep '^|' "$work/feet_clear/comparison.md" >> "$out"
+
+# 5. Joint dashpots: 5 % of critical per spring gives frame B's first sway
+# mode 0.2 % (validation/frames_damping.sh); 0.5 per spring gives 0.9 %.
+echo >> "$out"; echo "## Joint dashpots ten times stronger (damping ratio 0.5 per spring)" >> "$out"; echo >> "$out"
+files=()
+for f in A B C; do
+  files+=("$(variant "frame_${f}_dashpots_x10" "frame_$f" "s/damping_ratio: 0.05\b/damping_ratio: 0.5/g")")
+done
+"$app" compare "${files[@]}" --out "$work/dashpots" --no-figure > "$work/log" 2>&1 || true
+grep '^|' "$work/dashpots/comparison.md" >> "$out"
 mv "$out" "$target"
 echo "[frames_sensitivity] wrote $target"
