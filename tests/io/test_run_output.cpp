@@ -803,24 +803,33 @@ class PoisonProvider : public fq::ForceProvider {
 
 }  // namespace
 
+// A 0.1 m block on the ground with ground contact and no joints, run through
+// run_case into dir/out: `duration_s`, the block's extra keys, the output's
+// extra keys.
+void run_block_on_ground(const fq::test::TempDir& dir, const std::string& duration_s, const std::string& block_extra,
+                         const std::string& output_extra) {
+  const fs::path file = dir.path() / "block.yaml";
+  std::ofstream(file) << "framequake_case: 1\n"
+                         "time: {dt_s: 1.0e-5, duration_s: " << duration_s << "}\n"
+                         "materials: [{name: spruce, density_kg_per_m3: 450}]\n"
+                         "ground: {level_m: 0.0}\n"
+                         "blocks: [{id: b, size_m: [0.1, 0.1, 0.1], center_m: [0, 0, 0.05], material: spruce"
+                      << block_extra << "}]\n"
+                         "contact: {ground: {normal_stiffness_N_per_m: 1.0e6, restitution: 0.5, friction_coefficient: 0.4}}\n"
+                         "output: {frame_interval_s: 0.001, history_interval_s: 0.001"
+                      << output_extra << "}\n";
+  fq::CaseRunOptions options;
+  options.output_folder = dir.path() / "out";
+  ASSERT_EQ(fq::run_case(fq::load_case_file(file), options).result.status, fq::RunStatus::Completed);
+}
+
 // docs/paraview.md promises cell_block 0 bodies, 1 springs, 2 contacts, so
 // that one ParaView threshold works for every run: a case with contacts but
 // no joints (a block resting on the ground) must keep its contact points at
 // 2, with an empty springs block before them.
 TEST(RunOutput, CellBlocksKeepTheirNumbersInASceneWithoutJoints) {
   fq::test::TempDir dir;
-  const fs::path file = dir.path() / "block.yaml";
-  std::ofstream(file) << "framequake_case: 1\n"
-                         "time: {dt_s: 1.0e-5, duration_s: 0.002}\n"
-                         "materials: [{name: spruce, density_kg_per_m3: 450}]\n"
-                         "ground: {level_m: 0.0}\n"
-                         "blocks: [{id: b, size_m: [0.1, 0.1, 0.1], center_m: [0, 0, 0.05], material: spruce}]\n"
-                         "contact: {ground: {normal_stiffness_N_per_m: 1.0e6, restitution: 0.5, friction_coefficient: 0.4}}\n"
-                         "output: {frame_interval_s: 0.001, history_interval_s: 0.001}\n";
-  fq::CaseRunOptions options;
-  options.output_folder = dir.path() / "out";
-  const fq::CaseRunReport report = fq::run_case(fq::load_case_file(file), options);
-  ASSERT_EQ(report.result.status, fq::RunStatus::Completed);
+  run_block_on_ground(dir, "0.002", "", "");
   ReadFrame f = read_vtu(dir.path() / "out" / "frames" / "frame_000002.vtu");
   ASSERT_EQ(f.errors, 0);
   vtkUnstructuredGrid* g = f.grid;
@@ -843,18 +852,8 @@ TEST(RunOutput, CellBlocksKeepTheirNumbersInASceneWithoutJoints) {
 // read without an error.
 TEST(RunOutput, AsciiFramesOfARunWithContactsReadWithoutErrors) {
   fq::test::TempDir dir;
-  const fs::path file = dir.path() / "block.yaml";
-  std::ofstream(file) << "framequake_case: 1\n"
-                         "time: {dt_s: 1.0e-5, duration_s: 0.01}\n"
-                         "materials: [{name: spruce, density_kg_per_m3: 450}]\n"
-                         "ground: {level_m: 0.0}\n"
-                         "blocks: [{id: b, size_m: [0.1, 0.1, 0.1], center_m: [0, 0, 0.05], material: spruce,\n"
-                         "          velocity_mps: [0.3, 0, -0.2], angular_velocity_radps: [0, 2, 0]}]\n"
-                         "contact: {ground: {normal_stiffness_N_per_m: 1.0e6, restitution: 0.5, friction_coefficient: 0.4}}\n"
-                         "output: {frame_interval_s: 0.001, history_interval_s: 0.001, vtk_binary: false}\n";
-  fq::CaseRunOptions options;
-  options.output_folder = dir.path() / "out";
-  ASSERT_EQ(fq::run_case(fq::load_case_file(file), options).result.status, fq::RunStatus::Completed);
+  run_block_on_ground(dir, "0.01", ", velocity_mps: [0.3, 0, -0.2], angular_velocity_radps: [0, 2, 0]",
+                      ", vtk_binary: false");
   int frames = 0, with_contacts = 0;
   for (const auto& entry : fs::directory_iterator(dir.path() / "out" / "frames")) {
     ReadFrame f = read_vtu(entry.path());

@@ -53,6 +53,18 @@ TEST(JointFracture, StrainLimitBreaksJointAndReleasesPair) {
   EXPECT_NEAR(books.dissipated_plastic_J, 4 * 0.5 * 1e6 * 1.01e-3 * 1.01e-3, 1e-12);
 }
 
+// Trilinear law over a 0.1 m reference length: yield at 1 mm (1000 N),
+// deleted past the ultimate strains given (1200 N there).
+TrilinearParams breaking_law(double ultimate_strain_tension, double ultimate_strain_compression) {
+  TrilinearParams t;
+  t.yield_strain_tension = t.yield_strain_compression = 0.01;
+  t.yield_force_tension_N = t.yield_force_compression_N = 1000.0;
+  t.ultimate_strain_tension = ultimate_strain_tension;
+  t.ultimate_strain_compression = ultimate_strain_compression;
+  t.ultimate_force_tension_N = t.ultimate_force_compression_N = 1200.0;
+  return t;
+}
+
 TEST(JointFracture, AllNormalSpringsDeletedNeedsEveryNormalSpring) {
   // Four trilinear normal springs; a rotation about t2 stretches the two at
   // +x beyond ultimate: the joint stays intact (two normal springs left)
@@ -60,12 +72,7 @@ TEST(JointFracture, AllNormalSpringsDeletedNeedsEveryNormalSpring) {
   BondedPairs bonded;
   BodyStore store = test::two_boxes();
   JointSystem js(&bonded);
-  TrilinearParams t;
-  t.yield_strain_tension = t.yield_strain_compression = 0.01;
-  t.yield_force_tension_N = t.yield_force_compression_N = 1000.0;
-  t.ultimate_strain_tension = 0.05;      // 5 mm
-  t.ultimate_strain_compression = 0.1;   // 10 mm
-  t.ultimate_force_tension_N = t.ultimate_force_compression_N = 1200.0;
+  const TrilinearParams t = breaking_law(0.05, 0.1);  // 5 mm in tension, 10 mm in compression
   JointDef d;
   d.body_a = 0;
   d.body_b = 1;
@@ -101,11 +108,7 @@ TEST(JointFracture, AJointThatSlidOutBreaksWithTheShearMode) {
   BondedPairs bonded;
   BodyStore store = test::two_boxes();
   JointSystem js(&bonded);
-  TrilinearParams t;
-  t.yield_strain_tension = t.yield_strain_compression = 0.01;
-  t.yield_force_tension_N = t.yield_force_compression_N = 1000.0;
-  t.ultimate_strain_tension = t.ultimate_strain_compression = 0.05;  // 5 mm
-  t.ultimate_force_tension_N = t.ultimate_force_compression_N = 1200.0;
+  const TrilinearParams t = breaking_law(0.05, 0.05);  // 5 mm
   JointDef d;
   d.body_a = 0;
   d.body_b = 1;
