@@ -31,7 +31,7 @@ TEST(BoxDrop, ComesToRestCarryingItsWeightWithoutCreep) {
   sim.run();
   const double m = sim.bodies().mass_kg[0];
   const double weight = m * fq::kStandardGravity_mps2;
-  // Transients decay as exp(-zeta w t) = exp(-0.215 * 894 * 2) ~ 1e-167 by
+  // Transients decay as exp(-zeta w t) = exp(-0.255 * 894 * 2) ~ 1e-198 by
   // t = 2 s: what is left is the static state. Closed form: total normal
   // force = m g; each of the 4 corners carries m g / 4, so the overlap is
   // d_s = m g / (4 k) = 1.226e-5 m.
