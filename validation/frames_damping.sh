@@ -16,17 +16,10 @@
 #
 # Usage: bash validation/frames_damping.sh   (4 runs, about 40 s)
 set -euo pipefail
-usage='usage: bash validation/frames_damping.sh   (no arguments)'
-case ${1:-} in -h|--help) echo "$usage"; exit 0 ;; esac
-[[ $# -eq 0 ]] || { echo "frames_damping.sh: no arguments expected, got: $*" >&2; echo "$usage" >&2; exit 2; }
-cd "$(dirname "$0")/.."
-app=./build/apps/framequake
-[[ -x $app ]] || { echo "build first: bash scripts/build.sh" >&2; exit 2; }
 python=/usr/bin/python3
 [[ -x $python ]] || { echo "frames_damping.sh: needs Debian's python3 at $python" >&2; exit 2; }
-work=$(mktemp -d /tmp/fq_damping_XXXXXX)
-trap 'rm -rf "$work"' EXIT
-mkdir -p validation/results
+source "$(dirname "$0")/frames_study_prologue.sh" frames_damping \
+  'usage: bash validation/frames_damping.sh   (no arguments)' "$@"
 target=validation/results/frames_damping.md
 out=$work/report.md  # moved into place when complete
 

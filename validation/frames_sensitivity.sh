@@ -17,17 +17,8 @@
 # Usage: bash validation/frames_sensitivity.sh            (21 runs)
 #        FQ_WINDOW="5 8" bash validation/frames_sensitivity.sh
 set -euo pipefail
-usage='usage: bash validation/frames_sensitivity.sh   (no arguments; FQ_WINDOW="START LENGTH" in record seconds for a quicker look)'
-case ${1:-} in -h|--help) echo "$usage"; exit 0 ;; esac
-# It takes no arguments: anything given is a mistake, not a request for the
-# 21-run study.
-[[ $# -eq 0 ]] || { echo "frames_sensitivity.sh: no arguments expected, got: $*" >&2; echo "$usage" >&2; exit 2; }
-cd "$(dirname "$0")/.."
-app=./build/apps/framequake
-[[ -x $app ]] || { echo "build first: bash scripts/build.sh" >&2; exit 2; }
-work=$(mktemp -d /tmp/fq_sensitivity_XXXXXX)
-trap 'rm -rf "$work"' EXIT
-mkdir -p validation/results
+source "$(dirname "$0")/frames_study_prologue.sh" frames_sensitivity \
+  'usage: bash validation/frames_sensitivity.sh   (no arguments; FQ_WINDOW="START LENGTH" in record seconds for a quicker look)' "$@"
 target=validation/results/frames_sensitivity.md
 out=$work/report.md  # moved into place when complete
 cp -r cases/ground_motions "$work/"

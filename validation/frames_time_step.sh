@@ -16,15 +16,8 @@
 # Writes validation/results/frames_time_step.md.
 # Usage: bash validation/frames_time_step.sh     (21 runs, about a minute on 2 cores)
 set -euo pipefail
-usage='usage: bash validation/frames_time_step.sh   (no arguments)'
-case ${1:-} in -h|--help) echo "$usage"; exit 0 ;; esac
-[[ $# -eq 0 ]] || { echo "frames_time_step.sh: no arguments expected, got: $*" >&2; echo "$usage" >&2; exit 2; }
-cd "$(dirname "$0")/.."
-app=./build/apps/framequake
-[[ -x $app ]] || { echo "build first: bash scripts/build.sh" >&2; exit 2; }
-work=$(mktemp -d /tmp/fq_time_step_XXXXXX)
-trap 'rm -rf "$work"' EXIT
-mkdir -p validation/results
+source "$(dirname "$0")/frames_study_prologue.sh" frames_time_step \
+  'usage: bash validation/frames_time_step.sh   (no arguments)' "$@"
 target=validation/results/frames_time_step.md
 cp -r cases/ground_motions "$work/"
 

@@ -375,9 +375,10 @@ bool ContactSystem::soft_start_initial_overlaps_() {
     found.back().depth_m = std::max(found.back().depth_m, c.depth_m);
   }
   if (keys.empty()) return false;
-  for (const std::uint64_t key : keys)
-    if (!std::binary_search(soft_start_pairs_.begin(), soft_start_pairs_.end(), key))
-      soft_start_pairs_.insert(std::lower_bound(soft_start_pairs_.begin(), soft_start_pairs_.end(), key), key);
+  for (const std::uint64_t key : keys) {
+    const auto at = std::lower_bound(soft_start_pairs_.begin(), soft_start_pairs_.end(), key);
+    if (at == soft_start_pairs_.end() || *at != key) soft_start_pairs_.insert(at, key);
+  }
   std::stable_sort(found.begin(), found.end(),
                    [](const InitialOverlap& x, const InitialOverlap& y) { return x.depth_m > y.depth_m; });
   initial_overlaps_ = std::move(found);

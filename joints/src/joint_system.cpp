@@ -825,7 +825,7 @@ StiffestMode JointSystem::stiffest_mode(const BodyStore& bodies) const {
   // + lambda_max(B) it lies between the bound and 2 / omega.
   const double dt_bound = 2.0 / (std::sqrt(omega2 + 0.25 * lambda_c * lambda_c) + 0.5 * lambda_c);
   const double dt_undamped = 2.0 / std::sqrt(omega2);
-  double dt_crit = dt_bound;
+  double dt_crit = dt_undamped;
   if (lambda_c > 0.0) {
     double dt = dt_bound;
     for (int outer = 0; outer < 12; ++outer) {
@@ -847,8 +847,6 @@ StiffestMode JointSystem::stiffest_mode(const BodyStore& bodies) const {
       if (settled) break;
     }
     dt_crit = std::clamp(dt, dt_bound, dt_undamped);
-  } else {
-    dt_crit = dt_undamped;
   }
   // The spring storing most energy in the mode that sets the limit (the
   // last top eigenvector: of K~, or of dt^2 K~ + 2 dt C~ with dashpots)

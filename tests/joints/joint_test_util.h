@@ -220,17 +220,22 @@ inline double largest_displacement(Simulation& sim, int steps, double stop_m = 1
   return amplitude;
 }
 
+// `steps` central-difference steps of dt_s without gravity.
+inline SimulationSettings weightless_steps(double dt_s, int steps) {
+  SimulationSettings settings;
+  settings.dt_s = dt_s;
+  settings.duration_s = dt_s * steps;
+  settings.gravity_mps2 = Vec3::Zero();
+  return settings;
+}
+
 // The 5-box irregular chain (no gravity) with small random velocities
 // (set_small_random_motion) and the given spring-level damping ratio, run
 // `steps` central-difference steps at dt_s: largest_displacement.
 inline double chain_amplitude(double dt_s, int steps, double damping_ratio = 0.0) {
   BodyStore store = irregular_chain_bodies(5);
   set_small_random_motion(store);
-  SimulationSettings settings;
-  settings.dt_s = dt_s;
-  settings.duration_s = dt_s * steps;
-  settings.gravity_mps2 = Vec3::Zero();
-  Simulation sim(std::move(store), settings);
+  Simulation sim(std::move(store), weightless_steps(dt_s, steps));
   auto js = std::make_unique<JointSystem>(&sim.bonded_pairs());
   add_irregular_chain_joints(*js, sim.bodies(), damping_ratio);
   sim.add_force_provider(std::move(js));

@@ -103,11 +103,7 @@ double two_oscillators_limit(double dt_s, int steps, StiffestMode* estimate) {
     store.angular_momentum_Nms[b] = store.principal_inertia_kgm2[b].asDiagonal() * w;
   }
   const double m = store.mass_kg[1];
-  SimulationSettings settings;
-  settings.dt_s = dt_s;
-  settings.duration_s = dt_s * steps;
-  settings.gravity_mps2 = Vec3::Zero();
-  Simulation sim(std::move(store), settings);
+  Simulation sim(std::move(store), test::weightless_steps(dt_s, steps));
   auto js = std::make_unique<JointSystem>(&sim.bonded_pairs());
   for (BodyId b : {1, 2}) {
     const double k = b == 1 ? 1e6 : 1e5, zeta = b == 1 ? 0.01 : 1.0;
