@@ -3,7 +3,7 @@
 #   avx512vl  option FQ_AVX512VL_KERNELS, the same 256-bit code compiled
 #             with -mavx512f -mavx512vl, whose EVEX encoding gives the
 #             kernels 32 vector registers instead of 16 (fewer spills to the
-#             stack; docs/performance.md, change 37). No 512-bit register
+#             stack; docs/performance_history.md, change 37). No 512-bit register
 #             and no new operation: the lanes stay four doubles wide.
 #
 # fq_simd_kernel_sources(<target> AVX2 <source>... AVX512VL <source>...)

@@ -10,7 +10,7 @@
 // powers of 1000). Other lines are ignored.
 //
 // Why ratios within a round: on a shared host other tenants slow single
-// runs by up to a factor 1.5 (docs/performance.md, 2026-11-26), and they do
+// runs by up to a factor 1.5 (docs/performance_history.md, 2026-11-26), and they do
 // so for minutes, not for one run. Two runs next to each other meet about
 // the same load, so new / old within a round scatters less than either
 // build's own runs; the median over rounds of that ratio is the figure to

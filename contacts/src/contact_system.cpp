@@ -408,7 +408,7 @@ void ContactSystem::narrow_phase(const BodyStore& bodies, const StepInfo& step) 
     // history, so they stay in its core's cache. Handed out dynamically they
     // moved between the cores: on the 1e4-body pressed columns the two
     // threads together spent 1.23-1.33x the one-thread CPU time per
-    // body-step, and 0.98-1.08x with fixed runs (docs/performance.md,
+    // body-step, and 0.98-1.08x with fixed runs (docs/performance_history.md,
     // change 15). The runs are cut at equal cost, as the chunks cost at the
     // last step, not at equal counts: the touching pairs of a falling pile
     // sit among its lowest bodies, and in equal halves one thread got

@@ -92,7 +92,7 @@ struct ContactDashpots {
 // (ContactSystem books its own losses) then does not pay for them. A plain
 // `inline` was not enough: GCC kept it out of line in process_item, a call
 // per point that also computed the unused losses (a quotient, two dot
-// products), 14 % of frame B's samples (docs/performance.md, change 24).
+// products), 14 % of frame B's samples (docs/performance_history.md, change 24).
 [[gnu::always_inline]] inline ContactLawOutput linear_contact_law(const ContactCoefficients& coeff,
                                                                   const ContactLawInput& in,
                                                                   const ContactDashpots& dashpots,

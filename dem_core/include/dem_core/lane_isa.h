@@ -7,7 +7,7 @@
 // has AVX-512F and AVX-512VL. All forms give the same bits
 // (tests/joints/test_joint_lanes.cpp, tests/dem_core/test_torque_free_rotation.cpp);
 // the AVX2 form does the same lane work in about half the instructions of
-// SSE2 (docs/performance.md, change 23), and the AVX-512VL form spills
+// SSE2 (docs/performance_history.md, change 23), and the AVX-512VL form spills
 // fewer of its vectors to the stack (change 37).
 //
 // The default is the fastest form available: avx512vl, then avx2, then
