@@ -15,8 +15,11 @@
 //   max_displacement_m         largest |x_i(t) - x_i(0)| over the bodies
 //                              (relative frame: displacement relative to the ground)
 // Time convention: observers run after step n, so poses (and time_s) are at
-// t_{n+1} while the ledger is the one of step n, one dt earlier; at the
-// default 1 ms row interval and dt ~ 1e-5 s that offset is 1 % of a row.
+// t_{n+1}. With central difference (the default) the ledger is the one of
+// step n, one dt earlier (its kinetic energy needs v(n+1/2)); at the default
+// 1 ms row interval and dt ~ 1e-5 s that offset is 1 % of a row. The other
+// integrators hold velocities at the poses' time, and their ledger is at
+// the row's time.
 //
 // Values are printed in their shortest round-trip form (bitwise what the
 // engine held). Rows go to a buffered stream; flush() (called at every frame)

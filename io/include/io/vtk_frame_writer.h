@@ -17,9 +17,11 @@
 // Bodies block (arrays, one tuple per body):
 //   body_id (int)                   index in the BodyStore
 //   member_kind (int)               fq::MemberKind value; names in field data member_kind_names
-//   velocity_mps (3, m/s)           world frame, mid-step v(t - dt/2) of the
-//                                   leapfrog scheme (the state holds no other)
-//   angular_velocity_radps (3, rad/s) world frame, mid-step like velocity_mps
+//   velocity_mps (3, m/s)           world frame; with central difference (the
+//                                   default) the mid-step v(t - dt/2) of the
+//                                   leapfrog (the state holds no other), with
+//                                   the other integrators v(t)
+//   angular_velocity_radps (3, rad/s) world frame, at the same instant as velocity_mps
 //   state (int)                     0 free, 1 fixed
 //   damage_state (int)              0 intact; raised by the springs block
 //                                   (scene_output.h): 1 yielded, 2 damaged, 3 detached
