@@ -87,7 +87,9 @@ const char* kRunHelp =
     "  --checkpoint-every S\n"
     "                 write DIR/checkpoint.bin every S simulated seconds and when\n"
     "                 stopped, so `framequake resume DIR` can continue the run\n"
+    "                 (central_difference only)\n"
     "  --help         this text\n"
+    "Every option also takes the form --option=value.\n"
     "\n"
     "Exit codes: 0 completed, 1 unstable, 2 bad input, 3 output failed, 130 interrupted.\n";
 
@@ -322,6 +324,24 @@ int command_render(int argc, char** argv) { return fq::render::render_command(ar
 
 int main(int argc, char** argv) {
   if (argc < 2) usage_error("missing command", kMainHelp);
+  // Every command reads `--option=value` as `--option value` (the two forms
+  // users type); a value may itself contain '='.
+  std::vector<std::string> words;
+  for (int i = 0; i < argc; ++i) {
+    const std::string arg = argv[i];
+    const std::size_t eq = arg.find('=');
+    if (i >= 2 && arg.rfind("--", 0) == 0 && eq != std::string::npos && eq > 2) {
+      words.push_back(arg.substr(0, eq));
+      words.push_back(arg.substr(eq + 1));
+    } else {
+      words.push_back(arg);
+    }
+  }
+  std::vector<char*> split_argv;
+  for (std::string& w : words) split_argv.push_back(w.data());
+  split_argv.push_back(nullptr);
+  argc = int(words.size());
+  argv = split_argv.data();
   const std::string command = argv[1];
   try {
     if (command == "--help" || command == "-h" || command == "help") {

@@ -191,6 +191,15 @@ std::vector<fq::CaseDef> load_cases(const std::vector<std::string>& files) {
   return defs;
 }
 
+// The checks a run makes at its start (integrator, stable time step unless
+// --force), made for every case before any runs, so that exit code 2 means
+// nothing was run.
+void check_runnable(const fq::CaseDef& def, const StudyArgs& args) {
+  fq::CaseRunOptions options;
+  options.allow_unstable_time_step = args.force;
+  fq::check_case_runnable(def, options);
+}
+
 int run_figure(const std::string& kind, const fs::path& folder) {
   const char* python_env = std::getenv("FQ_PYTHON");
   const std::string python = python_env && *python_env ? python_env : "/usr/bin/python3";
@@ -314,6 +323,7 @@ int command_compare(int argc, char** argv, const std::atomic<bool>* stop_request
         throw fq::InputError(def.source_file.string(), 0, "name",
                              "two cases are named '" + def.name + "'; each case needs its own output folder");
       if (args.window_length_s) shorten_window(def, *args.window_length_s);
+      check_runnable(def, args);
       fq::BatchJob job;
       job.label = def.name;
       job.output_folder = args.out / def.name;
@@ -409,6 +419,7 @@ int command_sweep(int argc, char** argv, const std::atomic<bool>* stop_requested
       if (!def.ground_motion)
         throw fq::InputError(def.source_file.string(), 0, "ground_motion", "a sweep needs a case with a ground motion");
       if (args.window_length_s) shorten_window(def, *args.window_length_s);
+      check_runnable(def, args);
       case_order.push_back(def.name);
       // Variants of the motion: the case's own record, or each --record.
       std::vector<std::pair<std::string, fq::CaseDef>> variants;

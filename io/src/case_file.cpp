@@ -309,6 +309,9 @@ void parse_time(const Reader& r, const Field& f, CaseDef& def) {
   r.expect_map(f.value, f.line, f.path, "dt_s, duration_s, gravity_mps2, integrator");
   r.expect_keys(f.value, {"dt_s", "duration_s", "gravity_mps2", "integrator"}, f.path);
   def.time.dt_s = r.required_positive(f.value, "dt_s", f.path, "the time step in s");
+  // Lines of the keys a run's start checks name (case_runner.cpp).
+  if (const auto d = r.get(f.value, "dt_s", f.path)) def.section_line["time.dt_s"] = d->line;
+  if (const auto m = r.get(f.value, "integrator", f.path)) def.section_line["time.integrator"] = m->line;
   if (const auto d = r.get(f.value, "duration_s", f.path)) def.time.duration_s = r.to_positive(*d);
   def.time.gravity_mps2 =
       r.optional_vec3(f.value, "gravity_mps2", f.path, def.time.gravity_mps2, "gx, gy, gz in m/s^2");

@@ -286,37 +286,78 @@ Scene build_scene(const CaseDef& def) {
   return scene;
 }
 
-CaseRunReport run_case(const CaseDef& case_def, const CaseRunOptions& options) {
-  CaseDef def_copy;
-  const bool override_integrator = options.integrator.has_value();
-  if (override_integrator) {
-    def_copy = case_def;
-    def_copy.time.integrator = *options.integrator;
+namespace {
+
+// The case as a run sees it: the case file's, or a copy with the integrator
+// of --integrator.
+struct EffectiveCase {
+  CaseDef copy;
+  const CaseDef* def = nullptr;
+  bool integrator_from_command_line = false;
+};
+
+EffectiveCase effective_case(const CaseDef& case_def, const CaseRunOptions& options) {
+  EffectiveCase e;
+  e.def = &case_def;
+  if (options.integrator.has_value()) {
+    e.copy = case_def;
+    e.copy.time.integrator = *options.integrator;
+    e.def = &e.copy;
+    e.integrator_from_command_line = true;
   }
-  const CaseDef& def = override_integrator ? def_copy : case_def;
-  Scene scene = build_scene(def);
-  Simulation& sim = *scene.simulation;
+  return e;
+}
+
+// The checks a run makes before it writes anything: an integrator the
+// scene's force providers cannot serve, and a time step above the stable
+// estimate unless forced. An integrator chosen on the command line is named
+// as the option (no file or line); one chosen in the case file by its key's
+// line.
+void check_run_start(const CaseDef& def, const Scene& scene, const CaseRunOptions& options,
+                     bool integrator_from_command_line) {
+  const Simulation& sim = *scene.simulation;
   const double dt = sim.settings().dt_s;
   const Integrator method = sim.settings().integrator;
-  // Where the choice came from, for messages.
-  const std::string integrator_field = override_integrator ? "--integrator" : "time.integrator";
-  if (const std::string why = sim.integrator_refusal(); !why.empty())
-    throw InputError(def.source_file.string(), line_of(def, "time"), integrator_field, why);
+  auto integrator_error = [&](const std::string& why) {
+    if (integrator_from_command_line) return InputError("", 0, "--integrator", why);
+    const int line = line_of(def, "time.integrator");
+    return InputError(def.source_file.string(), line ? line : line_of(def, "time"), "time.integrator", why);
+  };
+  if (const std::string why = sim.integrator_refusal(); !why.empty()) throw integrator_error(why);
   if (dt > scene.stable_time_step.dt_crit_s && !options.allow_unstable_time_step) {
     std::ostringstream msg;
     if (method == Integrator::ForwardEuler) {
+      // No dt helps: the integrator is the cause.
       msg << "forward_euler is unstable at every dt_s on an undamped mode (|1 + i omega dt| > 1), and the "
              "stiffest mode here, "
           << scene.stable_time_step.omega_max_radps << " rad/s, is " << scene.stable_time_step.stiffest_element
           << "; choose another integrator (or run with --force to override)";
-    } else {
-      msg << "dt_s = " << dt << " s exceeds the stable time step of " << integrator_name(method) << ", "
-          << integrator_stability_factor(method) << "/omega_max = " << scene.stable_time_step.dt_crit_s
-          << " s, set by " << scene.stable_time_step.stiffest_element
-          << "; lower dt_s below it (or run with --force to override)";
+      throw integrator_error(msg.str());
     }
-    throw InputError(def.source_file.string(), line_of(def, "time"), "time.dt_s", msg.str());
+    msg << "dt_s = " << dt << " s exceeds the stable time step of " << integrator_name(method) << ", "
+        << integrator_stability_factor(method) << "/omega_max = " << scene.stable_time_step.dt_crit_s
+        << " s, set by " << scene.stable_time_step.stiffest_element
+        << "; lower dt_s below it (or run with --force to override)";
+    const int line = line_of(def, "time.dt_s");
+    throw InputError(def.source_file.string(), line ? line : line_of(def, "time"), "time.dt_s", msg.str());
   }
+}
+
+}  // namespace
+
+void check_case_runnable(const CaseDef& case_def, const CaseRunOptions& options) {
+  const EffectiveCase e = effective_case(case_def, options);
+  const Scene scene = build_scene(*e.def);
+  check_run_start(*e.def, scene, options, e.integrator_from_command_line);
+}
+
+CaseRunReport run_case(const CaseDef& case_def, const CaseRunOptions& options) {
+  const EffectiveCase effective = effective_case(case_def, options);
+  const CaseDef& def = *effective.def;
+  Scene scene = build_scene(def);
+  Simulation& sim = *scene.simulation;
+  const Integrator method = sim.settings().integrator;
+  check_run_start(def, scene, options, effective.integrator_from_command_line);
 
   OutputDef output = def.output;
   if (options.output_folder) output.folder = *options.output_folder;
@@ -329,7 +370,7 @@ CaseRunReport run_case(const CaseDef& case_def, const CaseRunOptions& options) {
     if (def.source_file.empty())
       throw InputError("", 0, "--checkpoint-every", "checkpoints need a case read from a file (resume reloads it)");
     if (method != Integrator::CentralDifference)
-      throw InputError(def.source_file.string(), line_of(def, "time"), "--checkpoint-every",
+      throw InputError("", 0, "--checkpoint-every",
                        std::string("checkpoints save the state of the central-difference scheme only; this run uses ") +
                            integrator_name(method) + " (run it without --checkpoint-every, or with central_difference)");
     meta.emplace();
@@ -412,6 +453,13 @@ CaseRunReport resume_case(const std::filesystem::path& folder, const CaseRunOpti
 
 void describe_case(const CaseDef& def, std::ostream& out) {
   Scene scene = build_scene(def);
+  {
+    // What run refuses whatever the options (an integrator the scene cannot
+    // serve) is an error here too; a dt above the limit is flagged below.
+    CaseRunOptions forced;
+    forced.allow_unstable_time_step = true;
+    check_run_start(def, scene, forced, false);
+  }
   const Simulation& sim = *scene.simulation;
   const BodyStore& bodies = sim.bodies();
   double total_mass = 0.0;
@@ -443,7 +491,8 @@ void describe_case(const CaseDef& def, std::ostream& out) {
     out << "ground      " << gm.components().size() << " component(s), peak |a_g| x/y/z = " << peak.x() << " / "
         << peak.y() << " / " << peak.z() << " m/s^2\n";
     for (const GroundMotionComponent& c : gm.components())
-      out << "            " << c.record.source << "  along (" << c.direction.transpose() << ") x "
+      // + 0.0 prints a negative zero component of `-z` as 0.
+      out << "            " << c.record.source << "  along (" << (c.direction.array() + 0.0).transpose() << ") x "
           << c.amplitude_scale << ", time scale " << c.time_scale << ", window from " << c.window_start_s
           << " s\n";
   }

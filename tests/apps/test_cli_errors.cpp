@@ -194,6 +194,22 @@ TEST(CliErrors, TheBaseCaseIsValid) {
   EXPECT_EQ(r.out.find("ABOVE THE STABLE LIMIT"), std::string::npos) << r.out;
 }
 
+// info prints a ground-motion direction as the unit vector it is: axis -z
+// is (0 0 -1), without the negative zeros the sign flip leaves in x and y.
+TEST(CliInfo, NegativeAxisPrintsWithoutNegativeZeros) {
+  TempDir dir;
+  std::string text = kBaseCase;
+  const std::string axis = "axis: x}";
+  ASSERT_NE(text.find(axis), std::string::npos);
+  text.replace(text.find(axis), axis.size(), "axis: -z}");
+  std::ofstream(dir.path() / "case.yaml") << text;
+  std::ofstream(dir.path() / "rec.AT2") << kBaseRecord;
+  const auto r = run_app({"info", (dir.path() / "case.yaml").string()}, dir.path());
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("along ( 0  0 -1)"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("(-0 "), std::string::npos) << r.out;
+}
+
 TEST(CliErrors, MalformedCaseFiles) {
   for (const Row& row : kCaseRows) check_row(row, run_case(substitute(kBaseCase, row), kBaseRecord));
 }
@@ -254,6 +270,69 @@ TEST(CliErrors, TimeStepAboveTheLimitIsRefusedAndWhenForcedRunsWithAWarning) {
   EXPECT_NE(forced.err.find("the run was forced"), std::string::npos) << forced.err;
   const std::string summary = fq_test::read_text(out / "summary.json");
   EXPECT_NE(summary.find("\"warnings\": [\"dt_s = 0.001 s is 3.4"), std::string::npos) << summary;
+}
+
+// An integrator that cannot serve the scene's force providers (rk4 and
+// gsl_rk8pd evaluate trial states; the cube's contacts keep history
+// between evaluations, dem_core/simulation.h) is refused by run and by info
+// alike, exit 2, nothing written, whatever --force says. The message names
+// where the choice was made: the case file's `integrator` key with its
+// line, or the command-line option without a file line. Forward Euler,
+// unstable at every dt on the cube's undamped modes, is refused naming the
+// integrator, not the time step.
+TEST(CliErrors, IntegratorTheSceneCannotUseIsRefusedWhereItWasChosen) {
+  TempDir dir;
+  std::string block_time = fq_test::kForcedCubeCase;
+  const std::string flow = "time: {dt_s: 1.0e-3, duration_s: 0.05}\n";
+  ASSERT_NE(block_time.find(flow), std::string::npos);
+  // Lines 3-6: time, dt_s, duration_s, integrator.
+  block_time.replace(block_time.find(flow), flow.size(),
+                     "time:\n  dt_s: 1.0e-4\n  duration_s: 0.05\n  integrator: rk4\n");
+  std::ofstream(dir.path() / "rk4.yaml", std::ios::binary) << block_time;
+  std::ofstream(dir.path() / "cube.yaml", std::ios::binary) << fq_test::kForcedCubeCase;
+  const fs::path out = dir.path() / "out";
+  const std::string rk4_case = (dir.path() / "rk4.yaml").string();
+  const std::string cube_case = (dir.path() / "cube.yaml").string();
+
+  for (const std::string command : {"run", "info"}) {
+    SCOPED_TRACE(command);
+    std::vector<std::string> args = {command, rk4_case};
+    if (command == "run") args.insert(args.end(), {"--out", out.string(), "--quiet", "--force"});
+    const auto r = run_app(args, dir.path());
+    EXPECT_EQ(r.code, 2) << r.err;
+    EXPECT_NE(r.err.find("rk4.yaml:6: field 'time.integrator'"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("evaluates forces at trial states"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(out));
+  }
+  const auto option = run_app({"run", cube_case, "--integrator", "gsl_rk8pd", "--out", out.string(), "--quiet"},
+                              dir.path());
+  EXPECT_EQ(option.code, 2) << option.err;
+  EXPECT_NE(option.err.find("error: field '--integrator': integrator gsl_rk8pd"), std::string::npos) << option.err;
+  EXPECT_EQ(option.err.find("cube.yaml:"), std::string::npos) << option.err;
+  EXPECT_FALSE(fs::exists(out));
+
+  const auto euler = run_app({"run", cube_case, "--integrator=forward_euler", "--out", out.string(), "--quiet"},
+                             dir.path());
+  EXPECT_EQ(euler.code, 2) << euler.err;
+  EXPECT_NE(euler.err.find("field '--integrator': forward_euler is unstable at every dt_s"), std::string::npos)
+      << euler.err;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+// Every option also takes the form --option=value (a value may contain
+// '='); the run then goes where --out= says.
+TEST(CliUsage, OptionEqualsValueIsTheOptionFollowedByTheValue) {
+  TempDir dir;
+  std::ofstream(dir.path() / "case.yaml", std::ios::binary) << fq_test::kForcedCubeCase;
+  const fs::path out = dir.path() / "a=b";
+  const auto r = run_app({"run", (dir.path() / "case.yaml").string(), "--out=" + out.string(), "--quiet", "--force",
+                          "--integrator=velocity_verlet"},
+                         dir.path());
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(fq_test::read_text(out / "summary.json").find("\"integrator\": \"velocity_verlet\""), std::string::npos);
+  const auto empty = run_app({"run", (dir.path() / "case.yaml").string(), "--out="}, dir.path());
+  EXPECT_EQ(empty.code, 2) << empty.err;
+  EXPECT_NE(empty.err.find("--out needs a value, got an empty one"), std::string::npos) << empty.err;
 }
 
 // FRAMEQUAKE_SIMD chooses the SIMD form of the lane kernels

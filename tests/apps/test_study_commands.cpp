@@ -153,6 +153,24 @@ TEST(StudyCommands, BadInputIsRefusedBeforeAnythingIsWritten) {
   TempDir dir;
   const fs::path out = dir.path() / "never";
   const std::string portal = (kSource / "cases/demo_portal_frame.yaml").string();
+  // A case that loads but that run refuses at its start (dt 3.4 times the
+  // stable estimate): compare and sweep check every case before running
+  // any, so the portal beside it is not run either.
+  std::ofstream(dir.path() / "cube.yaml", std::ios::binary) << fq_test::kForcedCubeCase;
+  const std::string cube = (dir.path() / "cube.yaml").string();
+  // The portal with dt = 1e-3 s, 8.4 times its stable estimate, for sweep
+  // (which needs a ground motion); its record by absolute path.
+  std::string coarse = read_text(kSource / "cases/demo_portal_frame.yaml");
+  const auto replace = [&](const std::string& from, const std::string& to) {
+    const std::size_t at = coarse.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    coarse.replace(at, from.size(), to);
+  };
+  replace("dt_s: 1.0e-5", "dt_s: 1.0e-3");
+  replace("file: ground_motions/", "file: " + (kSource / "cases/ground_motions").string() + "/");
+  replace("name: demo_portal_frame", "name: coarse_portal");
+  std::ofstream(dir.path() / "coarse.yaml", std::ios::binary) << coarse;
+  const std::string coarse_portal = (dir.path() / "coarse.yaml").string();
   struct Case {
     std::vector<std::string> args;
     std::string message;
@@ -164,6 +182,8 @@ TEST(StudyCommands, BadInputIsRefusedBeforeAnythingIsWritten) {
       {{"sweep", portal, "--scales", "1,x", "--out", out.string()}, "--scales expects a positive number, got 'x'"},
       {{"sweep", portal, "--record", (dir.path() / "no.AT2").string(), "--out", out.string()}, "no.AT2"},
       {{"sweep", portal, "--jobs", "0", "--out", out.string()}, "--jobs expects a whole number"},
+      {{"compare", portal, cube, "--out", out.string()}, "cube.yaml:3: field 'time.dt_s': dt_s = 0.001 s exceeds"},
+      {{"sweep", portal, coarse_portal, "--scales", "1", "--out", out.string()}, "coarse.yaml:39: field 'time.dt_s'"},
   };
   for (const Case& c : cases) {
     const auto r = run_app(c.args, dir.path());

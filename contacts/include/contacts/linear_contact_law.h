@@ -24,9 +24,10 @@
 //          removed, magnitude kept), then incremented by -k_t v_t dt. With
 //          the dashpot c_t = 2 zeta sqrt(k_t m_eff) the trial force is
 //          F_t = F_s - c_t v_t. If |F_t| > mu F_n the contact slides: F_t is
-//          scaled to mu F_n and the spring is reset to F_s = F_t + c_t v_t
-//          (the spring holds what the cap allows, as in LAMMPS'
-//          pair granular with a history-based tangential model).
+//          scaled to mu F_n and the spring is reset to carry it, F_s = F_t
+//          (the spring holds what the cap allows; storing F_t + c_t v_t, as
+//          some history-based models do, would park the dashpot's share in
+//          the spring: see the sliding branch below).
 // Energies (per evaluation, step dt):
 //   elastic   = 1/2 k_n d^2 + 1/2 |F_s|^2 / k_t (after the update)
 //   viscous   = (F_n - k_n d) d' dt  (normal dashpot; >= 0, includes the clamp loss)

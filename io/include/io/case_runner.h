@@ -137,6 +137,12 @@ std::vector<std::string> energy_warnings(const EnergyLedger& ledger);
 // three deepest pairs by name. Empty when there are none.
 std::string initial_overlap_warning(const std::vector<InitialOverlap>& overlaps, const BodyStore& bodies);
 
+// The checks run_case makes before it writes anything (the scene builds;
+// the integrator can serve its force providers; dt is within the stable
+// estimate unless options.allow_unstable_time_step), for commands that
+// check every case before running any (compare, sweep). Throws InputError.
+void check_case_runnable(const CaseDef& def, const CaseRunOptions& options);
+
 // Runs the case and writes its output. Throws InputError (bad case values or
 // a time step above the stable limit, nothing written) or OutputError.
 CaseRunReport run_case(const CaseDef& def, const CaseRunOptions& options);

@@ -26,12 +26,14 @@ class InputError : public std::runtime_error {
   static std::string format(const std::string& file, int line, const std::string& field, const std::string& message) {
     // Appended piece by piece: gcc 12 at -O3 warns falsely (-Wrestrict,
     // -Wstringop-overflow) about inlined concatenations of temporaries.
+    // "file:line: ", "file: ", "line N: " (text not read from a file), or
+    // nothing (a command-line option).
     std::string s = file;
     if (line > 0) {
-      s += ':';
+      s += file.empty() ? "line " : ":";
       s += std::to_string(line);
     }
-    s += ": ";
+    if (!s.empty()) s += ": ";
     if (!field.empty()) {
       s += "field '";
       s += field;
