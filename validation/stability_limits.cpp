@@ -22,6 +22,15 @@
 // stays within about 1e-5 m). A strongly damped mode just above its limit
 // grows slowly (|r| - 1 ~ delta / (2 zeta omega dt) per step for a margin
 // delta in lambda_max), so the run is long and the threshold low.
+// Without gravity a contact is not pressed, and a contact mode past its
+// limit clamps at once and moves nothing, so a fourth table loads the
+// cases (the demos and frames A, B, C) by their own gravity: the same
+// random start, no ground motion, 4000 steps of the estimate in simulated
+// time, unstable when the kinetic energy of the last fifth exceeds 10
+// times that of the run at half the estimate (loaded_case_late_kinetic_J).
+// Lightly pressed contacts chatter within their preload past their limit
+// and leave the rest settled, so this measures how conservative the
+// estimate is for them (docs/speed_accuracy.md).
 //
 // Usage: stability_limits [OUT_PREFIX]   (default validation/stability_limits)
 // writes OUT_PREFIX.csv and OUT_PREFIX.md and prints the markdown table;
@@ -58,6 +67,40 @@ double damped_case_amplitude(fq::CaseDef def, double dt_s, int steps) {
   fq::Simulation& sim = *scene.simulation;
   fq::stability::set_small_random_motion(sim.bodies());
   return fq::stability::largest_displacement(sim, steps);
+}
+
+// The cases as they ship, loaded by their own gravity (contacts pressed
+// together, as in a run), with no ground motion and the same small random
+// velocities: the kinetic energy (J) of the last fifth of `duration_s`
+// simulated seconds at dt, at its largest; +inf when the run stops as
+// unstable. A stable run keeps the settling motion the load starts, the
+// same at every stable dt; a contact or joint mode past its limit grows
+// until the compression-only contacts clamp it and then chatters, which
+// raises it. (Without gravity such a mode clamps at zero preload and moves
+// nothing: the previous test, above, cannot see contact modes.)
+double loaded_case_late_kinetic_J(fq::CaseDef def, double dt_s, double duration_s) {
+  def.time.dt_s = dt_s;
+  def.time.duration_s = duration_s;
+  def.ground_motion.reset();
+  fq::Scene scene = fq::build_scene(def);
+  fq::Simulation& sim = *scene.simulation;
+  fq::stability::set_small_random_motion(sim.bodies());
+  const std::int64_t steps = sim.total_steps();
+  double late = 0.0;
+  for (std::int64_t n = 0; n < steps; ++n) {
+    if (!sim.step()) return HUGE_VAL;
+    if (5 * n < 4 * steps) continue;
+    const fq::BodyStore& b = sim.bodies();
+    double ke = 0.0;
+    for (std::size_t i = 0; i < b.size(); ++i) {
+      if (b.is_fixed[i]) continue;
+      ke += 0.5 * b.mass_kg[i] * b.velocity_mps[i].squaredNorm() +
+            0.5 * b.angular_velocity_radps[i].dot(b.angular_momentum_Nms[i]);
+    }
+    if (!std::isfinite(ke)) return HUGE_VAL;
+    late = std::max(late, ke);
+  }
+  return late;
 }
 
 int usage_error(const std::string& msg) {
@@ -178,6 +221,44 @@ int main(int argc, char** argv) {
       const Scene scene = build_scene(still);
       damped_row(file, scene.stable_time_step.dt_crit_s, scene.stable_time_step.stiffest_element,
                  [&](double dt) { return !(damped_case_amplitude(def, dt, damped_steps) < damped_threshold_m); });
+    } catch (const std::exception& e) {
+      std::cerr << "stability_limits: error: " << e.what() << "\n";
+      return 1;
+    }
+  }
+  // The cases loaded by gravity (loaded_case_late_kinetic_J): unstable
+  // when the late kinetic energy exceeds 10 times that of the run at half
+  // the estimate over the same simulated time (4000 steps of the estimate).
+  const double loaded_factor = 10.0;
+  md << "\nCentral difference with dashpots, the cases loaded by their own gravity (contacts pressed as in a run; "
+        "no ground motion, the same small random velocities; unstable when the kinetic energy of the last fifth "
+        "of the run exceeds "
+     << loaded_factor
+     << " times that of a run at half the estimate over the same simulated time, 4000 estimate steps), bisection "
+        "to 1e-3 relative:\n\n";
+  md << "| scene | estimate dt (s), set by | bisected dt (s) | bisected / estimate |\n|---|---|---|---|\n";
+  for (const char* file : {"cases/demo_portal_frame.yaml", "cases/demo_breaking_cantilever.yaml",
+                           "cases/demo_falling_block.yaml", "cases/frame_A.yaml", "cases/frame_B.yaml",
+                           "cases/frame_C.yaml"}) {
+    if (!std::filesystem::exists(file)) {
+      md << "| " << file << " | not found (run from the repository root) | - | - |\n";
+      continue;
+    }
+    try {
+      CaseDef def = load_case_file(file);
+      def.ground_motion.reset();
+      def.time.duration_s = 1.0;
+      const Scene scene = build_scene(def);
+      const double estimate = scene.stable_time_step.dt_crit_s;
+      const double duration = 4000.0 * estimate;
+      const double reference = loaded_case_late_kinetic_J(def, 0.5 * estimate, duration);
+      double lo = 0.5 * estimate, hi = 3.0 * estimate;
+      while (hi - lo > 1e-3 * lo) {
+        const double mid = 0.5 * (lo + hi);
+        (loaded_case_late_kinetic_J(def, mid, duration) > loaded_factor * reference ? hi : lo) = mid;
+      }
+      md << "| " << file << " | " << std::setprecision(6) << estimate << ", " << scene.stable_time_step.stiffest_element
+         << " | " << lo << " | " << lo / estimate << " |\n";
     } catch (const std::exception& e) {
       std::cerr << "stability_limits: error: " << e.what() << "\n";
       return 1;

@@ -618,25 +618,15 @@ double ContactSystem::ground_normal_force_N() const {
 
 namespace {
 
-using Vec6 = Eigen::Matrix<double, 6, 1>;
-
-// Mass-scaled gradient of a point displacement along unit e at arm r from
-// the centre of body i: (e / sqrt(m), I^-1/2 (r x e)) with the world inverse
-// inertia (zero for a fixed body).
-Vec6 scaled_gradient(const BodyStore& bodies, BodyId i, const Vec3& arm, const Vec3& e) {
-  Vec6 g;
-  g.head<3>() = e * std::sqrt(bodies.inverse_mass_per_kg[i]);
-  const Mat3& r = bodies.rotation[i];
-  g.tail<3>() = r * bodies.inverse_inertia_per_kgm2[i].cwiseSqrt().cwiseProduct(r.transpose() * arm.cross(e));
-  return g;
-}
-
-// Largest eigenvalue of M^-1/2 K M^-1/2 (1/s^2) for one box resting on a
-// face against a fixed surface, worst over its three face orientations:
-// four corner points of the face, each a normal spring k_n along the face
-// normal and two tangential springs k_t in the face plane.
-double one_sided_contact_eigenvalue(const Vec3& half_extents_m, double mass_kg, const Vec3& inertia_kgm2, double kn,
-                                    double kt) {
+// Largest eigenvalue of sum (coef g g^T) over the four corner points of a
+// face of one box against a fixed surface, worst over its three face
+// orientations: each point a normal term (coef_n) along the face normal and
+// two tangential terms (coef_t) in the face plane; g the mass-scaled
+// gradient in the box's principal frame. With coef = k it is omega^2 of the
+// box resting on that face (1/s^2); with coef = dt^2 k + 2 dt c the matrix
+// whose top eigenvalue reaches 4 at the damped limit.
+double one_sided_contact_eigenvalue(const Vec3& half_extents_m, double mass_kg, const Vec3& inertia_kgm2,
+                                    double coef_n, double coef_t) {
   double worst = 0.0;
   for (int axis = 0; axis < 3; ++axis) {
     const int u = (axis + 1) % 3, v = (axis + 2) % 3;
@@ -651,7 +641,7 @@ double one_sided_contact_eigenvalue(const Vec3& half_extents_m, double mass_kg, 
         Vec6 g;
         g.head<3>() = e / std::sqrt(mass_kg);
         g.tail<3>() = arm.cross(e).cwiseQuotient(inertia_kgm2.cwiseSqrt());
-        k += (d == axis ? kn : kt) * g * g.transpose();
+        k += (d == axis ? coef_n : coef_t) * g * g.transpose();
       }
     }
     worst = std::max(worst, Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>>(k).eigenvalues().maxCoeff());
@@ -659,106 +649,42 @@ double one_sided_contact_eigenvalue(const Vec3& half_extents_m, double mass_kg, 
   return worst;
 }
 
+// The dashpots of one of the four corner points of a face contact whose
+// pair has mass m_pair (ContactSystem::process_item: share 1 of 4, mass
+// m_pair / 4 per point; contact_dashpots).
+struct CornerDashpots {
+  double n, t;
+};
+CornerDashpots corner_dashpots(double kn, double kt, double zeta, double pair_mass_kg) {
+  const double m = 0.25 * pair_mass_kg;
+  return {2.0 * zeta * std::sqrt(kn * m), 2.0 * zeta * std::sqrt(kt * m)};
+}
+
+// The dt at which `lambda(dt)`, the top eigenvalue of dt^2 K~ + 2 dt C~ of
+// some contact (increasing in dt), reaches 4, between `lo` (lambda <= 4)
+// and `hi` (lambda >= 4); bisection to 1e-12 relative.
+template <class Lambda>
+double damped_limit(Lambda lambda, double lo, double hi) {
+  for (int it = 0; it < 60 && hi - lo > 1e-12 * hi; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (lambda(mid) < 4.0 ? lo : hi) = mid;
+  }
+  return lo;
+}
+
 }  // namespace
 
-StiffestMode ContactSystem::stiffest_mode(const BodyStore& bodies) const {
-  // Critical time step of the contact springs (derivation in contacts/README.md).
-  // omega^2 is the largest eigenvalue of M^-1/2 K M^-1/2 of the linearised
-  // contact springs (K = sum k c c^T over normal and tangential springs of
-  // every point, c the point's relative-displacement gradient; M masses and
-  // world inertia tensors), the same measure JointSystem uses. Two parts:
-  //  (1) contacts present now: every box within kTouchMargin_m of the ground
-  //      or of another (unbonded) box gets the points the narrow phase would
-  //      give, and the top eigenvalue of the whole contact graph is found by
-  //      power iteration (a box on the ground, a stack, a pile at rest);
-  //  (2) contacts that may form later (falling debris): the worst single
-  //      new contact. One box on a fixed surface: lambda_1(i), the largest
-  //      eigenvalue of its four-corner face contact, worst face. A face
-  //      contact is the worst a box can rest in: an edge or corner contact
-  //      has a subset of its points, a face on a smaller face has shorter
-  //      arms. Two free boxes a, b: for unit x = (x_a, x_b) in mass-scaled
-  //      coordinates the Rayleigh quotient is |G_b x_b - G_a x_a|^2 <=
-  //      (|G_a| |x_a| + |G_b| |x_b|)^2 <= lambda_1(a) + lambda_1(b)
-  //      (Cauchy-Schwarz), with equality for two equal boxes in their
-  //      antisymmetric mode; the bound uses the two largest lambda_1.
-  // Stiffnesses: the largest k_n and k_t of any material pair (and the
-  // ground). The dashpot lowers the central-difference limit to
-  // dt = (2/w)(sqrt(1 + zeta^2) - zeta); it is folded into the w reported
-  // with the largest damping ratio of any pair.
-  StiffestMode mode;
+// Box pair keys of linearised terms: (a + 1) << 32 | b, a = -1 for the ground.
+void ContactSystem::linearised_springs(const BodyStore& bodies, std::vector<LinearisedSpring>& out) const {
+  // The contacts present now (contacts/README.md, "Stable step"): every box
+  // within kTouchMargin_m of the ground or of another (unbonded) box gets
+  // the points the narrow phase would give, each point a normal and two
+  // tangential spring-dashpots with the stiffness share and the mass share
+  // process_item gives it (k = w k_n, m = w m_pair / sum w, c = 2 zeta
+  // sqrt(k m), contact_dashpots), with the coefficients of its pair
+  // (coefficients_of: the ground's, or the materials').
   const std::size_t nb = bodies.size();
   auto is_free = [&](std::size_t i) { return !bodies.is_fixed[i] && bodies.info[i].kind != MemberKind::Ground; };
-  // Which contacts can occur at all: pairs need two bodies of which one is
-  // free (a fixed box that is not the ground counts as the other); the
-  // ground, a free body and the ground enabled. A lone block on the ground
-  // is then limited by the ground's stiffness alone, not by a pair
-  // stiffness no pair of this scene can have.
-  std::size_t free_bodies = 0, fixed_boxes = 0;
-  for (std::size_t i = 0; i < nb; ++i) {
-    if (is_free(i))
-      ++free_bodies;
-    else if (bodies.info[i].kind != MemberKind::Ground)
-      ++fixed_boxes;
-  }
-  const bool pairs_possible = free_bodies >= 2 || (free_bodies >= 1 && fixed_boxes >= 1);
-  // Before prepare: the pairs set so far and the ground (the defaults only
-  // when nothing is set); after: every coefficient set in use.
-  std::vector<ContactCoefficients> all;
-  if (prepared_) {
-    for (std::size_t k = 0; k < coeffs_.size(); ++k) {
-      const bool ground = ground_enabled_ && int(k) == ground_coeff_;
-      if (ground || pairs_possible) all.push_back(coeffs_[k]);
-    }
-  } else {
-    if (pairs_possible) {
-      for (const auto& [key, params] : pair_params_) all.push_back(make_contact_coefficients(params, "a pair"));
-      if (pair_params_.empty()) all.push_back(make_contact_coefficients(ContactParams{}, "the default pair"));
-    }
-    if (ground_enabled_) all.push_back(make_contact_coefficients(ground_params_, "the ground"));
-  }
-  if (all.empty()) all.push_back(make_contact_coefficients(ContactParams{}, "the default pair"));
-  double kn = 0.0, kt = 0.0, zeta_max = 0.0;
-  for (const ContactCoefficients& c : all) {
-    kn = std::max(kn, c.normal_stiffness_N_per_m);
-    kt = std::max(kt, c.tangential_stiffness_N_per_m);
-    zeta_max = std::max(zeta_max, c.damping_ratio);
-  }
-
-  // (2) new contacts.
-  double lambda_new = 0.0, top1 = 0.0, top2 = 0.0;
-  BodyId top1_body = kNoBody;
-  std::size_t free_count = 0;
-  for (std::size_t i = 0; i < nb; ++i) {
-    if (!is_free(i)) continue;
-    ++free_count;
-    const double l = one_sided_contact_eigenvalue(bodies.half_extents_m[i], bodies.mass_kg[i],
-                                                  bodies.principal_inertia_kgm2[i], kn, kt);
-    if (l > top1) {
-      top2 = top1;
-      top1 = l;
-      top1_body = BodyId(i);
-    } else if (l > top2) {
-      top2 = l;
-    }
-  }
-  if (top1_body == kNoBody) return mode;
-  std::string where_new;
-  if (ground_enabled_ || free_count < 2) {
-    lambda_new = top1;
-    where_new = "a face contact of '" + bodies.info[top1_body].name + "'";
-  }
-  if (free_count >= 2 && top1 + top2 > lambda_new) {
-    lambda_new = top1 + top2;
-    where_new = "a face contact of '" + bodies.info[top1_body].name + "' on another free box";
-  }
-
-  // (1) contacts present now.
-  struct Row {
-    BodyId a, b;
-    double k;
-    Vec6 ca, cb;
-  };
-  std::vector<Row> rows;
   auto box_of = [&](std::size_t i, double inflate_m) {
     OrientedBox box;
     box.center_m = bodies.position_m[i];
@@ -766,16 +692,34 @@ StiffestMode ContactSystem::stiffest_mode(const BodyStore& bodies) const {
     box.half_extents_m = bodies.half_extents_m[i] + Vec3::Constant(inflate_m);
     return box;
   };
-  auto add_point = [&](BodyId a, BodyId b, const ContactPointGeometry& p) {
-    const Vec3 n = p.normal;
-    const Vec3 t1 = (std::abs(n.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY()).cross(n).normalized();
-    const Vec3 t2 = n.cross(t1);
-    const Vec3* dirs[3] = {&n, &t1, &t2};
-    for (int d = 0; d < 3; ++d) {
-      Row r{a, b, p.weight * (d == 0 ? kn : kt), Vec6::Zero(), Vec6::Zero()};
-      if (a != kNoBody) r.ca = -scaled_gradient(bodies, a, p.position_m - bodies.position_m[a], *dirs[d]);
-      r.cb = scaled_gradient(bodies, b, p.position_m - bodies.position_m[b], *dirs[d]);
-      rows.push_back(r);
+  auto add_manifold = [&](BodyId a, BodyId b, const ContactManifold& manifold) {
+    double weight_sum = 0.0;
+    for (int k = 0; k < manifold.count; ++k) weight_sum += manifold.points[std::size_t(k)].weight;
+    if (!(weight_sum > 0.0)) return;
+    const double ma = a == kNoBody ? 0.0 : bodies.mass_kg[std::size_t(a)], mb = bodies.mass_kg[std::size_t(b)];
+    const double pair_mass = a == kNoBody || bodies.is_fixed[std::size_t(a)] ? mb
+                             : bodies.is_fixed[std::size_t(b)]                ? ma
+                                                                              : ma * mb / (ma + mb);
+    const std::int64_t element = (std::int64_t(a + 1) << 32) | std::int64_t(b);
+    const ContactCoefficients co = coefficients_of(a, b);
+    for (int k = 0; k < manifold.count; ++k) {
+      const ContactPointGeometry& p = manifold.points[std::size_t(k)];
+      const Vec3 n = p.normal;
+      const Vec3 t1 = (std::abs(n.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY()).cross(n).normalized();
+      const Vec3 t2 = n.cross(t1);
+      const Vec3* dirs[3] = {&n, &t1, &t2};
+      const double point_mass = pair_mass * p.weight / weight_sum;
+      for (int d = 0; d < 3; ++d) {
+        LinearisedSpring r;
+        r.a = a;
+        r.b = b;
+        r.k_Npm = p.weight * (d == 0 ? co.normal_stiffness_N_per_m : co.tangential_stiffness_N_per_m);
+        r.c_Nspm = 2.0 * co.damping_ratio * std::sqrt(r.k_Npm * point_mass);
+        if (a != kNoBody) r.ga = -mass_scaled_gradient(bodies, a, p.position_m - bodies.position_m[std::size_t(a)], *dirs[d]);
+        r.gb = mass_scaled_gradient(bodies, b, p.position_m - bodies.position_m[std::size_t(b)], *dirs[d]);
+        r.element = element;
+        out.push_back(r);
+      }
     }
   };
   ContactManifold manifold;
@@ -785,7 +729,7 @@ StiffestMode ContactSystem::stiffest_mode(const BodyStore& bodies) const {
       const OrientedBox box = box_of(i, 0.0);
       if (box_lowest_z_m(box) > ground_level_m_ + kTouchMargin_m) continue;
       collide_box_ground(box, ground_level_m_ + kTouchMargin_m, manifold);
-      for (int k = 0; k < manifold.count; ++k) add_point(kNoBody, BodyId(i), manifold.points[std::size_t(k)]);
+      add_manifold(kNoBody, BodyId(i), manifold);
     }
   }
   // Box pairs: sweep along x over bounding spheres (O(n log n + pairs)).
@@ -808,55 +752,175 @@ StiffestMode ContactSystem::stiffest_mode(const BodyStore& bodies) const {
       if (collide_box_box(box_of(std::size_t(a), 0.5 * kTouchMargin_m), box_of(std::size_t(b), 0.5 * kTouchMargin_m),
                           manifold) == 0)
         continue;
-      for (int k = 0; k < manifold.count; ++k) add_point(a, b, manifold.points[std::size_t(k)]);
+      add_manifold(a, b, manifold);
     }
   }
-  double lambda_now = 0.0;
-  BodyId now_body = kNoBody;
-  if (!rows.empty()) {
-    std::vector<Vec6> x(nb, Vec6::Zero()), y(nb, Vec6::Zero());
-    for (std::size_t i = 0; i < nb; ++i)
-      for (int d = 0; d < 6; ++d) x[i][d] = 1.0 + 0.1 * std::sin(double(7 * i + d + 1));
-    auto slot = [&](BodyId id) -> Vec6* { return id == kNoBody ? nullptr : &y[std::size_t(id)]; };
-    for (int it = 0; it < 400; ++it) {
-      for (Vec6& v : y) v.setZero();
-      for (const Row& r : rows) {
-        const double proj = (r.a == kNoBody ? 0.0 : r.ca.dot(x[std::size_t(r.a)])) + r.cb.dot(x[std::size_t(r.b)]);
-        if (Vec6* ya = slot(r.a)) *ya += (r.k * proj) * r.ca;
-        *slot(r.b) += (r.k * proj) * r.cb;
-      }
-      double xy = 0.0, yy = 0.0, xx = 0.0;
-      for (std::size_t i = 0; i < nb; ++i) {
-        xy += x[i].dot(y[i]);
-        yy += y[i].squaredNorm();
-        xx += x[i].squaredNorm();
-      }
-      if (!(yy > 0.0)) break;
-      lambda_now = xy / xx;
-      const double scale = 1.0 / std::sqrt(yy);
-      for (std::size_t i = 0; i < nb; ++i) x[i] = y[i] * scale;
-    }
-    double best = -1.0;
-    for (std::size_t i = 0; i < nb; ++i)
-      if (x[i].squaredNorm() > best) {
-        best = x[i].squaredNorm();
-        now_body = BodyId(i);
-      }
-  }
+}
 
-  const bool now_wins = lambda_now > lambda_new;
-  const double lambda = std::max(lambda_now, lambda_new);
-  if (!(lambda > 0.0)) return mode;
-  const double w = std::sqrt(lambda);
-  mode.omega_radps = w / (std::sqrt(1.0 + zeta_max * zeta_max) - zeta_max);
+ContactCoefficients ContactSystem::coefficients_of(BodyId a, BodyId b) const {
+  // As prepare() assigns them, before or after it: the ground's, the
+  // materials' pair, or the default pair.
+  if (a == kNoBody) return make_contact_coefficients(ground_params_, "the ground");
+  auto material = [&](BodyId i) {
+    return std::size_t(i) < body_material_.size() ? body_material_[std::size_t(i)] : 0;
+  };
+  const int ma = material(a), mb = material(b);
+  const auto it = pair_params_.find({std::min(ma, mb), std::max(ma, mb)});
+  return make_contact_coefficients(it == pair_params_.end() ? ContactParams{} : it->second, "a pair");
+}
+
+std::string ContactSystem::describe_linearised_spring(const BodyStore& bodies, std::int64_t element) const {
+  const BodyId a = BodyId(element >> 32) - 1, b = BodyId(element & 0xffffffff);
+  const ContactCoefficients co = coefficients_of(a, b);
   std::ostringstream where;
-  where << "contact springs (k_n = " << kn << " N/m, k_t = " << kt << " N/m per point, damping ratio " << zeta_max
-        << ") of ";
-  if (now_wins)
-    where << "the contacts present at the start, largest motion in '" << bodies.info[std::size_t(now_body)].name << "'";
+  where << "contact springs (k_n = " << co.normal_stiffness_N_per_m << " N/m, k_t = "
+        << co.tangential_stiffness_N_per_m << " N/m per point, damping ratio " << co.damping_ratio
+        << ") of the contact of '" << bodies.info[std::size_t(b)].name << "' with ";
+  if (a == kNoBody)
+    where << "the ground";
   else
-    where << where_new;
-  mode.where = where.str();
+    where << "'" << bodies.info[std::size_t(a)].name << "'";
+  return where.str();
+}
+
+ContactSystem::StiffestCoefficients ContactSystem::stiffest_coefficients(const BodyStore& bodies) const {
+  // Which contacts can occur at all: pairs need two bodies of which one is
+  // free (a fixed box that is not the ground counts as the other); the
+  // ground, a free body and the ground enabled. A lone block on the ground
+  // is then limited by the ground's stiffness alone, not by a pair
+  // stiffness no pair of this scene can have.
+  const std::size_t nb = bodies.size();
+  std::size_t free_bodies = 0, fixed_boxes = 0;
+  for (std::size_t i = 0; i < nb; ++i) {
+    if (!bodies.is_fixed[i] && bodies.info[i].kind != MemberKind::Ground)
+      ++free_bodies;
+    else if (bodies.info[i].kind != MemberKind::Ground)
+      ++fixed_boxes;
+  }
+  const bool pairs_possible = free_bodies >= 2 || (free_bodies >= 1 && fixed_boxes >= 1);
+  // Before prepare: the pairs set so far and the ground (the defaults only
+  // when nothing is set); after: every coefficient set in use.
+  std::vector<ContactCoefficients> all;
+  if (prepared_) {
+    for (std::size_t k = 0; k < coeffs_.size(); ++k) {
+      const bool ground = ground_enabled_ && int(k) == ground_coeff_;
+      if (ground || pairs_possible) all.push_back(coeffs_[k]);
+    }
+  } else {
+    if (pairs_possible) {
+      for (const auto& [key, params] : pair_params_) all.push_back(make_contact_coefficients(params, "a pair"));
+      if (pair_params_.empty()) all.push_back(make_contact_coefficients(ContactParams{}, "the default pair"));
+    }
+    if (ground_enabled_) all.push_back(make_contact_coefficients(ground_params_, "the ground"));
+  }
+  if (all.empty()) all.push_back(make_contact_coefficients(ContactParams{}, "the default pair"));
+  StiffestCoefficients sc;
+  for (const ContactCoefficients& c : all) {
+    sc.kn = std::max(sc.kn, c.normal_stiffness_N_per_m);
+    sc.kt = std::max(sc.kt, c.tangential_stiffness_N_per_m);
+    sc.zeta = std::max(sc.zeta, c.damping_ratio);
+  }
+  return sc;
+}
+
+StiffestMode ContactSystem::later_stiffest_mode(const BodyStore& bodies) const {
+  // The worst single contact that may form later (falling debris), with
+  // its dashpots (contacts/README.md, "Stable step"). One box on a fixed
+  // surface: its four-corner face contact, worst face. A face contact is
+  // the worst a box can rest in: an edge or corner contact has a subset of
+  // its points, a face on a smaller face has shorter arms. Two free boxes
+  // a, b: for unit x = (x_a, x_b) in mass-scaled coordinates the Rayleigh
+  // quotient of any sum of coef g g^T terms is |G_b x_b - G_a x_a|^2 <=
+  // (|G_a| |x_a| + |G_b| |x_b|)^2 <= lambda(a) + lambda(b) (Cauchy-Schwarz),
+  // with equality for two equal boxes in their antisymmetric mode; the
+  // bound uses the two boxes of largest undamped lambda, with the dashpots
+  // of their pair's reduced mass. The damped limit of each is the dt where
+  // its lambda(dt^2 K~ + 2 dt C~) reaches 4.
+  StiffestMode mode;
+  const StiffestCoefficients sc = stiffest_coefficients(bodies);
+  const std::size_t nb = bodies.size();
+  auto is_free = [&](std::size_t i) { return !bodies.is_fixed[i] && bodies.info[i].kind != MemberKind::Ground; };
+  auto lambda_of = [&](std::size_t i, double dt, double pair_mass_kg) {
+    const CornerDashpots c = corner_dashpots(sc.kn, sc.kt, sc.zeta, pair_mass_kg);
+    return one_sided_contact_eigenvalue(bodies.half_extents_m[i], bodies.mass_kg[i], bodies.principal_inertia_kgm2[i],
+                                        dt * dt * sc.kn + 2.0 * dt * c.n, dt * dt * sc.kt + 2.0 * dt * c.t);
+  };
+  // Undamped lambda of every free box; the damped limit of one box lies
+  // between 2 / (sqrt(l_k + l_c^2 / 4) + l_c / 2) and 2 / sqrt(l_k), so
+  // only boxes whose lower bound is below the best limit found need it.
+  struct Box {
+    double lower_dt, lambda_k;
+    std::size_t i;
+  };
+  std::vector<Box> boxes;
+  double top1 = 0.0, top2 = 0.0;
+  std::size_t top1_body = nb, top2_body = nb;
+  for (std::size_t i = 0; i < nb; ++i) {
+    if (!is_free(i)) continue;
+    const double lk = one_sided_contact_eigenvalue(bodies.half_extents_m[i], bodies.mass_kg[i],
+                                                   bodies.principal_inertia_kgm2[i], sc.kn, sc.kt);
+    if (!(lk > 0.0)) continue;
+    const CornerDashpots c = corner_dashpots(sc.kn, sc.kt, sc.zeta, bodies.mass_kg[i]);
+    const double lc = one_sided_contact_eigenvalue(bodies.half_extents_m[i], bodies.mass_kg[i],
+                                                   bodies.principal_inertia_kgm2[i], c.n, c.t);
+    boxes.push_back({2.0 / (std::sqrt(lk + 0.25 * lc * lc) + 0.5 * lc), lk, i});
+    if (lk > top1) {
+      top2 = top1;
+      top2_body = top1_body;
+      top1 = lk;
+      top1_body = i;
+    } else if (lk > top2) {
+      top2 = lk;
+      top2_body = i;
+    }
+  }
+  if (boxes.empty()) return mode;
+  double best_dt = HUGE_VAL;
+  std::string where;
+  if (ground_enabled_ || boxes.size() < 2) {
+    std::sort(boxes.begin(), boxes.end(), [](const Box& x, const Box& y) { return x.lower_dt < y.lower_dt; });
+    for (const Box& box : boxes) {
+      if (box.lower_dt >= best_dt) break;
+      const double m = bodies.mass_kg[box.i];
+      const double dt = damped_limit([&](double t) { return lambda_of(box.i, t, m); }, box.lower_dt,
+                                     2.0 / std::sqrt(box.lambda_k));
+      if (dt < best_dt) {
+        best_dt = dt;
+        where = "a face contact of '" + bodies.info[box.i].name + "'";
+      }
+    }
+  }
+  if (top2_body < nb) {
+    const double ma = bodies.mass_kg[top1_body], mb = bodies.mass_kg[top2_body];
+    const double reduced = ma * mb / (ma + mb);
+    const double dt = damped_limit(
+        [&](double t) { return lambda_of(top1_body, t, reduced) + lambda_of(top2_body, t, reduced); }, 0.0,
+        2.0 / std::sqrt(top1 + top2));
+    if (dt < best_dt) {
+      best_dt = dt;
+      where = "a face contact of '" + bodies.info[top1_body].name + "' on another free box";
+    }
+  }
+  if (!(best_dt < HUGE_VAL) || !(best_dt > 0.0)) return mode;
+  mode.omega_radps = 2.0 / best_dt;
+  std::ostringstream w;
+  w << "contact springs (k_n = " << sc.kn << " N/m, k_t = " << sc.kt << " N/m per point, damping ratio " << sc.zeta
+    << ") of " << where;
+  mode.where = w.str();
+  return mode;
+}
+
+StiffestMode ContactSystem::stiffest_mode(const BodyStore& bodies) const {
+  // The contacts alone: the network of those present now and the worst
+  // that may form later, whichever limits more.
+  std::vector<LinearisedSpring> rows;
+  linearised_springs(bodies, rows);
+  const NetworkStableStep now = network_stable_step(rows, bodies.size());
+  StiffestMode mode = later_stiffest_mode(bodies);
+  if (now.omega_radps > mode.omega_radps) {
+    mode.omega_radps = now.omega_radps;
+    mode.where = describe_linearised_spring(bodies, rows[now.stiffest].element);
+  }
   return mode;
 }
 

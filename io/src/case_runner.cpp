@@ -20,16 +20,64 @@ namespace fq {
 
 namespace {
 
+// A stable limit as users read it and copy it into dt_s: six significant
+// digits rounded down, so that the printed value itself is accepted (the
+// default rounding printed 0.000123704 for 1.237035e-4, which run refused).
+std::string limit_text(double dt_s) {
+  if (!(dt_s > 0.0) || !std::isfinite(dt_s)) {
+    std::ostringstream o;
+    o << dt_s;
+    return o.str();
+  }
+  const double unit = std::pow(10.0, std::floor(std::log10(dt_s)) - 5.0);
+  double shown = std::floor(dt_s / unit) * unit;
+  std::ostringstream o;
+  o << std::setprecision(6) << shown;
+  // The printed decimal must not read back above the limit.
+  while (std::stod(o.str()) > dt_s) {
+    shown -= unit;
+    o.str("");
+    o << std::setprecision(6) << shown;
+  }
+  return o.str();
+}
+
 int line_of(const CaseDef& def, const std::string& key) {
   auto it = def.section_line.find(key);
   return it == def.section_line.end() ? 0 : it->second;
 }
 
 StableTimeStep estimate_stable_time_step(const Simulation& sim) {
+  // One network of every provider's spring-dashpots acting now (joints and
+  // the contacts present at the start: a column held by its support joint
+  // and standing on the ground gets both stiffnesses), and each provider's
+  // springs that may form later; the stiffest of these sets the limit
+  // (dem_core/linearised_network.h). Checked against bisected runs in
+  // tests/io/test_scene_stable_step.cpp (joint and contact on one body),
+  // tests/contacts/test_contact_stable_step.cpp and
+  // tests/joints/test_stable_time_step.cpp.
   StableTimeStep s;
-  double omega_max = 0.0;
+  const BodyStore& bodies = sim.bodies();
+  std::vector<LinearisedSpring> rows;
+  std::vector<std::size_t> owner_end;  // rows of provider p end at owner_end[p]
   for (const auto& p : sim.providers()) {
-    const StiffestMode mode = p->stiffest_mode(sim.bodies());
+    p->linearised_springs(bodies, rows);
+    owner_end.push_back(rows.size());
+  }
+  double omega_max = 0.0;
+  const NetworkStableStep net = network_stable_step(rows, bodies.size());
+  if (net.omega_radps > 0.0) {
+    omega_max = net.omega_radps;
+    const std::size_t p = std::size_t(std::upper_bound(owner_end.begin(), owner_end.end(), net.stiffest) -
+                                       owner_end.begin());
+    s.stiffest_element = sim.providers()[p]->describe_linearised_spring(bodies, rows[net.stiffest].element);
+  }
+  for (std::size_t k = 0; k < sim.providers().size(); ++k) {
+    // A provider without linearised terms (none acting now, or one that
+    // only knows its stiffest mode) is asked for that mode whole.
+    const ForceProvider& p = *sim.providers()[k];
+    const bool has_rows = owner_end[k] > (k == 0 ? 0 : owner_end[k - 1]);
+    const StiffestMode mode = has_rows ? p.later_stiffest_mode(bodies) : p.stiffest_mode(bodies);
     if (mode.omega_radps > omega_max) {
       omega_max = mode.omega_radps;
       s.stiffest_element = mode.where;
@@ -335,7 +383,7 @@ void check_run_start(const CaseDef& def, const Scene& scene, const CaseRunOption
       throw integrator_error(msg.str());
     }
     msg << "dt_s = " << dt << " s exceeds the stable time step of " << integrator_name(method) << ", "
-        << integrator_stability_factor(method) << "/omega_max = " << scene.stable_time_step.dt_crit_s
+        << integrator_stability_factor(method) << "/omega_max = " << limit_text(scene.stable_time_step.dt_crit_s)
         << " s, set by " << scene.stable_time_step.stiffest_element
         << "; lower dt_s below it (or run with --force to override)";
     const int line = line_of(def, "time.dt_s");
@@ -477,7 +525,7 @@ void describe_case(const CaseDef& def, std::ostream& out) {
   out << "total mass  " << total_mass << " kg (free bodies)\n";
   out << "time step   " << s.dt_s << " s (" << integrator_name(s.integrator) << ")";
   if (std::isfinite(scene.stable_time_step.dt_crit_s))
-    out << "  (stable limit " << scene.stable_time_step.dt_crit_s << " s, set by "
+    out << "  (stable limit " << limit_text(scene.stable_time_step.dt_crit_s) << " s, set by "
         << scene.stable_time_step.stiffest_element << ")";
   // What run will say (run_case refuses it unless forced).
   if (s.dt_s > scene.stable_time_step.dt_crit_s)

@@ -721,42 +721,13 @@ void JointSystem::report_energy(EnergyLedger& ledger) const {
   ledger.dissipated_viscous_J += viscous;
 }
 
-StiffestMode JointSystem::stiffest_mode(const BodyStore& bodies) const {
-  // Stable time step of the linearised joint network at the current pose.
-  // omega^2 = largest eigenvalue of M^-1/2 K M^-1/2, with K = sum_s k0_s
-  // c_s c_s^T, c_s the spring's deformation gradient (-g_a on body a, +g_b on
-  // body b, g = (e, arm x e)), M the bodies' masses and world inertia
-  // tensors; lambda_C the largest eigenvalue of M^-1/2 C M^-1/2 for the
-  // dashpots (C = sum_s c_s^dashpot c_s c_s^T, 1/s). Both are found
-  // matrix-free by power iteration with the Rayleigh quotient, which
-  // converges from below; 400 iterations bring it within a fraction of a
-  // percent for joint networks, where the top modes are well separated.
-  // Central difference with a dashpot reading v(n-1/2) is stable for
-  // dt <= (2 / omega)(sqrt(1 + zeta^2) - zeta) in a mode of damping ratio
-  // zeta; with zeta <= lambda_C / (2 omega) this gives the lower bound
-  //   dt_bound = 2 / (sqrt(omega^2 + lambda_C^2 / 4) + lambda_C / 2),
-  // from which the limit itself is found (below), reported as
-  // omega_eff = 2 / dt_crit. Dashpots matter: a spring-level
-  // ratio of 0.3 can overdamp a light rotational mode (zeta > 1) and halve
-  // the stable step. Fixed bodies have zero inverse mass and drop out.
-  const std::size_t nb = bodies.size();
+void JointSystem::linearised_springs(const BodyStore& bodies, std::vector<LinearisedSpring>& out) const {
+  // Each live spring at its initial stiffness k0 (the stiffest branch of
+  // its law: spring_law.h, initial_stiffness_Npm) and its dashpot, along
+  // its current direction: a joint axis of the frame body a carries, or the
+  // line between its ends for a spring without one. Element: the joint.
   const std::size_t ns = spring_joint_.size();
-  struct Row {
-    BodyId a, b;
-    double k, c;                         // stiffness (N/m), dashpot (N s/m)
-    Eigen::Matrix<double, 6, 1> ca, cb;  // mass-scaled gradient blocks
-  };
-  std::vector<Row> rows;
-  rows.reserve(ns);
-  auto block = [&](BodyId i, const Vec3& arm, const Vec3& e) {
-    Eigen::Matrix<double, 6, 1> g;
-    const double inv_m = bodies.inverse_mass_per_kg[i];
-    g.head<3>() = e * std::sqrt(inv_m);
-    const Mat3& r = bodies.rotation[i];
-    const Vec3 inv_sqrt_inertia = bodies.inverse_inertia_per_kgm2[i].cwiseSqrt();
-    g.tail<3>() = r * inv_sqrt_inertia.cwiseProduct(r.transpose() * arm.cross(e));
-    return g;
-  };
+  out.reserve(out.size() + ns);
   for (std::size_t s = 0; s < ns; ++s) {
     const auto j = std::size_t(spring_joint_[s]);
     if (joint_broken_[j] || (!alive_.empty() && !alive_[s])) continue;
@@ -769,114 +740,40 @@ StiffestMode JointSystem::stiffest_mode(const BodyStore& bodies) const {
     } else {
       e = ((bodies.position_m[b] + arm_b) - (bodies.position_m[a] + arm_a)).normalized();
     }
-    rows.push_back({a, b, stiffness0_Npm_[s], dashpot_Nspm_[s], -block(a, arm_a, e), block(b, arm_b, e)});
+    LinearisedSpring r;
+    r.a = a;
+    r.b = b;
+    r.k_Npm = stiffness0_Npm_[s];
+    r.c_Nspm = dashpot_Nspm_[s];
+    r.ga = -mass_scaled_gradient(bodies, a, arm_a, e);
+    r.gb = mass_scaled_gradient(bodies, b, arm_b, e);
+    r.element = std::int64_t(j);
+    out.push_back(r);
   }
-  StiffestMode mode;
-  if (rows.empty()) return mode;
+}
 
-  using Vec6 = Eigen::Matrix<double, 6, 1>;
-  std::vector<Vec6> x(nb), y(nb);
-  // Largest eigenvalue of sum_rows coef(row) c c^T; leaves its vector in x.
-  auto top_eigenvalue = [&](auto coef, int iterations = 400, bool warm_start = false) {
-    // Deterministic start vector with a component along every degree of
-    // freedom, or the vector x left by the previous call.
-    if (!warm_start)
-      for (std::size_t i = 0; i < nb; ++i)
-        for (int d = 0; d < 6; ++d) x[i][d] = 1.0 + 0.1 * std::sin(double(7 * i + d + 1));
-    double lambda = 0.0;
-    for (int it = 0; it < iterations; ++it) {
-      for (Vec6& v : y) v.setZero();
-      for (const Row& r : rows) {
-        const double proj = r.ca.dot(x[std::size_t(r.a)]) + r.cb.dot(x[std::size_t(r.b)]);
-        y[std::size_t(r.a)] += (coef(r) * proj) * r.ca;
-        y[std::size_t(r.b)] += (coef(r) * proj) * r.cb;
-      }
-      double xy = 0.0, yy = 0.0, xx = 0.0;
-      for (std::size_t i = 0; i < nb; ++i) {
-        xy += x[i].dot(y[i]);
-        yy += y[i].squaredNorm();
-        xx += x[i].squaredNorm();
-      }
-      if (!(yy > 0.0)) return 0.0;
-      lambda = xy / xx;
-      const double scale = 1.0 / std::sqrt(yy);
-      for (std::size_t i = 0; i < nb; ++i) x[i] = y[i] * scale;
-    }
-    return std::max(0.0, lambda);
-  };
-  const double lambda_c = top_eigenvalue([](const Row& r) { return r.c; });
-  const double omega2 = top_eigenvalue([](const Row& r) { return r.k; });  // x: top stiffness mode
-  if (!(omega2 > 0.0)) return mode;
-  // The damped limit itself. With x(n) = (-1)^n phi the update gives
-  // -4 phi = -(dt^2 K~ + 2 dt C~) phi (K~, C~ the mass-scaled stiffness and
-  // dashpot matrices), so r = -1 is a root of the step's amplification
-  // exactly when 4 is an eigenvalue of dt^2 K~ + 2 dt C~: the step is
-  // stable up to the dt where lambda_max(dt^2 K~ + 2 dt C~) = 4 (one mode:
-  // dt = (2 / omega)(sqrt(1 + zeta^2) - zeta), as above). Both matrices sum
-  // the same rows, so the combined one is top_eigenvalue with coefficient
-  // dt^2 k + 2 dt c. The bound above takes omega and lambda_C from two
-  // different modes when the stiffest mode is not the most damped: on the
-  // breaking-cantilever demo it gave 7.15e-5 s where this gives 7.78e-5 s,
-  // and runs with every mode excited are bounded at 0.99 of the latter and
-  // not at 1.01 (docs/speed_accuracy.md).
-  // Iteration: dt <- the root of a dt^2 + 2 b dt = 4, a and b the Rayleigh
-  // quotients of K~ and C~ in the top eigenvector at the current dt; the
-  // root is its only fixed point, and by lambda_max(A + B) <= lambda_max(A)
-  // + lambda_max(B) it lies between the bound and 2 / omega.
-  const double dt_bound = 2.0 / (std::sqrt(omega2 + 0.25 * lambda_c * lambda_c) + 0.5 * lambda_c);
-  const double dt_undamped = 2.0 / std::sqrt(omega2);
-  double dt_crit = dt_undamped;
-  if (lambda_c > 0.0) {
-    double dt = dt_bound;
-    for (int outer = 0; outer < 12; ++outer) {
-      top_eigenvalue([dt](const Row& r) { return dt * dt * r.k + 2.0 * dt * r.c; }, outer == 0 ? 400 : 100,
-                     /*warm_start=*/outer > 0);
-      double xx = 0.0, a = 0.0, b = 0.0;
-      for (const Row& r : rows) {
-        const double proj = r.ca.dot(x[std::size_t(r.a)]) + r.cb.dot(x[std::size_t(r.b)]);
-        a += r.k * proj * proj;
-        b += r.c * proj * proj;
-      }
-      for (std::size_t i = 0; i < nb; ++i) xx += x[i].squaredNorm();
-      if (!(xx > 0.0) || !(a > 0.0)) break;
-      a /= xx;
-      b /= xx;
-      const double next = 2.0 / (std::sqrt(a + 0.25 * b * b) + 0.5 * b);  // root of a dt^2 + 2 b dt = 4
-      const bool settled = std::fabs(next - dt) <= 1e-9 * dt;
-      dt = next;
-      if (settled) break;
-    }
-    dt_crit = std::clamp(dt, dt_bound, dt_undamped);
-  }
-  // The spring storing most energy in the mode that sets the limit (the
-  // last top eigenvector: of K~, or of dt^2 K~ + 2 dt C~ with dashpots)
-  // names where it lives.
-  const double w_k = lambda_c > 0.0 ? dt_crit * dt_crit : 1.0, w_c = lambda_c > 0.0 ? 2.0 * dt_crit : 0.0;
-  std::size_t best = 0;
-  double best_energy = -1.0;
-  for (std::size_t k = 0; k < rows.size(); ++k) {
-    const Row& r = rows[k];
-    const double proj = r.ca.dot(x[std::size_t(r.a)]) + r.cb.dot(x[std::size_t(r.b)]);
-    const double energy = (w_k * r.k + w_c * r.c) * proj * proj;
-    if (energy > best_energy) {
-      best_energy = energy;
-      best = k;
-    }
-  }
-  std::size_t joint = 0;
-  for (std::size_t s = 0, k = 0; s < ns; ++s) {
-    const auto j = std::size_t(spring_joint_[s]);
-    if (joint_broken_[j] || (!alive_.empty() && !alive_[s])) continue;
-    if (k++ == best) {
-      joint = j;
-      break;
-    }
-  }
-  mode.omega_radps = lambda_c > 0.0 ? 2.0 / dt_crit : std::sqrt(omega2);  // undamped: omega itself, to the bit
+std::string JointSystem::describe_linearised_spring(const BodyStore& bodies, std::int64_t element) const {
+  const auto j = std::size_t(element);
   std::ostringstream m;
-  m << "joint " << joint << " (bodies " << joint_body_a_[joint] << " '" << bodies.info[joint_body_a_[joint]].name
-    << "' - " << joint_body_b_[joint] << " '" << bodies.info[joint_body_b_[joint]].name << "')";
-  mode.where = m.str();
+  m << "joint " << j << " (bodies " << joint_body_a_[j] << " '" << bodies.info[joint_body_a_[j]].name << "' - "
+    << joint_body_b_[j] << " '" << bodies.info[joint_body_b_[j]].name << "')";
+  return m.str();
+}
+
+StiffestMode JointSystem::stiffest_mode(const BodyStore& bodies) const {
+  // The joint network alone (dem_core/linearised_network.h): omega^2 the
+  // largest eigenvalue of M^-1/2 K M^-1/2 with K = sum_s k0_s g_s g_s^T,
+  // and with dashpots the dt where lambda_max(dt^2 K~ + 2 dt C~) = 4,
+  // reported as omega_eff = 2 / dt_crit. Dashpots matter: a spring-level
+  // ratio of 0.3 can overdamp a light rotational mode (zeta > 1) and halve
+  // the stable step. Fixed bodies have zero inverse mass and drop out.
+  std::vector<LinearisedSpring> rows;
+  linearised_springs(bodies, rows);
+  const NetworkStableStep net = network_stable_step(rows, bodies.size());
+  StiffestMode mode;
+  if (!(net.omega_radps > 0.0)) return mode;
+  mode.omega_radps = net.omega_radps;
+  mode.where = describe_linearised_spring(bodies, rows[net.stiffest].element);
   return mode;
 }
 

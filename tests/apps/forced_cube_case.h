@@ -1,6 +1,6 @@
 // A case for the tests of forced runs (tests/apps): a 0.1 m spruce cube
-// resting on the ground at dt = 1e-3 s, 3.4 times the stable estimate that
-// `framequake info` gives for it (2.93e-4 s, from its stiffest contact
+// resting on the ground at dt = 1e-3 s, 4.2 times the stable estimate that
+// `framequake info` gives for it (2.37e-4 s, from its stiffest contact
 // mode), so `run` refuses it without --force and warns with it.
 #pragma once
 

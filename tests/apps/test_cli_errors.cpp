@@ -266,10 +266,10 @@ TEST(CliErrors, TimeStepAboveTheLimitIsRefusedAndWhenForcedRunsWithAWarning) {
   forced_args.push_back("--force");
   const auto forced = run_app(forced_args, dir.path());
   EXPECT_EQ(forced.code, 0) << forced.err;
-  EXPECT_NE(forced.err.find("framequake: warning: dt_s = 0.001 s is 3.4"), std::string::npos) << forced.err;
+  EXPECT_NE(forced.err.find("framequake: warning: dt_s = 0.001 s is 4.2"), std::string::npos) << forced.err;
   EXPECT_NE(forced.err.find("the run was forced"), std::string::npos) << forced.err;
   const std::string summary = fq_test::read_text(out / "summary.json");
-  EXPECT_NE(summary.find("\"warnings\": [\"dt_s = 0.001 s is 3.4"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"warnings\": [\"dt_s = 0.001 s is 4.2"), std::string::npos) << summary;
 }
 
 // An integrator that cannot serve the scene's force providers (rk4 and

@@ -118,7 +118,7 @@ TEST(StudyCommands, CompareShowsTheWarningsOfAForcedRun) {
                          dir.path());
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.err.find("cube: completed"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("\n  warning: dt_s = 0.001 s is 3.4"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("\n  warning: dt_s = 0.001 s is 4.2"), std::string::npos) << r.err;
 }
 
 TEST(StudyCommands, SweepScalesTheMotionAndFindsNoCollapseInTheDemoPortal) {
@@ -149,11 +149,38 @@ TEST(StudyCommands, SweepScalesTheMotionAndFindsNoCollapseInTheDemoPortal) {
   EXPECT_TRUE(is_png(out / "sweep.png"));
 }
 
+// The stable limit info prints is one a user can copy into dt_s: printed
+// rounded down, so run and info accept it. The portal demo's limit,
+// 1.184375...e-4 s, printed to six digits by the stream's own rounding as
+// 0.000118438, which both refused.
+TEST(StudyCommands, TheStableLimitInfoPrintsIsAcceptedAsTheTimeStep) {
+  TempDir dir;
+  std::string portal = read_text(kSource / "cases/demo_portal_frame.yaml");
+  const std::string record = "file: ground_motions/";
+  ASSERT_NE(portal.find(record), std::string::npos);
+  portal.replace(portal.find(record), record.size(), "file: " + (kSource / "cases/ground_motions").string() + "/");
+  std::ofstream(dir.path() / "portal.yaml", std::ios::binary) << portal;
+  const auto info = run_app({"info", (dir.path() / "portal.yaml").string()}, dir.path());
+  ASSERT_EQ(info.code, 0) << info.err;
+  const std::string tag = "stable limit ";
+  const std::size_t at = info.out.find(tag);
+  ASSERT_NE(at, std::string::npos) << info.out;
+  const std::string limit = info.out.substr(at + tag.size(), info.out.find(' ', at + tag.size()) - at - tag.size());
+  const std::string dt = "dt_s: 1.0e-5";
+  ASSERT_NE(portal.find(dt), std::string::npos);
+  portal.replace(portal.find(dt), dt.size(), "dt_s: " + limit);
+  std::ofstream(dir.path() / "at_limit.yaml", std::ios::binary) << portal;
+  const auto again = run_app({"info", (dir.path() / "at_limit.yaml").string()}, dir.path());
+  EXPECT_EQ(again.code, 0) << again.err;
+  EXPECT_NE(again.out.find("time step   " + limit + " s"), std::string::npos) << again.out;
+  EXPECT_EQ(again.out.find("ABOVE THE STABLE LIMIT"), std::string::npos) << limit << "\n" << again.out;
+}
+
 TEST(StudyCommands, BadInputIsRefusedBeforeAnythingIsWritten) {
   TempDir dir;
   const fs::path out = dir.path() / "never";
   const std::string portal = (kSource / "cases/demo_portal_frame.yaml").string();
-  // A case that loads but that run refuses at its start (dt 3.4 times the
+  // A case that loads but that run refuses at its start (dt 4.2 times the
   // stable estimate): compare and sweep check every case before running
   // any, so the portal beside it is not run either.
   std::ofstream(dir.path() / "cube.yaml", std::ios::binary) << fq_test::kForcedCubeCase;

@@ -217,6 +217,9 @@ class ContactSystem : public ForceProvider {
   void finish_step(const BodyStore& bodies, const StepInfo& step, EventLog& events) override;
   void report_energy(EnergyLedger& ledger) const override;
   StiffestMode stiffest_mode(const BodyStore& bodies) const override;
+  void linearised_springs(const BodyStore& bodies, std::vector<LinearisedSpring>& out) const override;
+  std::string describe_linearised_spring(const BodyStore& bodies, std::int64_t element) const override;
+  StiffestMode later_stiffest_mode(const BodyStore& bodies) const override;
   // Checkpoints (force_provider.h; contact_system_state.cpp): the contact
   // list of the last step (tangential springs, reference depths, energies
   // of each point), the pairs still starting from their overlap, the energy
@@ -241,6 +244,14 @@ class ContactSystem : public ForceProvider {
   double dissipated_friction_J() const { return friction_J_ - friction_half_J_; }
 
  private:
+  // The stiffest k_n, k_t and largest damping ratio of any coefficient set
+  // a contact of this scene can use (the stable-step estimate's values).
+  struct StiffestCoefficients {
+    double kn = 0.0, kt = 0.0, zeta = 0.0;
+  };
+  StiffestCoefficients stiffest_coefficients(const BodyStore& bodies) const;
+  // The coefficients a contact of a and b uses (a = kNoBody: the ground).
+  ContactCoefficients coefficients_of(BodyId a, BodyId b) const;
   int coeff_index_for(int material_i, int material_j) const;
   // Narrow phase and contact law of every work item (pairs, then boxes near
   // the ground), into contacts_; books the energy of the springs that ended.

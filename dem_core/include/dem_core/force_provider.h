@@ -27,6 +27,7 @@
 #include "dem_core/body_store.h"
 #include "dem_core/energy_ledger.h"
 #include "dem_core/events.h"
+#include "dem_core/linearised_network.h"
 
 namespace fq {
 
@@ -55,7 +56,22 @@ class ForceProvider {
   virtual void accumulate_forces(BodyStore& bodies, const StepInfo& step) = 0;
   virtual void finish_step(const BodyStore& /*bodies*/, const StepInfo& /*step*/, EventLog& /*events*/) {}
   virtual void report_energy(EnergyLedger& /*ledger*/) const {}
+  // The provider's stiffest mode on its own (its springs linearised at the
+  // current pose, and anything it knows may come later).
   virtual StiffestMode stiffest_mode(const BodyStore& /*bodies*/) const { return {}; }
+  // For the estimate of the whole scene (io's estimate_stable_time_step):
+  // the spring-dashpots acting now, linearised at the current pose
+  // (linearised_network.h), appended to `out`; the scene's providers are
+  // combined into one network, so that springs of different providers on
+  // one body add. `describe_linearised_spring` names the element of a term
+  // (its `element` field) for messages.
+  virtual void linearised_springs(const BodyStore& /*bodies*/, std::vector<LinearisedSpring>& /*out*/) const {}
+  virtual std::string describe_linearised_spring(const BodyStore& /*bodies*/, std::int64_t /*element*/) const {
+    return name();
+  }
+  // Stiffest mode of springs that may form later and are not among
+  // linearised_springs (contacts of falling debris); 0 = none.
+  virtual StiffestMode later_stiffest_mode(const BodyStore& /*bodies*/) const { return {}; }
   // True when accumulate_forces may be called several times per step at
   // trial states (multi-stage integrators: rk4, gsl_rk8pd, integrator.h):
   // the forces must depend only on the poses, velocities and time passed in,

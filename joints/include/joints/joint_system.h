@@ -123,6 +123,8 @@ class JointSystem final : public ForceProvider {
   void finish_step(const BodyStore& bodies, const StepInfo& step, EventLog& events) override;
   void report_energy(EnergyLedger& ledger) const override;
   StiffestMode stiffest_mode(const BodyStore& bodies) const override;
+  void linearised_springs(const BodyStore& bodies, std::vector<LinearisedSpring>& out) const override;
+  std::string describe_linearised_spring(const BodyStore& bodies, std::int64_t element) const override;
   // Trial states (rk4, gsl_rk8pd) are supported when every spring is linear
   // elastic (no history, never fails) and no joint has a strain limit (which
   // could break it at a trial state). Dashpot books are then approximate.
