@@ -215,7 +215,8 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
   report.result = sim.run(options.stop_requested);
   // An unstable run has already failed with its own message.
   if (report.result.status != RunStatus::Unstable)
-    for (const std::string& w : energy_warnings(sim.ledger())) warn(w);
+    for (const std::string& w : energy_warnings(sim.ledger(), case_has_dashpots(def), sim.settings().integrator))
+      warn(w);
   try {
     {
       JsonWriter list(0);
@@ -272,17 +273,36 @@ std::string initial_overlap_warning(const std::vector<InitialOverlap>& overlaps,
   return w.str();
 }
 
-std::vector<std::string> energy_warnings(const EnergyLedger& l) {
+bool case_has_dashpots(const CaseDef& def) {
+  auto damped = [](const SpringDef& s) { return s.dashpot.coefficient_Nspm > 0.0 || s.dashpot.damping_ratio > 0.0; };
+  for (const JointTypeDef& t : def.joint_types)
+    if (damped(t.normal) || damped(t.shear) || damped(t.axial) || damped(t.diagonal) || damped(t.shear_link))
+      return true;
+  if (def.contact) {
+    const ContactDef& c = *def.contact;
+    if ((c.ground && c.ground->restitution < 1.0) || c.default_pair.restitution < 1.0) return true;
+    for (const ContactPairDef& p : c.pairs)
+      if (p.params.restitution < 1.0) return true;
+  }
+  return false;
+}
+
+std::vector<std::string> energy_warnings(const EnergyLedger& l, bool has_dashpots, Integrator method) {
   std::vector<std::string> warnings;
   const double error = l.balance_error_relative();
   if (std::fabs(error) > kWarnBalanceErrorRelative) {
     std::ostringstream w;
     w << std::setprecision(3) << "the energy balance does not close: error " << error
-      << " of the largest energy in play (warned above " << kWarnBalanceErrorRelative
-      << "); the time step does not resolve the motion: run again with a smaller dt_s";
+      << " of the largest energy in play (warned above " << kWarnBalanceErrorRelative << "); ";
+    if (method == Integrator::ForwardEuler)
+      w << "forward_euler gains energy at every dt_s on an undamped mode: run again with another integrator";
+    else
+      w << "the time step does not resolve the motion: run again with a smaller dt_s";
     warnings.push_back(w.str());
   }
-  if (l.dissipated_viscous_J < -kWarnViscousGainRelative * l.scale_J) {
+  // Without any dashpot the viscous book holds only the contact springs'
+  // own discretisation error, whose sign says nothing about a dashpot.
+  if (has_dashpots && l.dissipated_viscous_J < -kWarnViscousGainRelative * l.scale_J) {
     std::ostringstream w;
     w << std::setprecision(3) << "the dashpots gained " << -l.dissipated_viscous_J << " J ("
       << -l.dissipated_viscous_J / l.scale_J

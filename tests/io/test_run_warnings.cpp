@@ -175,6 +175,45 @@ TEST(RunWarnings, LedgerChecksFireAtTheirThresholds) {
   small_gain.kinetic_J = 1.0 - small_gain.dissipated_viscous_J;
   small_gain.update_scale();
   EXPECT_TRUE(energy_warnings(small_gain).empty());
+
+  // A scene without dashpots: the viscous book is the contact springs'
+  // discretisation error, and a negative one is no dashpot's doing.
+  EXPECT_TRUE(energy_warnings(gained, /*has_dashpots=*/false).empty());
+  // Forward Euler's balance warning does not advise a smaller dt_s.
+  const std::vector<std::string> euler = energy_warnings(open, true, Integrator::ForwardEuler);
+  ASSERT_EQ(euler.size(), 1u);
+  EXPECT_NE(euler[0].find("run again with another integrator"), std::string::npos) << euler[0];
+  EXPECT_EQ(euler[0].find("smaller dt_s"), std::string::npos) << euler[0];
+}
+
+// Which cases have a dashpot: a joint spring with a damping ratio or a
+// coefficient, or a contact with restitution below 1 (ground, default
+// pair or a listed pair).
+TEST(RunWarnings, CaseHasDashpotsWhereAJointOrAContactDampsIt) {
+  CaseDef none;
+  EXPECT_FALSE(case_has_dashpots(none));
+  CaseDef elastic_contacts;
+  elastic_contacts.contact.emplace();
+  elastic_contacts.contact->default_pair.restitution = 1.0;
+  elastic_contacts.contact->ground = ContactParams{};
+  elastic_contacts.contact->ground->restitution = 1.0;
+  EXPECT_FALSE(case_has_dashpots(elastic_contacts));
+  CaseDef damped_ground = elastic_contacts;
+  damped_ground.contact->ground->restitution = 0.5;
+  EXPECT_TRUE(case_has_dashpots(damped_ground));
+  CaseDef damped_pair = elastic_contacts;
+  damped_pair.contact->pairs.push_back({});
+  damped_pair.contact->pairs.back().params.restitution = 0.9;
+  EXPECT_TRUE(case_has_dashpots(damped_pair));
+  CaseDef damped_joint;
+  damped_joint.joint_types.push_back({});
+  EXPECT_FALSE(case_has_dashpots(damped_joint));
+  damped_joint.joint_types.back().shear.dashpot.damping_ratio = 0.05;
+  EXPECT_TRUE(case_has_dashpots(damped_joint));
+  CaseDef coefficient_joint;
+  coefficient_joint.joint_types.push_back({});
+  coefficient_joint.joint_types.back().diagonal.dashpot.coefficient_Nspm = 3.0;
+  EXPECT_TRUE(case_has_dashpots(coefficient_joint));
 }
 
 TEST(RunWarnings, BodiesOverlappingAtTheStartAreNamedWithTheirDepth) {

@@ -126,8 +126,17 @@ constexpr double kWarnBalanceErrorRelative = 1e-2;
 constexpr double kWarnViscousGainRelative = 1e-3;
 
 // The ledger's two warnings above for the end of a run (empty when the
-// balance closes and the dashpots dissipated).
-std::vector<std::string> energy_warnings(const EnergyLedger& ledger);
+// balance closes and the dashpots dissipated). Without dashpots in the
+// scene (`has_dashpots` false: no joint spring with a dashpot, no contact
+// with restitution below 1) the viscous book holds only the discretisation
+// error of the contact springs, and its sign is not warned about; the
+// advice of the balance warning names the integrator when dt cannot help
+// (forward Euler).
+std::vector<std::string> energy_warnings(const EnergyLedger& ledger, bool has_dashpots = true,
+                                         Integrator method = Integrator::CentralDifference);
+
+// True when the case has a dashpot anywhere (see energy_warnings).
+bool case_has_dashpots(const CaseDef& def);
 
 // The warning for bodies overlapping at the start (ContactSystem::
 // initial_overlaps: pairs not held by a joint that start inside each other,
