@@ -783,42 +783,53 @@ std::string ContactSystem::describe_linearised_spring(const BodyStore& bodies, s
   return where.str();
 }
 
-ContactSystem::StiffestCoefficients ContactSystem::stiffest_coefficients(const BodyStore& bodies) const {
-  // Which contacts can occur at all: pairs need two bodies of which one is
-  // free (a fixed box that is not the ground counts as the other); the
-  // ground, a free body and the ground enabled. A lone block on the ground
-  // is then limited by the ground's stiffness alone, not by a pair
-  // stiffness no pair of this scene can have.
-  const std::size_t nb = bodies.size();
-  std::size_t free_bodies = 0, fixed_boxes = 0;
-  for (std::size_t i = 0; i < nb; ++i) {
-    if (!bodies.is_fixed[i] && bodies.info[i].kind != MemberKind::Ground)
+ContactSystem::StiffestCoefficients ContactSystem::stiffest_coefficients(const BodyStore& bodies,
+                                                                          LaterContact kind) const {
+  // The coefficient sets the later contacts of `kind` can use, from the
+  // materials of the bodies that can meet: a free box on a fixed surface
+  // (the ground when it is on, a fixed box of some material), or two free
+  // boxes. A lone block on the ground is then limited by the ground's
+  // coefficients alone, and a stack of soft boxes on a stiff ground by the
+  // ground for a box landing on it and by the soft pair for two boxes
+  // meeting, not by a stiffness no such contact can have.
+  auto material = [&](std::size_t i) { return i < body_material_.size() ? body_material_[i] : 0; };
+  std::vector<int> free_materials, fixed_materials;
+  std::vector<std::size_t> free_count;  // free bodies of free_materials[k]
+  std::size_t free_bodies = 0;
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    if (bodies.info[i].kind == MemberKind::Ground) continue;
+    std::vector<int>& list = bodies.is_fixed[i] ? fixed_materials : free_materials;
+    const auto at = std::find(list.begin(), list.end(), material(i));
+    const std::size_t k = std::size_t(at - list.begin());
+    if (at == list.end()) list.push_back(material(i));
+    if (!bodies.is_fixed[i]) {
       ++free_bodies;
-    else if (bodies.info[i].kind != MemberKind::Ground)
-      ++fixed_boxes;
-  }
-  const bool pairs_possible = free_bodies >= 2 || (free_bodies >= 1 && fixed_boxes >= 1);
-  // Before prepare: the pairs set so far and the ground (the defaults only
-  // when nothing is set); after: every coefficient set in use.
-  std::vector<ContactCoefficients> all;
-  if (prepared_) {
-    for (std::size_t k = 0; k < coeffs_.size(); ++k) {
-      const bool ground = ground_enabled_ && int(k) == ground_coeff_;
-      if (ground || pairs_possible) all.push_back(coeffs_[k]);
+      if (k == free_count.size()) free_count.push_back(0);
+      ++free_count[k];
     }
-  } else {
-    if (pairs_possible) {
-      for (const auto& [key, params] : pair_params_) all.push_back(make_contact_coefficients(params, "a pair"));
-      if (pair_params_.empty()) all.push_back(make_contact_coefficients(ContactParams{}, "the default pair"));
-    }
-    if (ground_enabled_) all.push_back(make_contact_coefficients(ground_params_, "the ground"));
   }
-  if (all.empty()) all.push_back(make_contact_coefficients(ContactParams{}, "the default pair"));
   StiffestCoefficients sc;
-  for (const ContactCoefficients& c : all) {
+  auto take = [&](const ContactParams& params) {
+    const ContactCoefficients c = make_contact_coefficients(params, "a contact");
     sc.kn = std::max(sc.kn, c.normal_stiffness_N_per_m);
     sc.kt = std::max(sc.kt, c.tangential_stiffness_N_per_m);
     sc.zeta = std::max(sc.zeta, c.damping_ratio);
+  };
+  auto take_pair = [&](int m1, int m2) {
+    const auto it = pair_params_.find({std::min(m1, m2), std::max(m1, m2)});
+    take(it == pair_params_.end() ? ContactParams{} : it->second);
+  };
+  if (kind == LaterContact::OnFixedSurface) {
+    if (free_bodies == 0) return sc;
+    if (ground_enabled_) take(ground_params_);
+    for (int f : free_materials)
+      for (int x : fixed_materials) take_pair(f, x);
+  } else {
+    if (free_bodies < 2) return sc;
+    // Two boxes of one material only where there are two of them.
+    for (std::size_t f = 0; f < free_materials.size(); ++f)
+      for (std::size_t g = f; g < free_materials.size(); ++g)
+        if (g != f || free_count[f] >= 2) take_pair(free_materials[f], free_materials[g]);
   }
   return sc;
 }
@@ -835,77 +846,92 @@ StiffestMode ContactSystem::later_stiffest_mode(const BodyStore& bodies) const {
   // with equality for two equal boxes in their antisymmetric mode; the
   // bound uses the two boxes of largest undamped lambda, with the dashpots
   // of their pair's reduced mass. The damped limit of each is the dt where
-  // its lambda(dt^2 K~ + 2 dt C~) reaches 4.
+  // its lambda(dt^2 K~ + 2 dt C~) reaches 4. Each uses the stiffest
+  // coefficients its kind of contact can have (stiffest_coefficients).
   StiffestMode mode;
-  const StiffestCoefficients sc = stiffest_coefficients(bodies);
   const std::size_t nb = bodies.size();
   auto is_free = [&](std::size_t i) { return !bodies.is_fixed[i] && bodies.info[i].kind != MemberKind::Ground; };
-  auto lambda_of = [&](std::size_t i, double dt, double pair_mass_kg) {
+  auto lambda_of = [&](const StiffestCoefficients& sc, std::size_t i, double dt, double pair_mass_kg) {
     const CornerDashpots c = corner_dashpots(sc.kn, sc.kt, sc.zeta, pair_mass_kg);
     return one_sided_contact_eigenvalue(bodies.half_extents_m[i], bodies.mass_kg[i], bodies.principal_inertia_kgm2[i],
                                         dt * dt * sc.kn + 2.0 * dt * c.n, dt * dt * sc.kt + 2.0 * dt * c.t);
   };
-  // Undamped lambda of every free box; the damped limit of one box lies
-  // between 2 / (sqrt(l_k + l_c^2 / 4) + l_c / 2) and 2 / sqrt(l_k), so
-  // only boxes whose lower bound is below the best limit found need it.
-  struct Box {
-    double lower_dt, lambda_k;
-    std::size_t i;
-  };
-  std::vector<Box> boxes;
-  double top1 = 0.0, top2 = 0.0;
-  std::size_t top1_body = nb, top2_body = nb;
-  for (std::size_t i = 0; i < nb; ++i) {
-    if (!is_free(i)) continue;
-    const double lk = one_sided_contact_eigenvalue(bodies.half_extents_m[i], bodies.mass_kg[i],
-                                                   bodies.principal_inertia_kgm2[i], sc.kn, sc.kt);
-    if (!(lk > 0.0)) continue;
-    const CornerDashpots c = corner_dashpots(sc.kn, sc.kt, sc.zeta, bodies.mass_kg[i]);
-    const double lc = one_sided_contact_eigenvalue(bodies.half_extents_m[i], bodies.mass_kg[i],
-                                                   bodies.principal_inertia_kgm2[i], c.n, c.t);
-    boxes.push_back({2.0 / (std::sqrt(lk + 0.25 * lc * lc) + 0.5 * lc), lk, i});
-    if (lk > top1) {
-      top2 = top1;
-      top2_body = top1_body;
-      top1 = lk;
-      top1_body = i;
-    } else if (lk > top2) {
-      top2 = lk;
-      top2_body = i;
-    }
-  }
-  if (boxes.empty()) return mode;
   double best_dt = HUGE_VAL;
   std::string where;
-  if (ground_enabled_ || boxes.size() < 2) {
+  StiffestCoefficients where_sc;
+
+  // One box on a fixed surface. Undamped lambda of every free box; the
+  // damped limit of one box lies between 2 / (sqrt(l_k + l_c^2 / 4) +
+  // l_c / 2) and 2 / sqrt(l_k), so only boxes whose lower bound is below
+  // the best limit found need it.
+  const StiffestCoefficients surface = stiffest_coefficients(bodies, LaterContact::OnFixedSurface);
+  if (surface.kn > 0.0) {
+    struct Box {
+      double lower_dt, lambda_k;
+      std::size_t i;
+    };
+    std::vector<Box> boxes;
+    for (std::size_t i = 0; i < nb; ++i) {
+      if (!is_free(i)) continue;
+      const double lk = one_sided_contact_eigenvalue(bodies.half_extents_m[i], bodies.mass_kg[i],
+                                                     bodies.principal_inertia_kgm2[i], surface.kn, surface.kt);
+      if (!(lk > 0.0)) continue;
+      const CornerDashpots c = corner_dashpots(surface.kn, surface.kt, surface.zeta, bodies.mass_kg[i]);
+      const double lc = one_sided_contact_eigenvalue(bodies.half_extents_m[i], bodies.mass_kg[i],
+                                                     bodies.principal_inertia_kgm2[i], c.n, c.t);
+      boxes.push_back({2.0 / (std::sqrt(lk + 0.25 * lc * lc) + 0.5 * lc), lk, i});
+    }
     std::sort(boxes.begin(), boxes.end(), [](const Box& x, const Box& y) { return x.lower_dt < y.lower_dt; });
     for (const Box& box : boxes) {
       if (box.lower_dt >= best_dt) break;
       const double m = bodies.mass_kg[box.i];
-      const double dt = damped_limit([&](double t) { return lambda_of(box.i, t, m); }, box.lower_dt,
+      const double dt = damped_limit([&](double t) { return lambda_of(surface, box.i, t, m); }, box.lower_dt,
                                      2.0 / std::sqrt(box.lambda_k));
       if (dt < best_dt) {
         best_dt = dt;
         where = "a face contact of '" + bodies.info[box.i].name + "'";
+        where_sc = surface;
       }
     }
   }
-  if (top2_body < nb) {
-    const double ma = bodies.mass_kg[top1_body], mb = bodies.mass_kg[top2_body];
-    const double reduced = ma * mb / (ma + mb);
-    const double dt = damped_limit(
-        [&](double t) { return lambda_of(top1_body, t, reduced) + lambda_of(top2_body, t, reduced); }, 0.0,
-        2.0 / std::sqrt(top1 + top2));
-    if (dt < best_dt) {
-      best_dt = dt;
-      where = "a face contact of '" + bodies.info[top1_body].name + "' on another free box";
+
+  // Two free boxes.
+  const StiffestCoefficients pair = stiffest_coefficients(bodies, LaterContact::BoxOnBox);
+  if (pair.kn > 0.0) {
+    double top1 = 0.0, top2 = 0.0;
+    std::size_t top1_body = nb, top2_body = nb;
+    for (std::size_t i = 0; i < nb; ++i) {
+      if (!is_free(i)) continue;
+      const double lk = one_sided_contact_eigenvalue(bodies.half_extents_m[i], bodies.mass_kg[i],
+                                                     bodies.principal_inertia_kgm2[i], pair.kn, pair.kt);
+      if (lk > top1) {
+        top2 = top1;
+        top2_body = top1_body;
+        top1 = lk;
+        top1_body = i;
+      } else if (lk > top2) {
+        top2 = lk;
+        top2_body = i;
+      }
+    }
+    if (top2_body < nb && top1 + top2 > 0.0) {
+      const double ma = bodies.mass_kg[top1_body], mb = bodies.mass_kg[top2_body];
+      const double reduced = ma * mb / (ma + mb);
+      const double dt = damped_limit(
+          [&](double t) { return lambda_of(pair, top1_body, t, reduced) + lambda_of(pair, top2_body, t, reduced); },
+          0.0, 2.0 / std::sqrt(top1 + top2));
+      if (dt < best_dt) {
+        best_dt = dt;
+        where = "a face contact of '" + bodies.info[top1_body].name + "' on another free box";
+        where_sc = pair;
+      }
     }
   }
   if (!(best_dt < HUGE_VAL) || !(best_dt > 0.0)) return mode;
   mode.omega_radps = 2.0 / best_dt;
   std::ostringstream w;
-  w << "contact springs (k_n = " << sc.kn << " N/m, k_t = " << sc.kt << " N/m per point, damping ratio " << sc.zeta
-    << ") of " << where;
+  w << "contact springs (k_n = " << where_sc.kn << " N/m, k_t = " << where_sc.kt << " N/m per point, damping ratio "
+    << where_sc.zeta << ") of " << where;
   mode.where = w.str();
   return mode;
 }

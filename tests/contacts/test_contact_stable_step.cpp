@@ -156,5 +156,32 @@ TEST(ContactStableStep, BoxOnGroundIsNotLimitedByAPairStiffnessItCannotHave) {
   check(1, "box on ground, stiffer pair material", 10.0 * kKn);
 }
 
+// Contacts that may form later use only coefficients their bodies can
+// have: two boxes of different materials (0 below, 1 on top) meet through
+// their pair's coefficients, and each lands on the ground through the
+// ground's; a material with itself needs two bodies of it. So the
+// stiffness set for material 0 with itself, which no pair of this scene
+// can use, must not move the estimate (it set it, ten times over, when
+// the estimate took the stiffest of every coefficient set).
+TEST(ContactStableStep, LaterContactsUseOnlyCoefficientsTheirBodiesCanHave) {
+  auto estimate = [](double unused_kn) {
+    SimulationSettings s;
+    s.dt_s = 1e-5;
+    s.duration_s = 1e-5;
+    test::ContactScene scene = test::make_scene(scene_bodies(2, false), s, [unused_kn](ContactSystem& c) {
+      c.set_body_material(0, 0);
+      c.set_body_material(1, 1);
+      c.set_pair_params(0, 0, test::params(unused_kn, 0.5, 10.0));
+      c.set_pair_params(1, 1, test::params(unused_kn, 0.5, 10.0));
+      c.set_pair_params(0, 1, test::params(0.1 * kKn, 0.5, 10.0));
+      c.set_ground(0.0, test::params(kKn, 0.5, 10.0));
+    });
+    return scene.contacts->stiffest_mode(scene.sim->bodies());
+  };
+  const StiffestMode soft = estimate(0.1 * kKn), stiff = estimate(100.0 * kKn);
+  EXPECT_GT(soft.omega_radps, 0.0);
+  EXPECT_EQ(soft.omega_radps, stiff.omega_radps) << soft.where << "\n" << stiff.where;
+}
+
 }  // namespace
 }  // namespace fq

@@ -245,11 +245,13 @@ class ContactSystem : public ForceProvider {
 
  private:
   // The stiffest k_n, k_t and largest damping ratio of any coefficient set
-  // a contact of this scene can use (the stable-step estimate's values).
+  // a contact of the kind that may form later can use (later_stiffest_mode;
+  // all zero when no such contact can form).
   struct StiffestCoefficients {
     double kn = 0.0, kt = 0.0, zeta = 0.0;
   };
-  StiffestCoefficients stiffest_coefficients(const BodyStore& bodies) const;
+  enum class LaterContact { OnFixedSurface, BoxOnBox };
+  StiffestCoefficients stiffest_coefficients(const BodyStore& bodies, LaterContact kind) const;
   // The coefficients a contact of a and b uses (a = kNoBody: the ground).
   ContactCoefficients coefficients_of(BodyId a, BodyId b) const;
   int coeff_index_for(int material_i, int material_j) const;
