@@ -47,6 +47,12 @@ mkdir existing.csv
 expect 1 "existing.csv" err -- "$stability" "$work/existing"
 only_io_files "stability_limits with an unwritable output"
 
+# Run from outside the repository (this folder), the study still finds the
+# shipped cases it bisects, from the source tree it was built from.
+expect 0 "| cases/frame_B.yaml | " out -- "$stability" "$work/limits"
+grep -qF "not found" out.txt && fail "stability_limits run outside the repository did not find a case: $(grep -F 'not found' out.txt | head -c 300)"
+rm -f limits.csv limits.md
+
 expect 0 "usage: work_precision" out -- "$precision" --help
 only_io_files "work_precision --help"
 expect 2 "unknown option '--bogus'" err -- "$precision" --bogus
