@@ -490,6 +490,10 @@ CaseRunReport resume_case(const std::filesystem::path& folder, const CaseRunOpti
                           "' as it was then; that file or one of its ground-motion records has changed since, so the "
                           "run cannot be resumed (start it again with framequake run)");
   def.output.folder = folder;
+  // Checkpoints are written by central-difference runs only (run_case
+  // refuses --checkpoint-every otherwise), whatever the case file names: a
+  // run may have chosen it with --integrator over the file's integrator.
+  def.time.integrator = Integrator::CentralDifference;
   Scene scene = build_scene(def);
   Simulation& sim = *scene.simulation;
   const std::vector<Vec3> initial_position_m = sim.bodies().position_m;

@@ -76,6 +76,39 @@ TEST(CheckpointCli, KilledRunResumedGivesTheUninterruptedOutput) {
   EXPECT_NE(read_text(out / "events.csv").find("joint_broken"), std::string::npos) << "the run must span the break";
 }
 
+// A run that chose central difference with --integrator over the case
+// file's integrator resumes with central difference too (checkpoints are
+// written by central-difference runs only): the same state as the run
+// never interrupted. Resume took the file's velocity_verlet before and
+// ended, exit 0, in another state.
+TEST(CheckpointCli, ResumeKeepsTheIntegratorChosenOnTheCommandLine) {
+  Fixture f;
+  std::string text = read_text(f.case_file);
+  const std::string time = "time: {dt_s: 1.0e-5, duration_s: ";
+  ASSERT_NE(text.find(time), std::string::npos);
+  text.replace(text.find(time), time.size(), "time: {integrator: velocity_verlet, dt_s: 1.0e-5, duration_s: ");
+  write_text(f.case_file, text);
+  const fs::path ref = f.dir.path() / "ref", out = f.dir.path() / "out";
+  ASSERT_EQ(run_app({"run", f.case_file.string(), "--integrator", "central_difference", "--out", ref.string(), "--quiet"},
+                    f.dir.path())
+                .code,
+            0);
+  AppProcess p({"run", f.case_file.string(), "--integrator", "central_difference", "--out", out.string(), "--quiet",
+                "--checkpoint-every", "0.02"},
+               f.dir.path());
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (!fs::exists(out / "checkpoint.bin") && std::chrono::steady_clock::now() < give_up)
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  p.signal(SIGKILL);
+  ASSERT_EQ(p.wait(), 128 + SIGKILL) << "the run must be killed before it ends";
+  const auto r = run_app({"resume", out.string(), "--quiet"}, f.dir.path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(read_text(out / "summary.json").find("\"integrator\": \"central_difference\""), std::string::npos);
+  const std::string hash = state_hash(ref / "summary.json");
+  ASSERT_FALSE(hash.empty());
+  EXPECT_EQ(state_hash(out / "summary.json"), hash);
+}
+
 TEST(CheckpointCli, BadCheckpointOrChangedCaseIsRefusedWithExitCode2) {
   Fixture f;
   const fs::path out = f.dir.path() / "out";
