@@ -4,6 +4,7 @@
 #include "study_commands.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -226,6 +227,13 @@ int run_figure(const std::string& kind, const fs::path& folder) {
   return kExitOk;
 }
 
+// A run's status for the tables: its own, or "not run" when Ctrl-C came
+// before it started, or "failed" when it ended in an error.
+std::string outcome_status(const fq::BatchOutcome& o) {
+  if (o.ok) return fq::run_status_name(o.report.result.status);
+  return o.exit_code == 130 ? "not run" : "failed";
+}
+
 int worst_exit(const std::vector<fq::BatchOutcome>& outcomes) {
   int code = kExitOk;
   auto rank = [](int c) { return c == 0 ? 0 : c == 130 ? 1 : c == 1 ? 2 : c == 3 ? 3 : c == 2 ? 4 : 5; };
@@ -354,7 +362,7 @@ int command_compare(int argc, char** argv, const std::atomic<bool>* stop_request
   md << "|---|---|---|---|\n";
   for (std::size_t i = 0; i < jobs.size(); ++i) {
     const fq::BatchOutcome& o = outcomes[i];
-    const std::string status = o.ok ? fq::run_status_name(o.report.result.status) : "failed";
+    const std::string status = outcome_status(o);
     csv << jobs[i].label << "," << status;
     md << "| " << jobs[i].label << " | " << status;
     for (std::size_t k = 0; k < storeys; ++k) {
@@ -378,12 +386,13 @@ int command_compare(int argc, char** argv, const std::atomic<bool>* stop_request
       md << " | " << fixed(r.first_joint_failure_time_s, 3) << " | " << r.joints.broken << " / " << r.joint_count
          << " | " << scientific(r.energy_balance_error_relative) << " | " << fixed(r.wall_s, 1) << " |\n";
     } else {
-      csv << ",,,,,\n";
+      csv << ",,,,,,\n";  // first_joint_failure_s .. output: six empty fields
       md << " | - | - | - | - |\n";
     }
   }
-  if (!outcomes.empty() && outcomes.front().ok) {
-    const fq::AssessmentDef& a = outcomes.front().report.assessment;
+  if (const auto first_ok = std::find_if(outcomes.begin(), outcomes.end(), [](const auto& o) { return o.ok; });
+      first_ok != outcomes.end()) {
+    const fq::AssessmentDef& a = first_ok->report.assessment;
     md << "\nVerdicts: collapsed = peak storey drift ratio >= " << a.collapse_drift_ratio_rad
        << " rad; damaged = above " << fixed(a.safety_drift_ratio_rad, 4)
        << " rad; standing otherwise (cases/README.md, `assessment`). Drift ratios are magnitudes of the x-y drift "
@@ -412,6 +421,14 @@ int command_sweep(int argc, char** argv, const std::atomic<bool>* stop_requested
     std::vector<fq::CaseDef> defs = load_cases(args.cases);
     std::vector<fq::AccelerationRecord> records;
     for (const std::string& r : args.records) records.push_back(fq::read_peer_at2(r));
+    // Runs are named by the record's file name: two records of one name
+    // would write into one folder.
+    for (std::size_t i = 0; i < args.records.size(); ++i)
+      for (std::size_t j = 0; j < i; ++j)
+        if (fs::path(args.records[i]).stem() == fs::path(args.records[j]).stem())
+          throw fq::InputError(args.records[i], 0, "--record",
+                               "has the file name of '" + args.records[j] +
+                                   "', and a sweep names its runs by it; copy one of them under another name");
     std::set<std::string> names;
     for (fq::CaseDef& def : defs) {
       if (!names.insert(def.name).second)
@@ -454,9 +471,11 @@ int command_sweep(int argc, char** argv, const std::atomic<bool>* stop_requested
           fq::BatchJob job;
           job.def = variant;
           for (fq::GroundMotionComponentDef& c : job.def.ground_motion->components) c.amplitude_scale *= scale;
-          std::ostringstream label;
-          label << def.name << "_" << record_name << "_x" << scale;
-          job.label = label.str();
+          // The scale in its shortest form that reads back as itself:
+          // scales that differ in the 7th digit get folders of their own.
+          char digits[32];
+          const auto end = std::to_chars(digits, digits + sizeof digits, scale).ptr;
+          job.label = def.name + "_" + record_name + "_x" + std::string(digits, end);
           job.output_folder = args.out / job.label;
           jobs.push_back(std::move(job));
           keys.push_back({def.name, record_name, scale});
@@ -466,6 +485,17 @@ int command_sweep(int argc, char** argv, const std::atomic<bool>* stop_requested
   } catch (const fq::InputError& e) {
     std::cerr << "framequake: error: " << e.what() << "\n";
     return kExitBadInput;
+  }
+  {
+    // Every run needs a folder of its own (a case named like another's
+    // case and record, "a_b" + "c" and "a" + "b_c", would share one).
+    std::set<fs::path> folders;
+    for (const fq::BatchJob& job : jobs)
+      if (!folders.insert(job.output_folder).second) {
+        std::cerr << "framequake: error: two runs of the sweep would write into " << job.output_folder.string()
+                  << "; rename a case or a record\n";
+        return kExitBadInput;
+      }
   }
   std::vector<fq::BatchOutcome> outcomes;
   if (!run_jobs(args, jobs, stop_requested, "sweep of " + std::to_string(jobs.size()) + " run(s)", outcomes))
@@ -481,7 +511,7 @@ int command_sweep(int argc, char** argv, const std::atomic<bool>* stop_requested
     const fq::BatchOutcome& o = outcomes[i];
     csv << keys[i].case_name << "," << keys[i].record << "," << csv_number(keys[i].scale) << ",";
     if (!o.ok) {
-      csv << ",,failed";
+      csv << ",," << outcome_status(o);
       for (std::size_t k = 0; k < storeys; ++k) csv << ",,";
       csv << ",,,,,,,\n";
       continue;
@@ -506,7 +536,10 @@ int command_sweep(int argc, char** argv, const std::atomic<bool>* stop_requested
   }
 
   // Collapse scale per case and record: the smallest scale with a collapsed
-  // storey, and the largest scale below it that stood.
+  // storey, and the largest scale below it that stood, from the runs that
+  // completed: a run stopped by Ctrl-C did not see the whole motion, and an
+  // unstable one says nothing about the structure (both are listed under
+  // the table).
   std::ostringstream cs, md;
   cs << "case,record,largest_scale_without_collapse,smallest_scale_with_collapse,pga_at_collapse_mps2,"
         "collapsed_storeys_at_that_scale\n";
@@ -514,11 +547,13 @@ int command_sweep(int argc, char** argv, const std::atomic<bool>* stop_requested
         "storeys collapsed there |\n|---|---|---|---|---|---|\n";
   for (const std::string& record : record_order)
     for (const std::string& name : case_order) {
-      double stood = NAN, fell = NAN, pga = NAN;
+      double stood = NAN, fell = NAN, pga = NAN, largest_completed = NAN;
       std::string which;
       for (std::size_t i = 0; i < jobs.size(); ++i) {
         if (keys[i].case_name != name || keys[i].record != record || !outcomes[i].ok) continue;
         const fq::CaseRunReport& r = outcomes[i].report;
+        if (r.result.status != fq::RunStatus::Completed) continue;
+        largest_completed = keys[i].scale;
         std::string collapsed_storeys;
         for (const fq::StoreyOutcome& s : r.storeys)
           if (s.verdict == fq::StoreyVerdict::Collapsed)
@@ -538,9 +573,21 @@ int command_sweep(int argc, char** argv, const std::atomic<bool>* stop_requested
       cs << name << "," << record << "," << csv_number(stood) << "," << csv_number(fell) << "," << csv_number(pga)
          << "," << which << "\n";
       md << "| " << name << " | " << record << " | " << (std::isnan(stood) ? "none" : fixed(stood, 2)) << " | "
-         << (std::isnan(fell) ? "none up to " + fixed(args.scales.back(), 2) : fixed(fell, 2)) << " | "
-         << fixed(pga, 2) << " | " << (which.empty() ? "-" : which) << " |\n";
+         << (!std::isnan(fell)                ? fixed(fell, 2)
+             : std::isnan(largest_completed) ? std::string("no run completed")
+                                             : "none up to " + fixed(largest_completed, 2))
+         << " | " << fixed(pga, 2) << " | " << (which.empty() ? "-" : which) << " |\n";
     }
+  {
+    std::string skipped;
+    for (std::size_t i = 0; i < jobs.size(); ++i) {
+      const fq::BatchOutcome& o = outcomes[i];
+      if (o.ok && o.report.result.status == fq::RunStatus::Completed) continue;
+      skipped += "\n- " + jobs[i].label + ": " +
+                 (o.ok ? std::string(fq::run_status_name(o.report.result.status)) : o.error);
+    }
+    if (!skipped.empty()) md << "\nNot counted above (the run did not complete):" << skipped << "\n";
+  }
   if (!write_text(args.out / "sweep.csv", csv.str()) || !write_text(args.out / "collapse_scales.csv", cs.str()) ||
       !write_text(args.out / "collapse_scales.md", md.str()))
     return kExitOutputFailed;

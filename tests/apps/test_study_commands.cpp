@@ -149,6 +149,83 @@ TEST(StudyCommands, SweepScalesTheMotionAndFindsNoCollapseInTheDemoPortal) {
   EXPECT_TRUE(is_png(out / "sweep.png"));
 }
 
+// Every run of a sweep gets a folder of its own: scales that differ only in
+// the 7th digit (the label kept six before, and both runs wrote into one
+// folder), and two records of one file name are refused before anything
+// runs.
+TEST(StudyCommands, SweepRunsNeverShareAFolder) {
+  TempDir dir;
+  const std::string portal = (kSource / "cases/demo_portal_frame.yaml").string();
+  const fs::path out = dir.path() / "sweep";
+  const auto r = run_app({"sweep", portal, "--scales", "1,1.0000001", "--window-length", "0.05", "--no-figure",
+                          "--out", out.string()},
+                         dir.path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Table rows = read_csv(out / "sweep.csv");
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_NE(rows[0].at("output"), rows[1].at("output"));
+  for (const auto& row : rows) EXPECT_TRUE(fs::exists(fs::path(row.at("output")) / "summary.json")) << row.at("output");
+
+  fs::create_directories(dir.path() / "other");
+  fs::copy_file(kSource / "cases/ground_motions/RSN1106_KOBE_KJM090.AT2",
+                dir.path() / "other/RSN1106_KOBE_KJM000.AT2");
+  const fs::path never = dir.path() / "never";
+  const auto same = run_app({"sweep", portal, "--record", (kSource / "cases/ground_motions/RSN1106_KOBE_KJM000.AT2").string(),
+                             "--record", (dir.path() / "other/RSN1106_KOBE_KJM000.AT2").string(), "--out", never.string()},
+                            dir.path());
+  EXPECT_EQ(same.code, 2) << same.err;
+  EXPECT_NE(same.err.find("has the file name of"), std::string::npos) << same.err;
+  EXPECT_FALSE(fs::exists(never));
+}
+
+// The tables count only what ran to the end. A run that fails (here its
+// output folder cannot be made: a file stands in its place) keeps its row
+// with every column of the header, empty; an unstable run (the portal at
+// dt = 1e-3 s, forced) is no collapse of the structure and is listed under
+// the collapse table instead of setting its "smallest scale with collapse".
+TEST(StudyCommands, TablesCountOnlyRunsThatCompleted) {
+  TempDir dir;
+  const std::string portal = (kSource / "cases/demo_portal_frame.yaml").string();
+  const fs::path cmp = dir.path() / "cmp";
+  fs::create_directories(cmp);
+  std::ofstream(cmp / "demo_falling_block") << "a file where the run's folder should go";
+  const auto r = run_app({"compare", portal, (kSource / "cases/demo_falling_block.yaml").string(), "--window-length",
+                          "0.05", "--no-figure", "--out", cmp.string()},
+                         dir.path());
+  EXPECT_EQ(r.code, 3) << r.err;
+  const std::string csv = read_text(cmp / "comparison.csv");
+  std::stringstream lines(csv);
+  std::string header;
+  std::getline(lines, header);
+  const auto fields = [](const std::string& line) { return std::count(line.begin(), line.end(), ',') + 1; };
+  int rows = 0;
+  for (std::string line; std::getline(lines, line); ++rows) EXPECT_EQ(fields(line), fields(header)) << line;
+  EXPECT_EQ(rows, 2);
+  EXPECT_NE(csv.find("demo_falling_block,failed"), std::string::npos) << csv;
+
+  std::string coarse = read_text(kSource / "cases/demo_portal_frame.yaml");
+  const std::string dt = "dt_s: 1.0e-5", record = "file: ground_motions/";
+  ASSERT_NE(coarse.find(dt), std::string::npos);
+  coarse.replace(coarse.find(dt), dt.size(), "dt_s: 1.0e-3");
+  coarse.replace(coarse.find(record), record.size(), "file: " + (kSource / "cases/ground_motions").string() + "/");
+  std::ofstream(dir.path() / "coarse.yaml", std::ios::binary) << coarse;
+  const fs::path sweep = dir.path() / "sweep";
+  const auto u = run_app({"sweep", (dir.path() / "coarse.yaml").string(), "--scales", "1", "--force", "--no-figure",
+                          "--out", sweep.string()},
+                         dir.path());
+  EXPECT_EQ(u.code, 1) << u.err;
+  const Table rows_u = read_csv(sweep / "sweep.csv");
+  ASSERT_EQ(rows_u.size(), 1u);
+  EXPECT_EQ(rows_u[0].at("status"), "unstable");
+  const Table scales = read_csv(sweep / "collapse_scales.csv");
+  ASSERT_EQ(scales.size(), 1u);
+  EXPECT_EQ(scales[0].at("smallest_scale_with_collapse"), "");
+  const std::string md = read_text(sweep / "collapse_scales.md");
+  EXPECT_NE(md.find("no run completed"), std::string::npos) << md;
+  EXPECT_NE(md.find("Not counted above (the run did not complete):"), std::string::npos) << md;
+  EXPECT_NE(md.find(": unstable"), std::string::npos) << md;
+}
+
 // The stable limit info prints is one a user can copy into dt_s: printed
 // rounded down, so run and info accept it. The portal demo's limit,
 // 1.184375...e-4 s, printed to six digits by the stream's own rounding as
