@@ -331,6 +331,10 @@ int main(int argc, char** argv) {
     const std::string arg = argv[i];
     const std::size_t eq = arg.find('=');
     if (i >= 2 && arg.rfind("--", 0) == 0 && eq != std::string::npos && eq > 2) {
+      // Options that take no value (every command's flags).
+      for (const char* flag : {"--help", "--quiet", "--force", "--no-figure", "--compare", "--png"})
+        if (arg.compare(0, eq, flag) == 0)
+          usage_error(std::string("option ") + flag + " takes no value, got '" + arg + "'", kMainHelp);
       words.push_back(arg.substr(0, eq));
       words.push_back(arg.substr(eq + 1));
     } else {

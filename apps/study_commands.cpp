@@ -162,6 +162,12 @@ void shorten_window(fq::CaseDef& def, double length_s) {
     throw fq::InputError(def.source_file.string(), 0, "ground_motion",
                          "--window-length given but the case has no ground motion");
   def.ground_motion->window_length_s = std::min(def.ground_motion->window_length_s, length_s);
+  // A quick look: a case that runs on after its motion (time.duration_s)
+  // stops with the shortened motion too.
+  if (def.time.duration_s) {
+    const double simulated = def.ground_motion->window_length_s * def.ground_motion->time_scale;
+    def.time.duration_s = std::min(*def.time.duration_s, simulated);
+  }
 }
 
 std::string fixed(double x, int digits) {

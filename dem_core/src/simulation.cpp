@@ -455,6 +455,7 @@ RunResult Simulation::run(const std::atomic<bool>* stop_requested) {
   }
   initialize();
   RunResult result;
+  const std::int64_t first = step_;  // 0, or the step a resumed run starts from
   for (const ObserverSlot& o : observers_) o.observer->on_start(*this);
   if (step_ == 0) observe(true);
   const std::int64_t last = total_steps();
@@ -494,6 +495,7 @@ RunResult Simulation::run(const std::atomic<bool>* stop_requested) {
   // Provider energies are otherwise gathered only when an observer samples.
   gather_provider_energy();
   result.steps = step_;
+  result.steps_this_call = step_ - first;
   result.simulated_s = time_s();
   result.wall_s = wall_seconds();
   for (const ObserverSlot& o : observers_) o.observer->on_finish(*this);

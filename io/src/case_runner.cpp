@@ -548,11 +548,16 @@ void describe_case(const CaseDef& def, std::ostream& out) {
       << " fixed)\n";
   out << "total mass  " << total_mass << " kg (free bodies)\n";
   out << "time step   " << s.dt_s << " s (" << integrator_name(s.integrator) << ")";
-  if (std::isfinite(scene.stable_time_step.dt_crit_s))
+  if (scene.stable_time_step.dt_crit_s == 0.0)  // forward Euler on an undamped mode
+    out << "  (no stable time step with " << integrator_name(s.integrator) << ": the stiffest mode, "
+        << scene.stable_time_step.stiffest_element << ", grows at every dt)";
+  else if (std::isfinite(scene.stable_time_step.dt_crit_s))
     out << "  (stable limit " << limit_text(scene.stable_time_step.dt_crit_s) << " s, set by "
         << scene.stable_time_step.stiffest_element << ")";
   // What run will say (run_case refuses it unless forced).
-  if (s.dt_s > scene.stable_time_step.dt_crit_s)
+  if (scene.stable_time_step.dt_crit_s == 0.0)
+    out << "\n            UNSTABLE AT EVERY STEP: run refuses this integrator here unless --force is given";
+  else if (s.dt_s > scene.stable_time_step.dt_crit_s)
     out << "\n            ABOVE THE STABLE LIMIT: run refuses this time step unless --force is given";
   out << "\nduration    " << s.duration_s << " s = " << sim.total_steps() << " steps\n";
   const GroundMotion& gm = sim.ground_motion();

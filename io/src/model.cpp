@@ -289,6 +289,19 @@ Model build_model(const CaseDef& def_in) {
   }
   if (!(model.settings.duration_s > 0.0) || !std::isfinite(model.settings.duration_s))
     fail(time_line, "time.duration_s", "expected a positive duration in s");
+  // A run of no step would "complete" having done nothing (the case reader
+  // refuses an explicit duration_s below dt_s; this catches a window, or a
+  // duration shortened by compare/sweep --window-length).
+  if (model.settings.duration_s < model.settings.dt_s) {
+    if (def.time.duration_s)
+      fail(time_line, "time.duration_s",
+           "the run lasts " + fmt(model.settings.duration_s) + " s, less than one time step (dt_s = " +
+               fmt(model.settings.dt_s) + " s)");
+    fail(time_line, "ground_motion.window_length_s",
+         "the ground-motion window lasts " + fmt(model.settings.duration_s) +
+             " s of simulated time, less than one time step (dt_s = " + fmt(model.settings.dt_s) +
+             " s); give a longer window or a duration_s");
+  }
   if (const double steps = model.settings.duration_s / model.settings.dt_s; !(steps <= kMaxSimulationSteps))
     fail(time_line, def.time.duration_s ? "time.duration_s" : "time.dt_s",
          "duration " + fmt(model.settings.duration_s) + " s at dt_s = " + fmt(model.settings.dt_s) + " s is " +

@@ -333,8 +333,10 @@ void RunOutput::Impl::write_summary(const Simulation& sim, const RunResult& resu
   w.key("duration_s").value(sim.settings().duration_s);
   w.key("simulated_time_s").value(result.simulated_s);
   w.key("wall_time_s").value(result.wall_s);
-  // Non-finite (null) when the run was too short for the clock to see.
-  w.key("steps_per_second").value(result.wall_s > 0.0 ? double(result.steps) / result.wall_s : HUGE_VAL);
+  // Non-finite (null) when the run was too short for the clock to see. The
+  // steps this process took over its own wall time: a resumed run counts
+  // from its checkpoint.
+  w.key("steps_per_second").value(result.wall_s > 0.0 ? double(result.steps_this_call) / result.wall_s : HUGE_VAL);
   w.key("body_count").value(sim.bodies().size());
   // Which SIMD form of the lane kernels ran (dem_core/lane_isa.h): the
   // results are the same in every form, the wall time is not.

@@ -74,6 +74,19 @@ TEST(CheckpointCli, KilledRunResumedGivesTheUninterruptedOutput) {
   for (const char* name : {"history.csv", "events.csv", "case.pvd"})
     EXPECT_TRUE(read_text(out / name) == read_text(ref / name)) << name << " differs from the uninterrupted run";
   EXPECT_NE(read_text(out / "events.csv").find("joint_broken"), std::string::npos) << "the run must span the break";
+  // The resumed process's speed counts its own steps, those after the
+  // checkpoint, over its own wall time (it divided all the run's steps by
+  // it before).
+  auto number = [&](const std::string& key) {
+    std::smatch m;
+    const std::string text = read_text(out / "summary.json");
+    EXPECT_TRUE(std::regex_search(text, m, std::regex("\"" + key + "\": ([0-9.eE+-]+)"))) << key;
+    return m.empty() ? 0.0 : std::stod(m[1]);
+  };
+  const double steps = number("steps"), wall = number("wall_time_s"), rate = number("steps_per_second");
+  ASSERT_GT(wall, 0.0);
+  EXPECT_LT(rate * wall, 0.99 * steps) << "steps " << steps << ", wall " << wall << " s, rate " << rate;
+  EXPECT_GT(rate * wall, 0.0);
 }
 
 // A run that chose central difference with --integrator over the case

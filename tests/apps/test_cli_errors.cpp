@@ -194,6 +194,22 @@ TEST(CliErrors, TheBaseCaseIsValid) {
   EXPECT_EQ(r.out.find("ABOVE THE STABLE LIMIT"), std::string::npos) << r.out;
 }
 
+// A run shorter than one time step is refused, not "completed" after no
+// step: a ground-motion window that short (the run lasts the window when
+// duration_s is not given), named with the time section's line.
+TEST(CliErrors, WindowShorterThanOneStepIsRefused) {
+  std::string text = kBaseCase;
+  const std::string duration = "  duration_s: 0.01\n", motion = "ground_motion:\n";
+  ASSERT_NE(text.find(duration), std::string::npos);
+  text.erase(text.find(duration), duration.size());
+  text.replace(text.find(motion), motion.size(), "ground_motion:\n  window_length_s: 1.0e-9\n");
+  const Outcome o = run_case(text, kBaseRecord);
+  EXPECT_EQ(o.app.code, 2) << o.app.err;
+  EXPECT_FALSE(o.out_folder_exists);
+  EXPECT_NE(o.app.err.find("case.yaml:3: field 'ground_motion.window_length_s'"), std::string::npos) << o.app.err;
+  EXPECT_NE(o.app.err.find("less than one time step"), std::string::npos) << o.app.err;
+}
+
 // info prints a ground-motion direction as the unit vector it is: axis -z
 // is (0 0 -1), without the negative zeros the sign flip leaves in x and y.
 TEST(CliInfo, NegativeAxisPrintsWithoutNegativeZeros) {
@@ -307,16 +323,25 @@ TEST(CliErrors, IntegratorTheSceneCannotUseIsRefusedWhereItWasChosen) {
   const auto option = run_app({"run", cube_case, "--integrator", "gsl_rk8pd", "--out", out.string(), "--quiet"},
                               dir.path());
   EXPECT_EQ(option.code, 2) << option.err;
-  EXPECT_NE(option.err.find("error: field '--integrator': integrator gsl_rk8pd"), std::string::npos) << option.err;
+  EXPECT_NE(option.err.find("error: option '--integrator': integrator gsl_rk8pd"), std::string::npos) << option.err;
   EXPECT_EQ(option.err.find("cube.yaml:"), std::string::npos) << option.err;
   EXPECT_FALSE(fs::exists(out));
 
   const auto euler = run_app({"run", cube_case, "--integrator=forward_euler", "--out", out.string(), "--quiet"},
                              dir.path());
   EXPECT_EQ(euler.code, 2) << euler.err;
-  EXPECT_NE(euler.err.find("field '--integrator': forward_euler is unstable at every dt_s"), std::string::npos)
+  EXPECT_NE(euler.err.find("option '--integrator': forward_euler is unstable at every dt_s"), std::string::npos)
       << euler.err;
   EXPECT_FALSE(fs::exists(out));
+  // info says so too, without a "stable limit" of 0 s that dt_s cannot take.
+  std::string euler_case = fq_test::kForcedCubeCase;
+  euler_case.replace(euler_case.find(flow), flow.size(), "time: {dt_s: 1.0e-5, duration_s: 0.05, integrator: forward_euler}\n");
+  std::ofstream(dir.path() / "euler.yaml", std::ios::binary) << euler_case;
+  const auto euler_info = run_app({"info", (dir.path() / "euler.yaml").string()}, dir.path());
+  EXPECT_EQ(euler_info.code, 0) << euler_info.err;
+  EXPECT_NE(euler_info.out.find("no stable time step with forward_euler"), std::string::npos) << euler_info.out;
+  EXPECT_NE(euler_info.out.find("UNSTABLE AT EVERY STEP"), std::string::npos) << euler_info.out;
+  EXPECT_EQ(euler_info.out.find("stable limit 0"), std::string::npos) << euler_info.out;
 }
 
 // Every option also takes the form --option=value (a value may contain
@@ -333,6 +358,10 @@ TEST(CliUsage, OptionEqualsValueIsTheOptionFollowedByTheValue) {
   const auto empty = run_app({"run", (dir.path() / "case.yaml").string(), "--out="}, dir.path());
   EXPECT_EQ(empty.code, 2) << empty.err;
   EXPECT_NE(empty.err.find("--out needs a value, got an empty one"), std::string::npos) << empty.err;
+  // A flag given a value is named as such (it read as a stray argument).
+  const auto flag = run_app({"run", (dir.path() / "case.yaml").string(), "--quiet=1"}, dir.path());
+  EXPECT_EQ(flag.code, 2) << flag.err;
+  EXPECT_NE(flag.err.find("option --quiet takes no value, got '--quiet=1'"), std::string::npos) << flag.err;
 }
 
 // FRAMEQUAKE_SIMD chooses the SIMD form of the lane kernels

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -100,6 +101,13 @@ TEST(StudyCommands, CompareWritesEachRunTheTableAndTheFigure) {
   EXPECT_GT(peak, 0.0);
   EXPECT_NEAR(peak, peak_storey1_ratio_from_history(out / "demo_portal_frame/history.csv"), 1e-9 + 1e-6 * peak);
   EXPECT_EQ(rows[1].at("storey1_peak_drift_ratio_rad"), "");  // blocks have no storeys
+  // --window-length is a quick look also for a case that runs on after its
+  // motion: the falling-block demo's duration_s of 1 s stops with the
+  // 0.5 s window (time scale 1).
+  std::smatch m;
+  const std::string block_summary = read_text(out / "demo_falling_block/summary.json");
+  ASSERT_TRUE(std::regex_search(block_summary, m, std::regex("\"simulated_time_s\": ([0-9.eE+-]+)")));
+  EXPECT_NEAR(std::stod(m[1]), 0.5, 1e-3);
   const std::string md = read_text(out / "comparison.md");
   EXPECT_NE(md.find("| demo_portal_frame | completed |"), std::string::npos) << md;
   EXPECT_NE(r.out.find("| demo_portal_frame |"), std::string::npos);  // the table is also printed

@@ -75,9 +75,10 @@ const char* run_status_name(RunStatus s);
 
 struct RunResult {
   RunStatus status = RunStatus::Completed;
-  std::int64_t steps = 0;
+  std::int64_t steps = 0;            // the run's step count (from its start, across a resume)
+  std::int64_t steps_this_call = 0;  // the steps this call of run() took (a resumed run: since the checkpoint)
   double simulated_s = 0.0;
-  double wall_s = 0.0;
+  double wall_s = 0.0;               // wall time of this call
   std::string message;  // for Unstable: where and when it started
 };
 

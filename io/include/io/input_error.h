@@ -35,7 +35,8 @@ class InputError : public std::runtime_error {
     }
     if (!s.empty()) s += ": ";
     if (!field.empty()) {
-      s += "field '";
+      // A command-line option (--integrator) is an option, not a field.
+      s += field.rfind("--", 0) == 0 ? "option '" : "field '";
       s += field;
       s += "': ";
     }
