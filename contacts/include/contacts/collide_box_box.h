@@ -20,10 +20,13 @@
 //    the perimeter. When a vertex of the incident face crosses a side plane
 //    it splits into two coincident points whose weights add up to the old
 //    one, so the contact stiffness and its stored energy change
-//    continuously as the polygon gains or loses vertices (with equal point
-//    stiffnesses an octagon would be twice as stiff as a square and the
-//    energy would jump whenever a vertex crossed a side). Every rectangle
-//    gets exactly 1 per corner, so a face lying on a face is 4 k_n.
+//    continuously as the polygon gains or loses vertices that way (with
+//    equal point stiffnesses an octagon would be twice as stiff as a square
+//    and the energy would jump whenever a vertex crossed a side). Not when
+//    two nearly parallel edges cross mid-edge (equal faces twisted by a
+//    hair about the normal): the total stays 4 k_n but the rocking
+//    stiffness jumps (contacts/README.md, "Known limitations"). Every
+//    rectangle gets exactly 1 per corner, so a face lying on a face is 4 k_n.
 // 3. Edge contact: the two supporting edges (one per box) along the axis;
 //    their closest points give one point midway.
 // Feature ids: face contacts encode (which box is the reference, reference
