@@ -138,7 +138,10 @@ StudyArgs parse_study_args(int argc, char** argv, const char* help, bool sweep) 
       a.figure = false;
     } else if (sweep && arg == "--scales") {
       a.scales.clear();
-      std::stringstream list(value("--scales"));
+      const std::string text = value("--scales");
+      // getline drops an empty last item: "1," would pass as "1".
+      if (text.back() == ',') parse_positive("", "--scales", help);
+      std::stringstream list(text);
       for (std::string item; std::getline(list, item, ',');) a.scales.push_back(parse_positive(item, "--scales", help));
       if (a.scales.empty()) usage_error("--scales needs at least one scale", help);
       std::sort(a.scales.begin(), a.scales.end());
@@ -189,6 +192,12 @@ std::string csv_number(double x) {
   std::ostringstream s;
   s << std::setprecision(9) << x;
   return s.str();
+}
+
+// The line of a case's `name` key (0 when the name is the file's stem).
+int name_line(const fq::CaseDef& def) {
+  const auto it = def.section_line.find("name");
+  return it == def.section_line.end() ? 0 : it->second;
 }
 
 // Loads every case; the first bad one ends the command (nothing is run).
@@ -334,7 +343,7 @@ int command_compare(int argc, char** argv, const std::atomic<bool>* stop_request
     std::set<std::string> names;
     for (fq::CaseDef& def : defs) {
       if (!names.insert(def.name).second)
-        throw fq::InputError(def.source_file.string(), 0, "name",
+        throw fq::InputError(def.source_file.string(), name_line(def), "name",
                              "two cases are named '" + def.name + "'; each case needs its own output folder");
       if (args.window_length_s) shorten_window(def, *args.window_length_s);
       check_runnable(def, args);
@@ -438,7 +447,8 @@ int command_sweep(int argc, char** argv, const std::atomic<bool>* stop_requested
     std::set<std::string> names;
     for (fq::CaseDef& def : defs) {
       if (!names.insert(def.name).second)
-        throw fq::InputError(def.source_file.string(), 0, "name", "two cases are named '" + def.name + "'");
+        throw fq::InputError(def.source_file.string(), name_line(def), "name",
+                             "two cases are named '" + def.name + "'; each case needs its own output folders");
       if (!def.ground_motion)
         throw fq::InputError(def.source_file.string(), 0, "ground_motion", "a sweep needs a case with a ground motion");
       if (args.window_length_s) shorten_window(def, *args.window_length_s);
@@ -461,11 +471,14 @@ int command_sweep(int argc, char** argv, const std::atomic<bool>* stop_requested
           c.file = args.records[r];
           c.resolved_file = args.records[r];
           c.format = fq::RecordFormat::PeerAt2;
-          if (gm.window_start_s >= c.record.duration_s())
-            throw fq::InputError(args.records[r], 0, "window_start_s",
-                                 "the case's window starts at " + std::to_string(gm.window_start_s) +
-                                     " s, after the end of this record (" + std::to_string(c.record.duration_s()) +
-                                     " s)");
+          if (gm.window_start_s >= c.record.duration_s()) {
+            const auto line = def.section_line.find("ground_motion");
+            throw fq::InputError(def.source_file.string(), line == def.section_line.end() ? 0 : line->second,
+                                 "ground_motion.window_start_s",
+                                 "the window starts at " + std::to_string(gm.window_start_s) +
+                                     " s, after the end of --record " + args.records[r] + " (" +
+                                     std::to_string(c.record.duration_s()) + " s)");
+          }
           gm.window_length_s = std::min(gm.window_length_s, c.record.duration_s() - gm.window_start_s);
           variants.emplace_back(fs::path(args.records[r]).stem().string(), std::move(v));
         }

@@ -283,12 +283,22 @@ TEST(StudyCommands, BadInputIsRefusedBeforeAnythingIsWritten) {
   replace("name: demo_portal_frame", "name: coarse_portal");
   std::ofstream(dir.path() / "coarse.yaml", std::ios::binary) << coarse;
   const std::string coarse_portal = (dir.path() / "coarse.yaml").string();
+  // A PEER record of 0.05 s, shorter than the falling-block demo's window
+  // start (7.6 s).
+  std::ofstream(dir.path() / "short.AT2") << "PEER NGA STRONG MOTION DATABASE RECORD\nTest\n"
+                                             "ACCELERATION TIME SERIES IN UNITS OF G\nNPTS=    6, DT=   .0100 SEC\n"
+                                             "  .1E-02  .2E-02 -.1E-02  .0E+00  .3E-02  .0E+00\n";
+  const std::string block = (kSource / "cases/demo_falling_block.yaml").string();
   struct Case {
     std::vector<std::string> args;
     std::string message;
   } cases[] = {
       {{"compare", portal, (dir.path() / "missing.yaml").string(), "--out", out.string()}, "missing.yaml"},
-      {{"compare", portal, portal, "--out", out.string()}, "two cases are named 'demo_portal_frame'"},
+      {{"compare", portal, portal, "--out", out.string()},
+       "demo_portal_frame.yaml:33: field 'name': two cases are named 'demo_portal_frame'"},
+      {{"sweep", portal, "--scales", "1,", "--out", out.string()}, "--scales expects a positive number, got ''"},
+      {{"sweep", block, "--record", (dir.path() / "short.AT2").string(), "--out", out.string()},
+       "demo_falling_block.yaml:59: field 'ground_motion.window_start_s': the window starts at 7.6"},
       {{"compare", "--out", out.string()}, "missing CASE"},
       {{"compare", portal, "--window-length", "-1", "--out", out.string()}, "--window-length expects a positive number"},
       {{"sweep", portal, "--scales", "1,x", "--out", out.string()}, "--scales expects a positive number, got 'x'"},
