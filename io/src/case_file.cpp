@@ -584,18 +584,20 @@ JointBreakDef parse_fracture(const Reader& r, const Field& f) {
   r.expect_map(f.value, f.line, f.path, "criterion and, for strain_limit, strain_limit");
   r.expect_keys(f.value, {"criterion", "strain_limit"}, f.path);
   JointBreakDef b;
-  const Field c = r.require(f.value, "criterion", f.path,
-                            "all_normal_springs_deleted, any_spring_deleted, strain_limit or never");
-  const std::string name = r.to_name(c, "a fracture criterion");
-  bool found = false;
-  for (BreakCriterion k : {BreakCriterion::AllNormalSpringsDeleted, BreakCriterion::AnySpringDeleted,
-                           BreakCriterion::StrainLimit, BreakCriterion::Never})
-    if (name == break_criterion_name(k)) {
-      b.criterion = k;
-      found = true;
-    }
-  if (!found)
-    r.fail(c, "expected all_normal_springs_deleted, any_spring_deleted, strain_limit or never; got '" + name + "'");
+  // Without `criterion` the documented default (cases/README.md).
+  b.criterion = BreakCriterion::AllNormalSpringsDeleted;
+  if (const auto c = r.get(f.value, "criterion", f.path)) {
+    const std::string name = r.to_name(*c, "a fracture criterion");
+    bool found = false;
+    for (BreakCriterion k : {BreakCriterion::AllNormalSpringsDeleted, BreakCriterion::AnySpringDeleted,
+                             BreakCriterion::StrainLimit, BreakCriterion::Never})
+      if (name == break_criterion_name(k)) {
+        b.criterion = k;
+        found = true;
+      }
+    if (!found)
+      r.fail(*c, "expected all_normal_springs_deleted, any_spring_deleted, strain_limit or never; got '" + name + "'");
+  }
   if (b.criterion == BreakCriterion::StrainLimit)
     b.strain_limit = r.required_positive(f.value, "strain_limit", f.path, "the joint strain at which it breaks (-)");
   else if (r.get(f.value, "strain_limit", f.path))
@@ -783,6 +785,13 @@ void parse_contact(const Reader& r, const Field& f, CaseDef& def) {
                     for (auto it = n.begin(); it != n.end(); ++it)
                       if (it->first.Scalar() != "materials") params[it->first] = it->second;
                     p.params = parse_contact_params(r, Field{params, line, path}, "contact parameters");
+                    // One entry per pair (in either order): a second would
+                    // silently replace the first.
+                    for (const ContactPairDef& q : c.pairs)
+                      if ((q.material_1 == p.material_1 && q.material_2 == p.material_2) ||
+                          (q.material_1 == p.material_2 && q.material_2 == p.material_1))
+                        r.fail(mats, "the pair (" + p.material_1 + ", " + p.material_2 +
+                                         ") is already given at line " + std::to_string(q.line));
                     c.pairs.push_back(p);
                   });
   }
@@ -980,7 +989,16 @@ CaseDef parse_root(const Reader& r, const YAML::Node& root, const std::filesyste
   }
 
   // Checks across sections.
-  if (def.name.empty()) def.name = file.stem().string();
+  if (def.name.empty()) {
+    // The file's stem, with every character a name may not hold (they end
+    // up in folder names) replaced by '_': "my case.yaml" is my_case.
+    def.name = file.stem().string();
+    for (char& c : def.name)
+      if (!((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '-' ||
+            c == '.'))
+        c = '_';
+    if (def.name.empty()) def.name = "case";
+  }
   if (def.output.folder.empty()) def.output.folder = default_output_folder(def.name);
   if (def.members.empty() && def.blocks.empty())
     r.fail(Reader::line_of(root), "", "the case has no bodies: expected at least one member or block");

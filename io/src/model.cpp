@@ -200,14 +200,16 @@ Model build_model(const CaseDef& def_in) {
   // structure's footprint twice over (edge = 2 x footprint edge, centred on
   // it) and at least the footprint plus the structure's height on every
   // side: a member toppling about its base lands up to its height away.
-  if (def.ground || !def.supports.empty()) {
-    const double level_m = def.ground ? def.ground->level_m : 0.0;
-    // With ground contact, a member below the ground would start inside it:
-    // the contact throws it out at the first step, breaking its joints (a
-    // support node below the ground is a mistake in the node heights or in
-    // level_m, an untrimmed brace end one in trim_m). Without ground contact
-    // members pass through the ground and may start in it.
-    const bool ground_contact = def.contact && def.contact->ground;
+  // With ground contact, a member below the ground would start inside it:
+  // the contact throws it out at the first step, breaking its joints (a
+  // support node below the ground is a mistake in the node heights or in
+  // level_m, an untrimmed brace end one in trim_m), and a block below it is
+  // thrown out at once. Without ground contact members pass through the
+  // ground and may start in it. The ground contact's surface is
+  // ground.level_m, or z = 0 without a ground section.
+  const bool ground_contact = def.contact && def.contact->ground;
+  const double level_m = def.ground ? def.ground->level_m : 0.0;
+  if (def.ground || !def.supports.empty() || ground_contact) {
     for (std::size_t i = 0; ground_contact && i < def.members.size(); ++i) {
       Vec3 mlo = Vec3::Constant(std::numeric_limits<double>::infinity());
       Vec3 mhi = -mlo;
@@ -227,6 +229,10 @@ Model build_model(const CaseDef& def_in) {
              "the block reaches " + fmt(level_m - blo.z()) + " m below the ground surface (z = " + fmt(level_m) +
                  " m); raise it or lower ground.level_m");
     }
+  }
+  // The ground body, where there is a ground section or supports (a case
+  // with ground contact alone has its surface at z = 0 and no body for it).
+  if (def.ground || !def.supports.empty()) {
     const Vec3 extent = (hi - lo).cwiseMax(Vec3::Zero());
     const double height_m = std::max(0.0, hi.z() - level_m);
     BoxBodyDef g;

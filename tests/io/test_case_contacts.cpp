@@ -40,6 +40,28 @@ TEST(CaseContacts, BlockOnTheGroundCarriesItsWeight) {
   EXPECT_EQ(scene.contacts->contact_count(), 4u);
 }
 
+// With ground contact and no ground section the surface is z = 0, and a
+// block reaching below it is refused like one below a ground section's
+// level (it was thrown out at 106 m/s at the first steps, exit 0).
+TEST(CaseContacts, BlockBelowTheGroundContactWithoutAGroundSectionIsRefused) {
+  TempDir dir;
+  const auto file = dir.write("sunk.yaml",
+                              "framequake_case: 1\n"
+                              "time: {dt_s: 1.0e-5, duration_s: 0.001}\n"
+                              "materials: [{name: wood, density_kg_per_m3: 450}]\n"
+                              "blocks: [{id: b, size_m: [0.1, 0.1, 0.1], center_m: [0, 0, 0.0], material: wood}]\n"
+                              "contact:\n"
+                              "  ground: {normal_stiffness_N_per_m: 1.0e6}\n");
+  try {
+    (void)build_scene(load_case_file(file));
+    FAIL() << "a block half below the ground contact's surface was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.line(), 4);
+    EXPECT_EQ(e.field(), "blocks[0].center_m");
+    EXPECT_NE(std::string(e.what()).find("0.05 m below the ground surface"), std::string::npos) << e.what();
+  }
+}
+
 TEST(CaseContacts, ContactParameterErrorsNameTheField) {
   TempDir dir;
   const std::string head =
@@ -57,6 +79,8 @@ TEST(CaseContacts, ContactParameterErrorsNameTheField) {
       {"contact: {ground: {normal_stiffness_N_per_m: -1}}\n", "contact.ground.normal_stiffness_N_per_m", "positive"},
       {"contact: {default: {friction: 0.3}}\n", "contact.default.friction", "unknown key"},
       {"contact: {pairs: [{materials: [wood, steel]}]}\n", "contact.pairs[0].materials[1]", "steel"},
+      {"contact: {pairs: [{materials: [wood, wood], restitution: 0.3}, {materials: [wood, wood]}]}\n",
+       "contact.pairs[1].materials", "is already given at line"},
       {"contact: {floor: {}}\n", "contact.floor", "unknown key"},
   };
   for (const Bad& b : table) {

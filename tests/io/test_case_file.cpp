@@ -810,3 +810,20 @@ TEST(CaseFile, DemoFallingBlock) {
 }
 
 }  // namespace
+
+namespace {
+
+// Without `name` the case is named after its file, with every character a
+// name may not hold (it ends up in folder names) replaced by '_'.
+TEST(CaseFile, NameFromTheFileStemKeepsTheNameRule) {
+  TempDir dir;
+  const fq::CaseDef def = fq::load_case_file(dir.write("my case (2).yaml",
+                                                       "framequake_case: 1\n"
+                                                       "time: {dt_s: 1.0e-5, duration_s: 0.01}\n"
+                                                       "materials: [{name: wood, density_kg_per_m3: 450}]\n"
+                                                       "blocks: [{id: b, size_m: [0.1, 0.1, 0.1], center_m: [0, 0, 1], "
+                                                       "material: wood}]\n"));
+  EXPECT_EQ(def.name, "my_case__2_");
+}
+
+}  // namespace

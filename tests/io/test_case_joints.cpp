@@ -171,6 +171,22 @@ TEST(CaseJoints, UserErrorsNameFileLineAndField) {
 // <= 2 Delta / (omega T_r) = 0.1 Delta, and its mean over the hold differs
 // from zero by <= 2 (0.1 Delta) / (omega T_h) = 0.005 Delta. The mean sway
 // over the hold is therefore Delta within 1 %.
+// A fracture mapping without `criterion` takes the documented default,
+// all_normal_springs_deleted (cases/README.md); it was refused as missing.
+TEST(CaseJoints, FractureWithoutCriterionTakesTheDefault) {
+  std::string text = portal_case();
+  const std::string shear = "    shear:";
+  ASSERT_NE(text.find(shear), std::string::npos);
+  text.replace(text.find(shear), shear.size(), "    fracture: {}\n    shear:");
+  TempDir dir;
+  const CaseDef def = load_case_file(dir.write("fracture.yaml", text));
+  ASSERT_FALSE(def.joint_types.empty());
+  EXPECT_EQ(def.joint_types[0].fracture.criterion, BreakCriterion::AllNormalSpringsDeleted);
+  std::string never = text;
+  never.replace(never.find("fracture: {}"), std::string("fracture: {}").size(), "fracture: {criterion: never}");
+  EXPECT_EQ(load_case_file(dir.write("never.yaml", never)).joint_types[0].fracture.criterion, BreakCriterion::Never);
+}
+
 TEST(CaseJoints, PortalStaticSwayMatchesJointStiffness) {
   TempDir dir;
   std::string ramp = "# ramp to 0.5 m/s^2 in 0.5 s, then hold\n";
