@@ -697,6 +697,12 @@ void parse_joints(const Reader& r, const Field& f, CaseDef& def) {
                     rule.kind_1 = parse_kind_name(r, Reader::item(kinds, 0));
                     rule.kind_2 = parse_kind_name(r, Reader::item(kinds, 1));
                     rule.type = joint_type_reference(r, r.require(n, "type", path, "a joint type name"), def);
+                    // One rule per pair of kinds (in either order): a second
+                    // would silently replace the first.
+                    for (const JointRuleDef& q : j.rules)
+                      if ((q.kind_1 == rule.kind_1 && q.kind_2 == rule.kind_2) ||
+                          (q.kind_1 == rule.kind_2 && q.kind_2 == rule.kind_1))
+                        r.fail(kinds, "a rule for these two kinds is already given at line " + std::to_string(q.line));
                     j.rules.push_back(rule);
                   });
   }
@@ -726,6 +732,11 @@ void parse_joints(const Reader& r, const Field& f, CaseDef& def) {
           }
           if (o.member_1 == o.member_2) r.fail(members, "the two members must differ");
           o.type = joint_type_reference(r, r.require(n, "type", path, "a joint type name"), def);
+          for (const JointOverrideDef& q : j.overrides)
+            if (q.node == o.node && ((q.member_1 == o.member_1 && q.member_2 == o.member_2) ||
+                                     (q.member_1 == o.member_2 && q.member_2 == o.member_1)))
+              r.fail(members, "an override for these two members at node '" + o.node + "' is already given at line " +
+                                  std::to_string(q.line));
           j.overrides.push_back(o);
         });
   }

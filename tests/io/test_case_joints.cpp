@@ -134,6 +134,11 @@ TEST(CaseJoints, UserErrorsNameFileLineAndField) {
        21, "joint_types[0].fracture.strain_limit", "applies only"},
       {"link keys on a point layout", replace("    shear:", "    gap_m: 0.01\n    shear:"), 21,
        "joint_types[0].gap_m", "link_system"},
+      {"a rule given twice", replace("joints: {default_type: stiff}", "joints: {default_type: stiff, rules: [{kinds: [beam, column], type: stiff}, {kinds: [column, beam], type: stiff}]}"),
+       22, "joints.rules[1].kinds", "already given at line 22"},
+      {"an override given twice",
+       replace("joints: {default_type: stiff}", "joints: {default_type: stiff, overrides: [{node: tw, members: [cw, b], type: stiff}, {node: tw, members: [b, cw], type: stiff}]}"),
+       22, "joints.overrides[1].members", "already given at line 22"},
   };
   TempDir dir;
   for (const BadJointCase& c : table) {
