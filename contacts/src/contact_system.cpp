@@ -651,13 +651,12 @@ double one_sided_contact_eigenvalue(const Vec3& half_extents_m, double mass_kg, 
 
 // The dashpots of one of the four corner points of a face contact whose
 // pair has mass m_pair (ContactSystem::process_item: share 1 of 4, mass
-// m_pair / 4 per point; contact_dashpots).
-struct CornerDashpots {
-  double n, t;
-};
-CornerDashpots corner_dashpots(double kn, double kt, double zeta, double pair_mass_kg) {
-  const double m = 0.25 * pair_mass_kg;
-  return {2.0 * zeta * std::sqrt(kn * m), 2.0 * zeta * std::sqrt(kt * m)};
+// m_pair / 4 per point), as the contact law forms them.
+ContactDashpots corner_dashpots(const ContactCoefficients& coeff, double pair_mass_kg) {
+  ContactLawInput in;
+  in.stiffness_scale = 1.0;
+  in.effective_mass_kg = 0.25 * pair_mass_kg;
+  return contact_dashpots(coeff, in);
 }
 
 // The dt at which `lambda(dt)`, the top eigenvalue of dt^2 K~ + 2 dt C~ of
@@ -708,13 +707,18 @@ void ContactSystem::linearised_springs(const BodyStore& bodies, std::vector<Line
       const Vec3 t1 = (std::abs(n.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY()).cross(n).normalized();
       const Vec3 t2 = n.cross(t1);
       const Vec3* dirs[3] = {&n, &t1, &t2};
-      const double point_mass = pair_mass * p.weight / weight_sum;
+      // The point's shares as process_item gives them, its dashpots as the
+      // law forms them.
+      ContactLawInput in;
+      in.stiffness_scale = p.weight;
+      in.effective_mass_kg = pair_mass * p.weight / weight_sum;
+      const ContactDashpots c = contact_dashpots(co, in);
       for (int d = 0; d < 3; ++d) {
         LinearisedSpring r;
         r.a = a;
         r.b = b;
         r.k_Npm = p.weight * (d == 0 ? co.normal_stiffness_N_per_m : co.tangential_stiffness_N_per_m);
-        r.c_Nspm = 2.0 * co.damping_ratio * std::sqrt(r.k_Npm * point_mass);
+        r.c_Nspm = d == 0 ? c.normal_Nspm : c.tangential_Nspm;
         if (a != kNoBody) r.ga = -mass_scaled_gradient(bodies, a, p.position_m - bodies.position_m[std::size_t(a)], *dirs[d]);
         r.gb = mass_scaled_gradient(bodies, b, p.position_m - bodies.position_m[std::size_t(b)], *dirs[d]);
         r.element = element;
@@ -757,16 +761,21 @@ void ContactSystem::linearised_springs(const BodyStore& bodies, std::vector<Line
   }
 }
 
+int ContactSystem::material_of(std::size_t body) const {
+  return body < body_material_.size() ? body_material_[body] : 0;  // before prepare: unset bodies are 0
+}
+
+ContactParams ContactSystem::material_pair_params(int m1, int m2) const {
+  const auto it = pair_params_.find({std::min(m1, m2), std::max(m1, m2)});
+  return it == pair_params_.end() ? ContactParams{} : it->second;
+}
+
 ContactCoefficients ContactSystem::coefficients_of(BodyId a, BodyId b) const {
   // As prepare() assigns them, before or after it: the ground's, the
   // materials' pair, or the default pair.
   if (a == kNoBody) return make_contact_coefficients(ground_params_, "the ground");
-  auto material = [&](BodyId i) {
-    return std::size_t(i) < body_material_.size() ? body_material_[std::size_t(i)] : 0;
-  };
-  const int ma = material(a), mb = material(b);
-  const auto it = pair_params_.find({std::min(ma, mb), std::max(ma, mb)});
-  return make_contact_coefficients(it == pair_params_.end() ? ContactParams{} : it->second, "a pair");
+  return make_contact_coefficients(material_pair_params(material_of(std::size_t(a)), material_of(std::size_t(b))),
+                                   "a pair");
 }
 
 std::string ContactSystem::describe_linearised_spring(const BodyStore& bodies, std::int64_t element) const {
@@ -783,8 +792,7 @@ std::string ContactSystem::describe_linearised_spring(const BodyStore& bodies, s
   return where.str();
 }
 
-ContactSystem::StiffestCoefficients ContactSystem::stiffest_coefficients(const BodyStore& bodies,
-                                                                          LaterContact kind) const {
+ContactCoefficients ContactSystem::stiffest_coefficients(const BodyStore& bodies, LaterContact kind) const {
   // The coefficient sets the later contacts of `kind` can use, from the
   // materials of the bodies that can meet: a free box on a fixed surface
   // (the ground when it is on, a fixed box of some material), or two free
@@ -792,33 +800,29 @@ ContactSystem::StiffestCoefficients ContactSystem::stiffest_coefficients(const B
   // coefficients alone, and a stack of soft boxes on a stiff ground by the
   // ground for a box landing on it and by the soft pair for two boxes
   // meeting, not by a stiffness no such contact can have.
-  auto material = [&](std::size_t i) { return i < body_material_.size() ? body_material_[i] : 0; };
   std::vector<int> free_materials, fixed_materials;
   std::vector<std::size_t> free_count;  // free bodies of free_materials[k]
   std::size_t free_bodies = 0;
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     if (bodies.info[i].kind == MemberKind::Ground) continue;
     std::vector<int>& list = bodies.is_fixed[i] ? fixed_materials : free_materials;
-    const auto at = std::find(list.begin(), list.end(), material(i));
+    const auto at = std::find(list.begin(), list.end(), material_of(i));
     const std::size_t k = std::size_t(at - list.begin());
-    if (at == list.end()) list.push_back(material(i));
+    if (at == list.end()) list.push_back(material_of(i));
     if (!bodies.is_fixed[i]) {
       ++free_bodies;
       if (k == free_count.size()) free_count.push_back(0);
       ++free_count[k];
     }
   }
-  StiffestCoefficients sc;
+  ContactCoefficients sc;  // all zero: no such contact can form
   auto take = [&](const ContactParams& params) {
     const ContactCoefficients c = make_contact_coefficients(params, "a contact");
-    sc.kn = std::max(sc.kn, c.normal_stiffness_N_per_m);
-    sc.kt = std::max(sc.kt, c.tangential_stiffness_N_per_m);
-    sc.zeta = std::max(sc.zeta, c.damping_ratio);
+    sc.normal_stiffness_N_per_m = std::max(sc.normal_stiffness_N_per_m, c.normal_stiffness_N_per_m);
+    sc.tangential_stiffness_N_per_m = std::max(sc.tangential_stiffness_N_per_m, c.tangential_stiffness_N_per_m);
+    sc.damping_ratio = std::max(sc.damping_ratio, c.damping_ratio);
   };
-  auto take_pair = [&](int m1, int m2) {
-    const auto it = pair_params_.find({std::min(m1, m2), std::max(m1, m2)});
-    take(it == pair_params_.end() ? ContactParams{} : it->second);
-  };
+  auto take_pair = [&](int m1, int m2) { take(material_pair_params(m1, m2)); };
   if (kind == LaterContact::OnFixedSurface) {
     if (free_bodies == 0) return sc;
     if (ground_enabled_) take(ground_params_);
@@ -851,21 +855,22 @@ StiffestMode ContactSystem::later_stiffest_mode(const BodyStore& bodies) const {
   StiffestMode mode;
   const std::size_t nb = bodies.size();
   auto is_free = [&](std::size_t i) { return !bodies.is_fixed[i] && bodies.info[i].kind != MemberKind::Ground; };
-  auto lambda_of = [&](const StiffestCoefficients& sc, std::size_t i, double dt, double pair_mass_kg) {
-    const CornerDashpots c = corner_dashpots(sc.kn, sc.kt, sc.zeta, pair_mass_kg);
+  auto lambda_of = [&](const ContactCoefficients& sc, std::size_t i, double dt, double pair_mass_kg) {
+    const ContactDashpots c = corner_dashpots(sc, pair_mass_kg);
     return one_sided_contact_eigenvalue(bodies.half_extents_m[i], bodies.mass_kg[i], bodies.principal_inertia_kgm2[i],
-                                        dt * dt * sc.kn + 2.0 * dt * c.n, dt * dt * sc.kt + 2.0 * dt * c.t);
+                                        dt * dt * sc.normal_stiffness_N_per_m + 2.0 * dt * c.normal_Nspm,
+                                        dt * dt * sc.tangential_stiffness_N_per_m + 2.0 * dt * c.tangential_Nspm);
   };
   double best_dt = HUGE_VAL;
   std::string where;
-  StiffestCoefficients where_sc;
+  ContactCoefficients where_sc;
 
   // One box on a fixed surface. Undamped lambda of every free box; the
   // damped limit of one box lies between 2 / (sqrt(l_k + l_c^2 / 4) +
   // l_c / 2) and 2 / sqrt(l_k), so only boxes whose lower bound is below
   // the best limit found need it.
-  const StiffestCoefficients surface = stiffest_coefficients(bodies, LaterContact::OnFixedSurface);
-  if (surface.kn > 0.0) {
+  const ContactCoefficients surface = stiffest_coefficients(bodies, LaterContact::OnFixedSurface);
+  if (surface.normal_stiffness_N_per_m > 0.0) {
     struct Box {
       double lower_dt, lambda_k;
       std::size_t i;
@@ -874,11 +879,12 @@ StiffestMode ContactSystem::later_stiffest_mode(const BodyStore& bodies) const {
     for (std::size_t i = 0; i < nb; ++i) {
       if (!is_free(i)) continue;
       const double lk = one_sided_contact_eigenvalue(bodies.half_extents_m[i], bodies.mass_kg[i],
-                                                     bodies.principal_inertia_kgm2[i], surface.kn, surface.kt);
+                                                     bodies.principal_inertia_kgm2[i], surface.normal_stiffness_N_per_m,
+                                                     surface.tangential_stiffness_N_per_m);
       if (!(lk > 0.0)) continue;
-      const CornerDashpots c = corner_dashpots(surface.kn, surface.kt, surface.zeta, bodies.mass_kg[i]);
+      const ContactDashpots c = corner_dashpots(surface, bodies.mass_kg[i]);
       const double lc = one_sided_contact_eigenvalue(bodies.half_extents_m[i], bodies.mass_kg[i],
-                                                     bodies.principal_inertia_kgm2[i], c.n, c.t);
+                                                     bodies.principal_inertia_kgm2[i], c.normal_Nspm, c.tangential_Nspm);
       boxes.push_back({2.0 / (std::sqrt(lk + 0.25 * lc * lc) + 0.5 * lc), lk, i});
     }
     std::sort(boxes.begin(), boxes.end(), [](const Box& x, const Box& y) { return x.lower_dt < y.lower_dt; });
@@ -896,14 +902,15 @@ StiffestMode ContactSystem::later_stiffest_mode(const BodyStore& bodies) const {
   }
 
   // Two free boxes.
-  const StiffestCoefficients pair = stiffest_coefficients(bodies, LaterContact::BoxOnBox);
-  if (pair.kn > 0.0) {
+  const ContactCoefficients pair = stiffest_coefficients(bodies, LaterContact::BoxOnBox);
+  if (pair.normal_stiffness_N_per_m > 0.0) {
     double top1 = 0.0, top2 = 0.0;
     std::size_t top1_body = nb, top2_body = nb;
     for (std::size_t i = 0; i < nb; ++i) {
       if (!is_free(i)) continue;
       const double lk = one_sided_contact_eigenvalue(bodies.half_extents_m[i], bodies.mass_kg[i],
-                                                     bodies.principal_inertia_kgm2[i], pair.kn, pair.kt);
+                                                     bodies.principal_inertia_kgm2[i], pair.normal_stiffness_N_per_m,
+                                                     pair.tangential_stiffness_N_per_m);
       if (lk > top1) {
         top2 = top1;
         top2_body = top1_body;
@@ -930,23 +937,10 @@ StiffestMode ContactSystem::later_stiffest_mode(const BodyStore& bodies) const {
   if (!(best_dt < HUGE_VAL) || !(best_dt > 0.0)) return mode;
   mode.omega_radps = 2.0 / best_dt;
   std::ostringstream w;
-  w << "contact springs (k_n = " << where_sc.kn << " N/m, k_t = " << where_sc.kt << " N/m per point, damping ratio "
-    << where_sc.zeta << ") of " << where;
+  w << "contact springs (k_n = " << where_sc.normal_stiffness_N_per_m << " N/m, k_t = "
+    << where_sc.tangential_stiffness_N_per_m << " N/m per point, damping ratio " << where_sc.damping_ratio << ") of "
+    << where;
   mode.where = w.str();
-  return mode;
-}
-
-StiffestMode ContactSystem::stiffest_mode(const BodyStore& bodies) const {
-  // The contacts alone: the network of those present now and the worst
-  // that may form later, whichever limits more.
-  std::vector<LinearisedSpring> rows;
-  linearised_springs(bodies, rows);
-  const NetworkStableStep now = network_stable_step(rows, bodies.size());
-  StiffestMode mode = later_stiffest_mode(bodies);
-  if (now.omega_radps > mode.omega_radps) {
-    mode.omega_radps = now.omega_radps;
-    mode.where = describe_linearised_spring(bodies, rows[now.stiffest].element);
-  }
   return mode;
 }
 

@@ -1,5 +1,7 @@
 #include "dem_core/linearised_network.h"
 
+#include "dem_core/force_provider.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -98,6 +100,18 @@ NetworkStableStep network_stable_step(const std::vector<LinearisedSpring>& rows,
   result.dt_crit_s = dt_crit;
   result.omega_radps = lambda_c > 0.0 ? 2.0 / dt_crit : std::sqrt(omega2);  // undamped: omega itself, to the bit
   return result;
+}
+
+StiffestMode ForceProvider::stiffest_mode(const BodyStore& bodies) const {
+  std::vector<LinearisedSpring> rows;
+  linearised_springs(bodies, rows);
+  const NetworkStableStep now = network_stable_step(rows, bodies.size());
+  StiffestMode mode = later_stiffest_mode(bodies);
+  if (now.omega_radps > mode.omega_radps) {
+    mode.omega_radps = now.omega_radps;
+    mode.where = describe_linearised_spring(bodies, rows[now.stiffest].element);
+  }
+  return mode;
 }
 
 }  // namespace fq

@@ -726,6 +726,9 @@ void JointSystem::linearised_springs(const BodyStore& bodies, std::vector<Linear
   // its law: spring_law.h, initial_stiffness_Npm) and its dashpot, along
   // its current direction: a joint axis of the frame body a carries, or the
   // line between its ends for a spring without one. Element: the joint.
+  // Dashpots matter to the limit (linearised_network.h): a spring-level
+  // ratio of 0.3 can overdamp a light rotational mode (zeta > 1) and halve
+  // the stable step. Fixed bodies have zero inverse mass and drop out.
   const std::size_t ns = spring_joint_.size();
   out.reserve(out.size() + ns);
   for (std::size_t s = 0; s < ns; ++s) {
@@ -758,23 +761,6 @@ std::string JointSystem::describe_linearised_spring(const BodyStore& bodies, std
   m << "joint " << j << " (bodies " << joint_body_a_[j] << " '" << bodies.info[joint_body_a_[j]].name << "' - "
     << joint_body_b_[j] << " '" << bodies.info[joint_body_b_[j]].name << "')";
   return m.str();
-}
-
-StiffestMode JointSystem::stiffest_mode(const BodyStore& bodies) const {
-  // The joint network alone (dem_core/linearised_network.h): omega^2 the
-  // largest eigenvalue of M^-1/2 K M^-1/2 with K = sum_s k0_s g_s g_s^T,
-  // and with dashpots the dt where lambda_max(dt^2 K~ + 2 dt C~) = 4,
-  // reported as omega_eff = 2 / dt_crit. Dashpots matter: a spring-level
-  // ratio of 0.3 can overdamp a light rotational mode (zeta > 1) and halve
-  // the stable step. Fixed bodies have zero inverse mass and drop out.
-  std::vector<LinearisedSpring> rows;
-  linearised_springs(bodies, rows);
-  const NetworkStableStep net = network_stable_step(rows, bodies.size());
-  StiffestMode mode;
-  if (!(net.omega_radps > 0.0)) return mode;
-  mode.omega_radps = net.omega_radps;
-  mode.where = describe_linearised_spring(bodies, rows[net.stiffest].element);
-  return mode;
 }
 
 bool JointSystem::supports_trial_states() const {

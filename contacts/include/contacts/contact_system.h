@@ -216,7 +216,6 @@ class ContactSystem : public ForceProvider {
   // v_n (header); the bodies hold v(n+1/2) and w(n+1/2).
   void finish_step(const BodyStore& bodies, const StepInfo& step, EventLog& events) override;
   void report_energy(EnergyLedger& ledger) const override;
-  StiffestMode stiffest_mode(const BodyStore& bodies) const override;
   void linearised_springs(const BodyStore& bodies, std::vector<LinearisedSpring>& out) const override;
   std::string describe_linearised_spring(const BodyStore& bodies, std::int64_t element) const override;
   StiffestMode later_stiffest_mode(const BodyStore& bodies) const override;
@@ -246,14 +245,15 @@ class ContactSystem : public ForceProvider {
  private:
   // The stiffest k_n, k_t and largest damping ratio of any coefficient set
   // a contact of the kind that may form later can use (later_stiffest_mode;
-  // all zero when no such contact can form).
-  struct StiffestCoefficients {
-    double kn = 0.0, kt = 0.0, zeta = 0.0;
-  };
+  // all zero when no such contact can form; friction unused).
   enum class LaterContact { OnFixedSurface, BoxOnBox };
-  StiffestCoefficients stiffest_coefficients(const BodyStore& bodies, LaterContact kind) const;
-  // The coefficients a contact of a and b uses (a = kNoBody: the ground).
+  ContactCoefficients stiffest_coefficients(const BodyStore& bodies, LaterContact kind) const;
+  // The coefficients a contact of a and b uses (a = kNoBody: the ground),
+  // from the parameters of their materials' pair (the default pair when
+  // none is set) and a body's material (0 until set), before or after prepare.
   ContactCoefficients coefficients_of(BodyId a, BodyId b) const;
+  ContactParams material_pair_params(int material_1, int material_2) const;
+  int material_of(std::size_t body) const;
   int coeff_index_for(int material_i, int material_j) const;
   // Narrow phase and contact law of every work item (pairs, then boxes near
   // the ground), into contacts_; books the energy of the springs that ended.

@@ -56,9 +56,11 @@ class ForceProvider {
   virtual void accumulate_forces(BodyStore& bodies, const StepInfo& step) = 0;
   virtual void finish_step(const BodyStore& /*bodies*/, const StepInfo& /*step*/, EventLog& /*events*/) {}
   virtual void report_energy(EnergyLedger& /*ledger*/) const {}
-  // The provider's stiffest mode on its own (its springs linearised at the
-  // current pose, and anything it knows may come later).
-  virtual StiffestMode stiffest_mode(const BodyStore& /*bodies*/) const { return {}; }
+  // The provider's stiffest mode on its own: by default the network of its
+  // linearised_springs (as 2 / dt_crit) or its later_stiffest_mode,
+  // whichever limits more (src/linearised_network.cpp); a provider that
+  // knows its mode otherwise may say so directly.
+  virtual StiffestMode stiffest_mode(const BodyStore& bodies) const;
   // For the estimate of the whole scene (io's estimate_stable_time_step):
   // the spring-dashpots acting now, linearised at the current pose
   // (linearised_network.h), appended to `out`; the scene's providers are

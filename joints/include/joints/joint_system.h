@@ -59,9 +59,11 @@
 // that trapezoid sum of the work terms, because the start shifts v back
 // half a step.
 //
-// stiffest_mode: top eigenvalue of the mass-normalised initial stiffness
-// and dashpot matrices by power iteration (joint_system.cpp), naming the
-// joint of the spring that stores most energy in that mode.
+// Stable step: linearised_springs gives every live spring at its initial
+// stiffness with its dashpot; ForceProvider's stiffest_mode (and io's
+// estimate of the whole scene) find the limit of that network
+// (dem_core/linearised_network.h), naming the joint of the spring that
+// stores most energy in the mode that sets it.
 #pragma once
 
 #include <algorithm>
@@ -122,7 +124,6 @@ class JointSystem final : public ForceProvider {
   void accumulate_forces(BodyStore& bodies, const StepInfo& step) override;
   void finish_step(const BodyStore& bodies, const StepInfo& step, EventLog& events) override;
   void report_energy(EnergyLedger& ledger) const override;
-  StiffestMode stiffest_mode(const BodyStore& bodies) const override;
   void linearised_springs(const BodyStore& bodies, std::vector<LinearisedSpring>& out) const override;
   std::string describe_linearised_spring(const BodyStore& bodies, std::int64_t element) const override;
   // Trial states (rk4, gsl_rk8pd) are supported when every spring is linear
