@@ -147,6 +147,22 @@ TEST(CollideBoxBox, RotatedConfigurationHasKnownDepthAndNormal) {
     EXPECT_LE(std::fabs(local.x()), 0.5 + 1e-12);
     EXPECT_LE(std::fabs(local.y()), 0.5 + 1e-12);
   }
+  // Weights: every vertex of this octagon is where a side of one square
+  // crosses a side of the other, so the polygon turns there by 30 deg or
+  // by 60 deg, alternately (exterior angles): weights 4 t / 2 pi of 1/3
+  // and 2/3, four of each, adding up to 4. (All eight edges of this
+  // octagon are equally long: shares of the perimeter would give 0.5.)
+  int third = 0, two_thirds = 0;
+  double total = 0.0;
+  for (int k = 0; k < m.count; ++k) {
+    const double w = m.points[std::size_t(k)].weight;
+    third += std::fabs(w - 1.0 / 3.0) < 1e-12;
+    two_thirds += std::fabs(w - 2.0 / 3.0) < 1e-12;
+    total += w;
+  }
+  EXPECT_EQ(third, 4);
+  EXPECT_EQ(two_thirds, 4);
+  EXPECT_NEAR(total, 4.0, 1e-12);
   ContactManifold swapped;
   ASSERT_EQ(fq::collide_box_box(b, a, swapped), 8);
   for (int k = 0; k < swapped.count; ++k) {
@@ -296,6 +312,117 @@ TEST(CollideBoxBox, ShortcutsNeverChangeTheFullSearchsResult) {
   EXPECT_GT(face, 5000);
   EXPECT_GT(edge, 500);
   EXPECT_GT(apart, 5000);
+}
+
+}  // namespace
+
+namespace {
+
+// Sums over a face contact's points in the frame (x, y) of a's top face
+// (rotation q, face centre c): total weight, first and second moments.
+struct WeightMoments {
+  double total = 0.0, x = 0.0, y = 0.0, xx = 0.0, yy = 0.0;
+};
+WeightMoments weight_moments(const ContactManifold& m, const Mat3& q, const Vec3& c) {
+  WeightMoments s;
+  for (int k = 0; k < m.count; ++k) {
+    const Vec3 local = q.transpose() * (m.points[std::size_t(k)].position_m - c);
+    const double w = m.points[std::size_t(k)].weight;
+    s.total += w;
+    s.x += w * local.x();
+    s.y += w * local.y();
+    s.xx += w * local.x() * local.x();
+    s.yy += w * local.y() * local.y();
+  }
+  return s;
+}
+
+TEST(CollideBoxBoxWeights, ATriangleWeighsItsExteriorAngles) {
+  // Geometry: b's bottom face turned 45 deg and placed so that only one of
+  // its corners reaches over a's top face, across a's edge x = 0.5 at right
+  // angles: the overlap is the right isosceles triangle with that corner
+  // (90 deg inside, turn 90 deg) and two vertices on the edge (45 deg inside,
+  // turn 135 deg). Weights 4 t / 2 pi: 1 at the corner, 1.5 at the others.
+  const double d = 0.01;
+  const double h = 0.5;  // half side of b
+  const double reach = 0.1;  // how far b's corner lies inside a's edge
+  // b's centre so that its corner pointing to -x sits at x = 0.5 - reach.
+  const Vec3 centre(0.5 - reach + h * std::sqrt(2.0), 0.2, 1.0 - d);
+  ContactManifold m;
+  ASSERT_EQ(fq::collide_box_box(cube(Vec3::Zero()), cube(centre, rot(std::numbers::pi / 4, Vec3::UnitZ())), m), 3);
+  for (int k = 0; k < 3; ++k) {
+    const auto& p = m.points[std::size_t(k)];
+    const bool at_corner = std::fabs(p.position_m.x() - (0.5 - reach)) < 1e-12;
+    EXPECT_NEAR(p.weight, at_corner ? 1.0 : 1.5, 1e-12) << p.position_m.transpose();
+  }
+}
+
+TEST(CollideBoxBoxWeights, EqualFacesTwistedByAHairKeepTheirStiffnessAndRockingStiffness) {
+  // A 20 x 10 mm column end bearing on an equal end below (the frames'
+  // columns at a floor node) twisted about the normal by a hair, as
+  // round-off does. The overlap polygon gains crossings mid-edge where the
+  // nearly parallel sides cross; physically it is still the rectangle, so
+  // the total weight, the centre of the weights and the second moments
+  // (the rocking stiffnesses about the face's two axes, in units of k_n)
+  // must stay those of the untwisted face, 4, (0, 0) and 4 a^2, 4 b^2,
+  // changing by no more than the twist itself moves the corners (a relative
+  // 10 theta; the perimeter shares of the earlier weights dropped the
+  // rocking stiffness about the long axis to 2/3 at any twist).
+  const Vec3 half(0.01, 0.005, 0.1);
+  const Mat3 q = rot(0.3, Vec3(1.0, 0.2, -0.4));
+  const Vec3 n = q.col(2);
+  const Vec3 c(0.3, 0.1, 2.0);
+  const OrientedBox below{c, q, half};
+  const double d = 1e-5;
+  const Vec3 face_centre = c + half.z() * n;
+  for (double theta : {0.0, 1e-12, 1e-10, 1e-8, 1e-6, 1e-4}) {
+    for (double sign : {1.0, -1.0}) {
+      const OrientedBox above{c + (2.0 * half.z() - d) * n, rot(sign * theta, n) * q, half};
+      ContactManifold m;
+      const int count = fq::collide_box_box(below, above, m);
+      ASSERT_GE(count, 4) << theta;
+      const WeightMoments s = weight_moments(m, q, face_centre);
+      const double rel = 10.0 * theta + 1e-9;
+      EXPECT_NEAR(s.total, 4.0, 1e-12) << theta;
+      EXPECT_NEAR(s.x / half.x(), 0.0, 4.0 * rel) << theta;
+      EXPECT_NEAR(s.y / half.y(), 0.0, 4.0 * rel) << theta;
+      EXPECT_NEAR(s.xx / (4.0 * half.x() * half.x()), 1.0, rel) << theta << " points " << count;
+      EXPECT_NEAR(s.yy / (4.0 * half.y() * half.y()), 1.0, rel) << theta << " points " << count;
+    }
+  }
+}
+
+TEST(CollideBoxBoxWeights, ACornerCrossingASidePlaneHandsItsWeightToTheTwoPointsItBecomes) {
+  // A small square face (half 0.1, turned 20 deg) slid across a's edge
+  // x = 0.5: while its corner is inside the edge the polygon is the square
+  // and the corner weighs 1; just past the edge the corner becomes two
+  // points a hair apart (a pentagon) that share its turn.
+  // The weights near that corner must add up to the same on both sides of
+  // the crossing, and the second moment of the weights must not jump. Past
+  // by 1e-9 m the two points are 3e-9 m apart, past by 1e-10 m 3e-10 m:
+  // their turns come from the lines they lie on, not from the short edge
+  // between them, whose direction round-off would blur.
+  const Mat3 turn = rot(20.0 * std::numbers::pi / 180.0, Vec3::UnitZ());
+  const double h = 0.1;
+  const Vec3 corner_local = turn * Vec3(h, -h, 0.0);  // the corner reaching furthest in +x
+  const Vec3 other = turn * Vec3(h, h, 0.0);
+  ASSERT_GT(corner_local.x(), other.x());
+  auto moments_past_the_edge = [&](double eps) {
+    const Vec3 centre(0.5 - corner_local.x() + eps, 0.1, 0.5 + h - 0.001);
+    ContactManifold m;
+    const int count = fq::collide_box_box(cube(Vec3::Zero()), cube(centre, turn, h), m);
+    EXPECT_EQ(count, eps < 0 ? 4 : 5) << eps;
+    return weight_moments(m, Mat3::Identity(), Vec3(0.5, 0.1, 0.5));
+  };
+  const WeightMoments before = moments_past_the_edge(-1e-9);
+  EXPECT_NEAR(before.total, 4.0, 1e-12);
+  for (double eps : {1e-9, 1e-10}) {
+    const WeightMoments after = moments_past_the_edge(eps);
+    EXPECT_NEAR(after.total, 4.0, 1e-12) << eps;
+    EXPECT_NEAR(after.x, before.x, 1e-7) << eps;
+    EXPECT_NEAR(after.xx, before.xx, 1e-7) << eps;
+    EXPECT_NEAR(after.yy, before.yy, 1e-7) << eps;
+  }
 }
 
 }  // namespace

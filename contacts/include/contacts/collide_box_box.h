@@ -16,17 +16,20 @@
 //    exactly 4 points, never near-duplicates.
 //    Point weights (ContactPointGeometry::weight): each vertex of the clipped
 //    polygon (including vertices above the reference face, which carry no
-//    force) gets 4 w_i / P, w_i half the lengths of its two polygon edges, P
-//    the perimeter. When a vertex of the incident face crosses a side plane
-//    it splits into two coincident points whose weights add up to the old
-//    one, so the contact stiffness and its stored energy change
-//    continuously as the polygon gains or loses vertices that way (with
-//    equal point stiffnesses an octagon would be twice as stiff as a square
-//    and the energy would jump whenever a vertex crossed a side). Not when
-//    two nearly parallel edges cross mid-edge (equal faces twisted by a
-//    hair about the normal): the total stays 4 k_n but the rocking
-//    stiffness jumps (contacts/README.md, "Known limitations"). Every
-//    rectangle gets exactly 1 per corner, so a face lying on a face is 4 k_n.
+//    force) gets 4 t_i / 2 pi, t_i the polygon's turn at that vertex (its
+//    exterior angle). The turns add up to 2 pi, so the weights add up to 4
+//    and every rectangle gets exactly 1 per corner: a face lying on a face
+//    is 4 k_n. The weights are continuous in the polygon's shape, so the
+//    contact stiffness, its rocking stiffness and its stored energy change
+//    continuously however the polygon gains or loses vertices: a vertex of
+//    the incident face crossing a side plane splits into two points that
+//    share its turn, and where two nearly parallel edges cross mid-edge
+//    (equal faces twisted by a hair about the normal) the crossing turns by
+//    almost nothing and weighs almost nothing. (With equal point
+//    stiffnesses an octagon would be twice as stiff as a square; with
+//    shares of the perimeter, the weights until 2026-11-26, the hair's twist
+//    moved half the corners' weight to the crossings mid-edge and cut the
+//    rocking stiffness of a 2:1 face to 2/3.)
 // 3. Edge contact: the two supporting edges (one per box) along the axis;
 //    their closest points give one point midway.
 // Feature ids: face contacts encode (which box is the reference, reference

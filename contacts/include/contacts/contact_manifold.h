@@ -37,9 +37,9 @@ struct ContactPointGeometry {
   double depth_m = 0.0;            // overlap along the normal (m), > 0
   // Share of the contact stiffness carried by this point (-): 1 for a corner
   // against the ground and for an edge-edge point; for a clipped face
-  // polygon 4 w_i / P (w_i = half the lengths of the two polygon edges at
-  // vertex i, P = perimeter), which gives 1 at each corner of any rectangle
-  // and sums to 4 for every face contact (see collide_box_box.h).
+  // polygon 4 t_i / 2 pi (t_i = the polygon's turn, its exterior angle, at
+  // vertex i), which gives 1 at each corner of any rectangle and sums to 4
+  // for every face contact (see collide_box_box.h).
   double weight = 1.0;
   // Which features touch (corner, edge, face of each shape), encoded by the
   // routine that made the point. Stable as long as the same features touch,
