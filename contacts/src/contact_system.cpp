@@ -337,31 +337,56 @@ std::size_t ContactSystem::process_item(const BodyStore& bodies, std::size_t ite
   // every step, every shear spring restarted from the last step's
   // increment alone, and the contact's tangential stiffness at the highest
   // frequency doubled (the box on a box of ContactStableStep went unstable
-  // at 0.88 of its stable step, 2026-11-26). So such a point takes the
-  // nearest record of the pair that no point took, if it lies within a
-  // tenth of the thinnest half-size of the two bodies: a point that moved
-  // that far in one step is not the same contact. Otherwise it is new.
+  // at 0.88 of its stable step, 2026-11-26). So such a point takes a record
+  // of the pair that no point took, within a tenth of the thinnest
+  // half-size of the two bodies (a point that moved that far in one step
+  // is not the same contact); closest pairs first, so that a crossing of
+  // nearly parallel edges racing along an edge (its position moves by
+  // offset / angle) does not take the record of a renamed corner it
+  // happens to pass. The spring keeps its displacement, not its force: a
+  // record of share w_old gives a point of share w the force w / w_old
+  // times its own. A point no record is left for is new.
   if (unmatched_count > 0) {
     double thinnest_m = bodies.half_extents_m[b].minCoeff();
     if (item < n_pairs) thinnest_m = std::min(thinnest_m, bodies.half_extents_m[a].minCoeff());
     const double reach_sq = 0.01 * thinnest_m * thinnest_m;
+    struct Candidate {
+      double distance_sq;
+      int point;   // index into unmatched
+      int record;  // offset from pair_history
+    };
+    std::array<Candidate, kMaxManifoldPoints * 2 * kMaxManifoldPoints> candidates;
+    int n_candidates = 0;
+    const int n_records = int(history_end - pair_history);
     for (int u = 0; u < unmatched_count; ++u) {
-      ContactPoint& c = out[unmatched[std::size_t(u)]];
-      ContactPoint* nearest = nullptr;
-      double nearest_sq = reach_sq;
-      for (ContactPoint* h = pair_history; h != history_end; ++h) {
-        if (h->history_carried) continue;
-        const double d_sq = (h->position_m - c.position_m).squaredNorm();
-        if (d_sq <= nearest_sq) {
-          nearest_sq = d_sq;
-          nearest = h;
-        }
+      const Vec3& position = out[unmatched[std::size_t(u)]].position_m;
+      for (int r = 0; r < n_records && n_candidates < int(candidates.size()); ++r) {
+        const ContactPoint& h = pair_history[r];
+        if (h.history_carried) continue;
+        const double d_sq = (h.position_m - position).squaredNorm();
+        if (d_sq <= reach_sq) candidates[std::size_t(n_candidates++)] = {d_sq, u, r};
       }
-      if (nearest) {
-        take_history(c, *nearest);
-      } else if (soft_start_pair) {
+    }
+    std::sort(candidates.begin(), candidates.begin() + n_candidates, [](const Candidate& x, const Candidate& y) {
+      return x.distance_sq != y.distance_sq ? x.distance_sq < y.distance_sq
+                                            : (x.point != y.point ? x.point < y.point : x.record < y.record);
+    });
+    std::array<bool, kMaxManifoldPoints> took{};
+    for (int k = 0; k < n_candidates; ++k) {
+      const Candidate& cand = candidates[std::size_t(k)];
+      ContactPoint& h = pair_history[cand.record];
+      if (took[std::size_t(cand.point)] || h.history_carried) continue;
+      ContactPoint& c = out[unmatched[std::size_t(cand.point)]];
+      take_history(c, h);
+      if (h.stiffness_scale > 0.0) c.shear_spring_N *= c.stiffness_scale / h.stiffness_scale;
+      took[std::size_t(cand.point)] = true;
+    }
+    if (soft_start_pair) {
+      for (int u = 0; u < unmatched_count; ++u) {
+        if (took[std::size_t(u)]) continue;
         // First touch of a pair released from a joint or overlapping at the
         // start: the overlap it has; a later new point: within the allowance.
+        ContactPoint& c = out[unmatched[std::size_t(u)]];
         c.reference_depth_m = pair_allowance_m < 0.0 ? c.depth_m : std::min(c.depth_m, pair_allowance_m);
       }
     }

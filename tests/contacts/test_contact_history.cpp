@@ -6,6 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
+#include <vector>
+#include <cstdio>
 
 #include "scene_helpers.h"
 
@@ -105,6 +108,136 @@ TEST(ContactHistory, PointsThatAppearInAPairStartedInOverlapResistFurtherPenetra
   for (const auto& c : scene.contacts->contacts()) points += c.body_b == 1;
   EXPECT_EQ(points, 4);
   EXPECT_NEAR(f1.z(), 4.0 * kKn * e, 1e-9 * kKn * e);
+}
+
+}  // namespace
+
+namespace {
+
+TEST(ContactHistory, CornersKeepTheirShearSpringsWhileCrossingsRaceAlongTheEdges) {
+  // The upper cube is twisted by theta = 1e-8 rad about the vertical: its
+  // sides cross the lower cube's sides near their middles, at x = y / theta
+  // along an edge for a lateral offset y, so an offset of 1e-10 m moves a
+  // crossing by 10 mm. Moved back and forth in y by up to 3e-10 m, the
+  // crossings race past the corners, points appear and vanish and the
+  // corners are renamed. Every point that stands for a corner (weight near
+  // 1; a crossing's weight is about theta / (pi / 2)) has been there since
+  // first touch, so its shear spring holds k_t w times the whole offset:
+  // F_y = -k_t w y (closed form of a sticking spring under a rigid shift).
+  // (Taking records in the order of the points' features, a crossing 1 mm
+  // from a renamed corner took its record, and the corner started empty.)
+  const double d = 1e-6, theta = 1e-8;
+  fq::BodyStore store;
+  fq::test::add_box(store, Vec3::Constant(kSide), 500.0, Vec3::Zero(), fq::Quat::Identity(), true);
+  const fq::Quat twist(Eigen::AngleAxisd(theta, Vec3::UnitZ()));
+  fq::test::add_box(store, Vec3::Constant(kSide), 500.0, Vec3(0, 0, kSide + 1e-6), twist);
+  fq::SimulationSettings s;
+  s.dt_s = kDt;
+  s.duration_s = 1.0;
+  s.gravity_mps2 = Vec3::Zero();
+  auto scene = fq::test::make_scene(std::move(store), s, [](fq::ContactSystem& c) {
+    c.set_pair_params(0, 0, fq::test::params(kKn, 1.0, 10.0, kKt));
+  });
+  auto& bodies = scene.sim->bodies();
+  Vec3 at = bodies.position_m[1];
+  EXPECT_TRUE(scene.sim->step());  // apart
+  const Vec3 pressed(0, 0, kSide - d);
+  int corner_checks = 0;
+  const double offsets[] = {0.0, 1e-10, -1e-10, 2e-10, -2e-10, 3e-10, -3e-10, -2.4e-10, 3e-10, 2.4e-10, -2.6e-10, 1e-10, 0.0};
+  for (double y : offsets) {
+    const Vec3 to = pressed + Vec3(0, y, 0);
+    bodies.velocity_mps[1] = (to - at) / kDt;
+    bodies.position_m[1] = to;
+    at = to;
+    bodies.orientation[1] = twist;
+    bodies.rotation[1] = twist.toRotationMatrix();
+    bodies.angular_velocity_radps[1] = Vec3::Zero();
+    bodies.angular_momentum_Nms[1] = Vec3::Zero();
+    ASSERT_TRUE(scene.sim->step());
+    for (const auto& c : scene.contacts->contacts()) {
+      if (c.body_b != 1 || c.stiffness_scale < 0.5) continue;
+      ++corner_checks;
+      EXPECT_NEAR(c.tangential_force_N.y(), -kKt * c.stiffness_scale * y, 1e-3 * kKt * 3e-10)
+          << "offset " << y << " point at " << c.position_m.transpose() << " weight " << c.stiffness_scale;
+    }
+  }
+  EXPECT_GE(corner_checks, 4 * 13);
+}
+
+}  // namespace
+
+namespace {
+
+TEST(ContactHistory, ACornerSplitByASidePlaneHandsItsSpringOnAtTheNewShare) {
+  // A small cube (side 20 mm, turned 20 deg about the vertical) pressed on
+  // a large fixed box and pushed along +x in steps of 50 um until one of
+  // its bottom corners crosses the large box's side x = 50 mm. The corner
+  // (weight 1, a right angle) becomes two points on that side sharing its
+  // turn, 20 deg and 70 deg. The one nearer the corner's last position
+  // stands for the same patch and keeps its spring's displacement, the
+  // whole push since first touch: F_x = -k_t w (x - x_0) with its new
+  // share w (not the corner's force: that would load a spring of share w
+  // as if it had share 1). The other is new: F_x = -k_t w (x - x_prev).
+  const double d = 1e-4, half = 0.01, step = 5e-5;  // pressed in by d: friction cap 10 k_n d w, far above the springs
+  fq::BodyStore store;
+  fq::test::add_box(store, Vec3(0.1, 0.1, 0.1), 500.0, Vec3::Zero(), fq::Quat::Identity(), true);
+  const fq::Quat turn(Eigen::AngleAxisd(20.0 * std::numbers::pi / 180.0, Vec3::UnitZ()));
+  const Vec3 reach_x = turn * Vec3(half, -half, 0.0);  // the corner furthest along +x
+  // Start with that corner 0.12 mm inside the side: the split comes at the third push.
+  const Vec3 first(0.05 - reach_x.x() - 1.2e-4, 0.0, 0.05 + half + 1e-6);
+  fq::test::add_box(store, Vec3::Constant(2 * half), 500.0, first, turn);
+  fq::SimulationSettings s;
+  s.dt_s = kDt;
+  s.duration_s = 1.0;
+  s.gravity_mps2 = Vec3::Zero();
+  auto scene = fq::test::make_scene(std::move(store), s, [](fq::ContactSystem& c) {
+    c.set_pair_params(0, 0, fq::test::params(kKn, 1.0, 10.0, kKt));
+  });
+  auto& bodies = scene.sim->bodies();
+  Vec3 at = bodies.position_m[1];
+  EXPECT_TRUE(scene.sim->step());  // apart
+  const Vec3 x0 = first - Vec3(0, 0, 1e-6 + d);
+  std::vector<fq::ContactPoint> before;
+  bool split_seen = false;
+  for (int k = 0; k < 5 && !split_seen; ++k) {
+    const Vec3 to = x0 + Vec3(k * step, 0, 0);
+    bodies.velocity_mps[1] = (to - at) / kDt;
+    bodies.position_m[1] = to;
+    at = to;
+    bodies.orientation[1] = turn;
+    bodies.rotation[1] = turn.toRotationMatrix();
+    bodies.angular_velocity_radps[1] = Vec3::Zero();
+    bodies.angular_momentum_Nms[1] = Vec3::Zero();
+    ASSERT_TRUE(scene.sim->step());
+    std::vector<fq::ContactPoint> now;
+    for (const auto& c : scene.contacts->contacts())
+      if (c.body_b == 1) now.push_back(c);
+    if (now.size() == 5 && before.size() == 4) {
+      split_seen = true;
+      // The corner that split: the record of the step before at the largest x.
+      const fq::ContactPoint* corner = &before[0];
+      for (const auto& c : before)
+        if (c.position_m.x() > corner->position_m.x()) corner = &c;
+      std::vector<const fq::ContactPoint*> fresh;
+      for (const auto& c : now) {
+        bool known = false;
+        for (const auto& b : before) known = known || b.feature == c.feature;
+        if (!known) fresh.push_back(&c);
+        else EXPECT_NEAR(c.tangential_force_N.x(), -kKt * c.stiffness_scale * k * step, 1e-9 * kKt * step);
+      }
+      ASSERT_EQ(fresh.size(), 2u);
+      const double d0 = (fresh[0]->position_m - corner->position_m).norm();
+      const double d1 = (fresh[1]->position_m - corner->position_m).norm();
+      const fq::ContactPoint& near = d0 <= d1 ? *fresh[0] : *fresh[1];
+      const fq::ContactPoint& far = d0 <= d1 ? *fresh[1] : *fresh[0];
+      EXPECT_NEAR(near.stiffness_scale + far.stiffness_scale, 1.0, 1e-9);
+      EXPECT_LT(near.stiffness_scale, 0.9);  // a real split: the share changed
+      EXPECT_NEAR(near.tangential_force_N.x(), -kKt * near.stiffness_scale * k * step, 1e-9 * kKt * step);
+      EXPECT_NEAR(far.tangential_force_N.x(), -kKt * far.stiffness_scale * step, 1e-9 * kKt * step);
+    }
+    before = std::move(now);
+  }
+  EXPECT_TRUE(split_seen);
 }
 
 }  // namespace
