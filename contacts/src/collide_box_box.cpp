@@ -10,6 +10,11 @@ namespace {
 
 // Relative preference of face axes over edge axes and of box a over box b.
 constexpr double kRelativeTolerance = 0.95;
+// ... and an edge axis must overlap less than the best face axis by this
+// fraction of the thinner box's smallest dimension (see collide_box_box_):
+// 1 % is 0.1 mm for the frames' 10 mm members, a hundred times their
+// contacts' overlaps, and far below the overlaps of edges that cross.
+constexpr double kEdgeMarginFraction = 0.01;
 // Cross products of edges closer to parallel than this (|sin| of the angle)
 // are skipped: the face axes decide those configurations.
 constexpr double kParallelSine = 1e-6;
@@ -451,11 +456,22 @@ int collide_box_box_(const OrientedBoxRef& a, const OrientedBoxRef& b, ContactMa
       axis_b = j;
     }
   }
-  // An edge axis wins only by overlapping less than this.
+  // An edge axis wins only by overlapping less than this: less than 0.95
+  // of the best face axis, and by kEdgeMarginFraction of the thinner box's
+  // smallest size. A face axis's overlap counts the boxes' whole extents,
+  // also where they lie outside each other's faces (a slab's edge running
+  // on past a box lying across it), so a face tilted by a small angle
+  // overlaps by up to that angle times the boxes' size more than the
+  // contact is deep, and an edge axis through the deepest point won
+  // against a box lying nearly flat across an edge (one point carrying the
+  // load, alternating with the face's points as the box rocked; a probe,
+  // 2026-11-26). Edges that really cross overlap the face axes by a good
+  // part of the boxes' size.
   const bool use_b_face = best_b < kRelativeTolerance * best_a;
   const double best_face = use_b_face ? best_b : best_a;
   const double scale = ha.maxCoeff() + hb.maxCoeff();
-  const double edge_threshold = kRelativeTolerance * best_face - 1e-9 * scale;
+  const double margin = kEdgeMarginFraction * 2.0 * std::min(ha.minCoeff(), hb.minCoeff());
+  const double edge_threshold = std::min(kRelativeTolerance * best_face, best_face - margin) - 1e-9 * scale;
   const int edges = shortcuts ? edge_axes_without_roots(f, edge_threshold) : -2;
   if (edges >= 0) return separated_by(edges);
   for (int i = 0; i < 3 && edges == -2; ++i) {
