@@ -6,6 +6,8 @@
 #include <optional>
 #include <iomanip>
 #include <sstream>
+#include <unordered_map>
+#include <unordered_set>
 
 #include "dem_core/state_io.h"
 #include "io/checkpoint.h"
@@ -205,6 +207,7 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
                                                  : "check its results with another integrator");
     warn(w.str());
   }
+  if (const std::string w = nodes_inside_members_warning(def); !w.empty()) warn(w);
   // Step 0's forces (run() would do it first): the contacts then know which
   // pairs overlap at the start.
   sim.initialize();
@@ -270,6 +273,55 @@ std::string initial_overlap_warning(const std::vector<InitialOverlap>& overlaps,
   w << "): their contacts take the overlap as their rest state, as for members a broken joint releases, and "
        "resist only further penetration; if the boxes should not overlap, trim the members (trim_m), turn "
        "their sections (roll_deg) or move the blocks";
+  return w.str();
+}
+
+std::string nodes_inside_members_warning(const CaseDef& def) {
+  std::unordered_map<std::string, const NodeDef*> nodes;
+  for (const NodeDef& n : def.nodes) nodes.emplace(n.id, &n);
+  std::unordered_map<std::string, const SectionDef*> sections;
+  for (const SectionDef& s : def.sections) sections.emplace(s.name, &s);
+  // Nodes where some member ends: only there do members meet at a joint.
+  std::vector<const NodeDef*> ends;
+  {
+    std::unordered_set<std::string> seen;
+    for (const MemberDef& m : def.members)
+      for (const std::string* id : {&m.node_a, &m.node_b})
+        if (nodes.count(*id) && seen.insert(*id).second) ends.push_back(nodes.at(*id));
+  }
+  constexpr double kEndClearance_m = 1e-3;
+  std::vector<std::string> found;
+  std::size_t count = 0;
+  for (const MemberDef& m : def.members) {
+    const auto a = nodes.find(m.node_a), b = nodes.find(m.node_b);
+    const auto sec = sections.find(m.section);
+    if (a == nodes.end() || b == nodes.end() || sec == sections.end()) continue;  // build_model refuses these
+    const Vec3 pa = a->second->xyz_m, axis = b->second->xyz_m - pa;
+    const double length = axis.norm();
+    if (!(length > 2.0 * kEndClearance_m)) continue;
+    const Vec3 dir = axis / length;
+    const double reach = 0.5 * std::min(sec->second->width_m, sec->second->depth_m);
+    for (const NodeDef* n : ends) {
+      if (n->id == m.node_a || n->id == m.node_b) continue;
+      const double along = (n->xyz_m - pa).dot(dir);
+      if (along <= kEndClearance_m || along >= length - kEndClearance_m) continue;
+      if ((n->xyz_m - pa - along * dir).norm() > reach) continue;
+      ++count;
+      if (found.size() < 3) {
+        std::ostringstream f;
+        f << "node '" << n->id << "' (line " << n->line << ") inside member '" << m.id << "' (line " << m.line << ")";
+        found.push_back(f.str());
+      }
+    }
+  }
+  if (count == 0) return {};
+  std::ostringstream w;
+  w << def.source_file.string() << ": " << count << (count == 1 ? " node lies" : " nodes lie")
+    << " inside a member without being one of its ends (";
+  for (std::size_t k = 0; k < found.size(); ++k) w << (k ? "; " : "") << found[k];
+  if (count > found.size()) w << "; ...";
+  w << "): joints join members only where they end, so the members ending at such a node are not held to the "
+       "member it lies in; split that member at the node if they should be joined";
   return w.str();
 }
 

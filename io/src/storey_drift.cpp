@@ -90,7 +90,8 @@ StoreyDriftMonitor::StoreyDriftMonitor(std::vector<Storey> storeys, AssessmentDe
     : storeys_(std::move(storeys)),
       limits_(limits),
       records_(storeys_.size()),
-      drift_m_(storeys_.size(), Eigen::Vector2d::Zero()) {}
+      drift_m_(storeys_.size(), Eigen::Vector2d::Zero()),
+      window_(storeys_.size()) {}
 
 void StoreyDriftMonitor::sample(const BodyStore& bodies, std::int64_t step, double time_s) {
   if (step == last_step_) return;
@@ -153,6 +154,17 @@ void StoreyDriftMonitor::record(std::size_t i, const Eigen::Vector2d& drift_m, d
   if (r.collapse_time_s < 0.0 && magnitude >= limits_.collapse_drift_ratio_rad) r.collapse_time_s = time_s;
   r.final_ratio_x_rad = ratio.x();
   r.final_ratio_y_rad = ratio.y();
+  // Residual: the mean of the samples within the trailing window, summed
+  // afresh each time (a running sum would carry the round-off of every
+  // sample that left the window).
+  std::deque<TimedRatio>& w = window_[i];
+  w.push_back({time_s, ratio});
+  while (!w.empty() && w.front().time_s < time_s - kResidualDriftWindow_s * (1.0 - 1e-9)) w.pop_front();
+  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+  for (const TimedRatio& s : w) sum += s.ratio;
+  r.residual_ratio_x_rad = sum.x() / double(w.size());
+  r.residual_ratio_y_rad = sum.y() / double(w.size());
+  r.residual_window_s = time_s - w.front().time_s;
 }
 
 StoreyVerdict StoreyDriftMonitor::verdict(std::size_t i) const {

@@ -20,6 +20,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <optional>
 #include <sstream>
@@ -244,6 +245,46 @@ TEST(RunWarnings, BodiesOverlappingAtTheStartAreNamedWithTheirDepth) {
             std::string::npos)
       << w;
   EXPECT_EQ(w.find("'right'"), std::string::npos) << "touching is not overlapping: " << w;
+}
+
+TEST(RunWarnings, ANodeInsideAMemberIsNamedAndTheShippedFramesHaveNone) {
+  // A column drawn through the floor node m1 (from m0 to m2) and a beam
+  // ending at m1: no joint holds the beam to the column there. A second
+  // beam ends 0.5 mm from the column's axis at mid-height of its other
+  // column (inside it), a third node lies beside a column, 20 mm off its
+  // axis (outside its 10 mm section): only the first two are inside.
+  test::TempDir dir;
+  const std::string text =
+      "framequake_case: 1\n"
+      "time: {dt_s: 1.0e-5, duration_s: 0.001}\n"
+      "materials: [{name: wood, density_kg_per_m3: 450}]\n"
+      "sections: [{name: s, width_m: 0.010, depth_m: 0.010}]\n"
+      "nodes:\n"
+      "  - {id: m0, xyz_m: [0, 0, 0]}\n"
+      "  - {id: m1, xyz_m: [0, 0, 0.3]}\n"
+      "  - {id: m2, xyz_m: [0, 0, 0.6]}\n"
+      "  - {id: n0, xyz_m: [0.5, 0, 0]}\n"
+      "  - {id: n1, xyz_m: [0.5005, 0, 0.3]}\n"
+      "  - {id: n2, xyz_m: [0.5, 0, 0.6]}\n"
+      "  - {id: beside, xyz_m: [0.52, 0, 0.3]}\n"
+      "  - {id: far, xyz_m: [1.0, 0, 0.3]}\n"
+      "members:\n"
+      "  - {id: col_m, kind: column, nodes: [m0, m2], section: s, material: wood}\n"
+      "  - {id: col_n, kind: column, nodes: [n0, n2], section: s, material: wood}\n"
+      "  - {id: beam_1, kind: beam, nodes: [m1, n1], section: s, material: wood}\n"
+      "  - {id: beam_2, kind: beam, nodes: [beside, far], section: s, material: wood}\n";
+  const CaseDef def = load_case_file(dir.write("through.yaml", text));
+  const std::string w = nodes_inside_members_warning(def);
+  EXPECT_NE(w.find("2 nodes lie inside a member"), std::string::npos) << w;
+  EXPECT_NE(w.find("node 'm1' (line 7) inside member 'col_m' (line 15)"), std::string::npos) << w;
+  EXPECT_NE(w.find("node 'n1' (line 10) inside member 'col_n' (line 16)"), std::string::npos) << w;
+  EXPECT_EQ(w.find("'beside'"), std::string::npos) << w;
+  EXPECT_NE(w.find("through.yaml"), std::string::npos) << w;
+  // The shipped frames join every member at its ends.
+  for (const char* name : {"frame_A.yaml", "frame_B.yaml", "frame_C.yaml"}) {
+    const CaseDef shipped = load_case_file(std::filesystem::path(FQ_SOURCE_DIR) / "cases" / name);
+    EXPECT_EQ(nodes_inside_members_warning(shipped), "") << name;
+  }
 }
 
 }  // namespace

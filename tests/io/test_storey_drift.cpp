@@ -241,3 +241,42 @@ TEST(StoreyDrift, RunWritesDriftColumnsAndVerdicts) {
 
 }  // namespace
 }  // namespace fq
+
+namespace fq {
+namespace {
+
+TEST(StoreyDrift, ResidualIsTheMeanOfTheLastSecondNotTheLastSample) {
+  // Storey 1 leans by theta(t) = theta0 + a sin(2 pi t / T), sampled every
+  // 1 ms for 3 s, T = 0.25 s: a sway about a permanent lean. The trailing
+  // second holds 1000 samples over exactly 4 periods, whose discrete means
+  // are mean(sin) = 0 and mean(sin^2) = 1/2, so the mean drift ratio
+  // sin(theta) is sin(theta0) (1 - a^2 / 4) up to O(a^4) (here 1e-13 of
+  // it). The run ends at a crest, where the last sample is sin(theta0 + a).
+  const double theta0 = 0.01, a = 1e-3, period = 0.25;
+  Model model = frame_model();
+  const Model fresh = frame_model();
+  StoreyDriftMonitor monitor(find_storeys(model), AssessmentDef{});
+  const BodyId cols[] = {model.member_body[0], model.member_body[2], model.member_body[4]};
+  const double pivots_x[] = {0.0, 0.5, 1.0};
+  const int samples = 3000;
+  const double t_end = 3.0 + period / 4.0;  // sin(2 pi t_end / T) = 1
+  for (int k = 0; k <= samples; ++k) {
+    const double t = t_end - 1e-3 * double(samples - k);
+    const double theta = theta0 + a * std::sin(2.0 * M_PI * t / period);
+    for (int c = 0; c < 3; ++c) {
+      model.bodies.position_m[cols[c]] = fresh.bodies.position_m[cols[c]];
+      model.bodies.orientation[cols[c]] = fresh.bodies.orientation[cols[c]];
+    }
+    model.bodies.update_rotations();
+    for (int c = 0; c < 3; ++c) turn_about_y(model.bodies, cols[c], Vec3(pivots_x[c], 0, 0), theta);
+    monitor.sample(model.bodies, k, t);
+  }
+  const StoreyDriftRecord& r = monitor.records()[0];
+  EXPECT_NEAR(r.final_ratio_x_rad, std::sin(theta0 + a), 1e-12);
+  EXPECT_NEAR(r.residual_ratio_x_rad, std::sin(theta0) * (1.0 - a * a / 4.0), 1e-12);
+  EXPECT_NEAR(r.residual_ratio_y_rad, 0.0, 1e-15);
+  EXPECT_NEAR(r.residual_window_s, 0.999, 1e-9);
+}
+
+}  // namespace
+}  // namespace fq

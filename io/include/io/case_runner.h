@@ -98,6 +98,8 @@ struct CaseRunReport {
 
 // Thresholds of the run's warnings (summary.json "warnings"):
 //  - the time step exceeds the stable estimate (a run forced with --force);
+//  - a node lies inside a member without being one of its ends
+//    (nodes_inside_members_warning);
 //  - bodies not held by a joint overlap at the start by more than
 //    kInitialOverlapTolerance_m (contacts/contact_system.h), which their
 //    contacts then take as their rest state (initial_overlap_warning);
@@ -144,6 +146,15 @@ bool case_has_dashpots(const CaseDef& def);
 // which the contacts then take as their rest state): the count and the
 // three deepest pairs by name. Empty when there are none.
 std::string initial_overlap_warning(const std::vector<InitialOverlap>& overlaps, const BodyStore& bodies);
+
+// The warning for nodes that lie inside a member without being one of its
+// ends (a column drawn through a floor node, a brace ending on a column's
+// side): joints join members only at the nodes where they end, so nothing
+// holds the members that end there to that member. Inside means strictly
+// between the member's end nodes (more than 1 mm from both) and within half
+// its thinner section size of its axis. Names the first three, with their
+// lines; empty when there are none.
+std::string nodes_inside_members_warning(const CaseDef& def);
 
 // The checks run_case makes before it writes anything (the scene builds;
 // the integrator can serve its force providers; dt is within the stable
