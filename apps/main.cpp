@@ -59,7 +59,7 @@ const char* kMainHelp =
     "Usage:\n"
     "  framequake run CASE [options]   run a case file, write VTK frames, history and summary\n"
     "  framequake resume DIR           continue a run from DIR/checkpoint.bin (run --checkpoint-every)\n"
-    "  framequake info CASE            describe a case: bodies, total mass, time step, output plan\n"
+    "  framequake info CASE            describe a case: bodies, mass, joints, storeys, time step, output plan\n"
     "  framequake compare CASE...      run cases side by side; table of storey drifts and verdicts, figure\n"
     "  framequake sweep CASE...        run cases over amplitude scales (and records); collapse scales, figure\n"
     "  framequake render OUT_DIR       animate a finished run (GIF/MP4, PNG frames); --compare for several\n"
@@ -117,7 +117,9 @@ const char* kInfoHelp =
     "Usage: framequake info CASE\n"
     "\n"
     "Loads and checks the case without running it, and prints the bodies, total\n"
-    "mass, time step and its stable limit, duration, ground motion and output plan.\n";
+    "mass, joints, storeys (over which drifts and verdicts are taken), time step\n"
+    "and its stable limit, duration, ground motion and output plan, and warns of a\n"
+    "node lying inside a member without being one of its ends.\n";
 
 struct RunArgs {
   std::string case_file;

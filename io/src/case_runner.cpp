@@ -599,6 +599,19 @@ void describe_case(const CaseDef& def, std::ostream& out) {
   out << "bodies      " << bodies.size() << " (" << free_bodies << " free, " << bodies.size() - free_bodies
       << " fixed)\n";
   out << "total mass  " << total_mass << " kg (free bodies)\n";
+  if (scene.joints)
+    out << "joints      " << scene.joints->joint_count() << " (" << scene.joints->spring_count() << " springs)\n";
+  if (!scene.storeys.empty()) {
+    // What the run's drifts and verdicts will be taken over (io/storey_drift.h).
+    out << "storeys     " << scene.storeys.size() << ":";
+    for (std::size_t i = 0; i < scene.storeys.size(); ++i) {
+      const Storey& st = scene.storeys[i];
+      out << (i ? ";" : "") << " " << i + 1 << " from z = " << st.bottom_z_m << " to " << st.top_z_m << " m ("
+          << st.columns.size() << " column" << (st.columns.size() == 1 ? "" : "s") << ")";
+    }
+    out << "\n";
+  }
+  if (const std::string w = nodes_inside_members_warning(def); !w.empty()) out << "warning     " << w << "\n";
   out << "time step   " << s.dt_s << " s (" << integrator_name(s.integrator) << ")";
   if (scene.stable_time_step.dt_crit_s == 0.0)  // forward Euler on an undamped mode
     out << "  (no stable time step with " << integrator_name(s.integrator) << ": the stiffest mode, "

@@ -439,3 +439,40 @@ TEST(CliUsage, UsageErrorsExitTwoWithUsageOnStderr) {
 }
 
 }  // namespace
+
+namespace {
+
+// info lists what a run's verdicts rest on: the joints and the storeys
+// (frame B: 24 four-corner joints of 12 springs, two storeys of 0.29 m on
+// four columns each, cases/frame_B.yaml), and warns of a node inside a
+// member, as run does (io/case_runner.h, nodes_inside_members_warning).
+TEST(CliErrors, InfoListsJointsAndStoreysAndWarnsOfANodeInsideAMember) {
+  TempDir dir;
+  const fs::path frame_b = fs::path(FQ_SOURCE_DIR) / "cases" / "frame_B.yaml";
+  const auto info = run_app({"info", frame_b.string()}, dir.path());
+  EXPECT_EQ(info.code, 0) << info.err;
+  EXPECT_NE(info.out.find("joints      24 (288 springs)"), std::string::npos) << info.out;
+  EXPECT_NE(info.out.find("storeys     2: 1 from z = 0 to 0.29 m (4 columns); 2 from z = 0.29 to 0.58 m (4 columns)"),
+            std::string::npos)
+      << info.out;
+  EXPECT_EQ(info.out.find("warning"), std::string::npos) << info.out;
+  std::ofstream(dir.path() / "through.yaml", std::ios::binary)
+      << "framequake_case: 1\n"
+         "time: {dt_s: 1.0e-5, duration_s: 0.001}\n"
+         "materials: [{name: wood, density_kg_per_m3: 450}]\n"
+         "sections: [{name: s, width_m: 0.010, depth_m: 0.010}]\n"
+         "nodes:\n"
+         "  - {id: m0, xyz_m: [0, 0, 0]}\n"
+         "  - {id: m1, xyz_m: [0, 0, 0.3]}\n"
+         "  - {id: m2, xyz_m: [0, 0, 0.6]}\n"
+         "  - {id: far, xyz_m: [0.5, 0, 0.3]}\n"
+         "members:\n"
+         "  - {id: col, kind: column, nodes: [m0, m2], section: s, material: wood}\n"
+         "  - {id: beam, kind: beam, nodes: [m1, far], section: s, material: wood}\n";
+  const auto through = run_app({"info", (dir.path() / "through.yaml").string()}, dir.path());
+  EXPECT_EQ(through.code, 0) << through.err;
+  EXPECT_NE(through.out.find("warning     "), std::string::npos) << through.out;
+  EXPECT_NE(through.out.find("node 'm1' (line 7) inside member 'col' (line 11)"), std::string::npos) << through.out;
+}
+
+}  // namespace
