@@ -1019,6 +1019,52 @@ CaseDef parse_root(const Reader& r, const YAML::Node& root, const std::filesyste
   return def;
 }
 
+namespace {
+
+// The innermost '{' or '[' still open at byte `until` of a YAML text, with
+// its line and column (1-based), skipping quoted strings and comments; none
+// when every bracket before `until` is closed.
+struct OpenBracket {
+  char bracket;
+  int line;
+  int column;
+};
+std::optional<OpenBracket> unclosed_flow_bracket(const std::string& text, int until) {
+  std::vector<OpenBracket> open;
+  int line = 1, column = 0;
+  char quote = 0;
+  bool comment = false;
+  const std::size_t end = until >= 0 ? std::min(text.size(), std::size_t(until)) : text.size();
+  for (std::size_t i = 0; i < end; ++i) {
+    const char ch = text[i];
+    ++column;
+    if (ch == '\n') {
+      ++line;
+      column = 0;
+      comment = false;
+      continue;
+    }
+    if (comment) continue;
+    if (quote) {
+      if (ch == quote) quote = 0;
+      continue;
+    }
+    if (ch == '\'' || ch == '"') {
+      quote = ch;
+    } else if (ch == '#' && (i == 0 || text[i - 1] == ' ' || text[i - 1] == '\t')) {
+      comment = true;
+    } else if (ch == '{' || ch == '[') {
+      open.push_back({ch, line, column});
+    } else if ((ch == '}' || ch == ']') && !open.empty()) {
+      open.pop_back();
+    }
+  }
+  if (open.empty()) return std::nullopt;
+  return open.back();
+}
+
+}  // namespace
+
 }  // namespace
 
 namespace {
@@ -1111,6 +1157,18 @@ CaseDef load_case_file(const std::filesystem::path& file) {
     }
     if (!scan.docs.empty()) root = YAML::Load(text);
   } catch (const YAML::Exception& e) {
+    // yaml-cpp reports an unclosed '{' or '[' where it gave up, often a line
+    // or more after the bracket: name the bracket's own line.
+    if (e.msg.find("end of map flow not found") != std::string::npos ||
+        e.msg.find("end of sequence flow not found") != std::string::npos) {
+      if (const auto open = unclosed_flow_bracket(text, e.mark.pos)) {
+        throw InputError(name, open->line, "",
+                         std::string("YAML syntax error: the '") + open->bracket + "' at column " +
+                             std::to_string(open->column) + " is not closed (expected '" +
+                             (open->bracket == '{' ? '}' : ']') + "' before line " + std::to_string(e.mark.line + 1) +
+                             ")");
+      }
+    }
     throw InputError(name, e.mark.line >= 0 ? e.mark.line + 1 : 0, "", "YAML syntax error: " + e.msg);
   }
   if (!root.IsDefined() || root.IsNull())

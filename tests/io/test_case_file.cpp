@@ -320,6 +320,14 @@ std::vector<BadCase> bad_cases() {
   const std::string gm_head = "ground_motion:\n";
   return {
       {"YamlSyntax", kHead + kBlock + "ground: level_m: 0\n", 5, "", {"YAML syntax error"}},
+      // An unclosed '{' or '[' is named on its own line (yaml-cpp gives up a
+      // line or more later), skipping brackets inside quotes and comments.
+      {"UnclosedMap", "framequake_case: 1\ntime: {dt_s: 1.0e-5, duration_s: 1.0\n" + kBlock, 2, "",
+       {"YAML syntax error", "the '{' at column 7 is not closed", "expected '}' before line 3"}},
+      {"UnclosedSequence",
+       "framequake_case: 1\n# a '[' in a comment\ndescription: 'a [ in quotes'\ntime: {dt_s: 1.0e-5, duration_s: 1.0}\n"
+       "materials: [{name: spruce, density_kg_per_m3: 450}\n" + kBlock,
+       5, "", {"the '[' at column 12 is not closed", "expected ']'"}},
       {"UnknownKeyWithHint",
        "framequake_case: 1\ntime:\n  dt_s: 1.0e-5\n  duration_s: 1.0\n  dt: 3\n"
        "materials: [{name: spruce, density_kg_per_m3: 450}]\n" +
