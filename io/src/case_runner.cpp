@@ -1,6 +1,7 @@
 #include "io/case_runner.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <optional>
@@ -208,6 +209,7 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
     warn(w.str());
   }
   if (const std::string w = nodes_inside_members_warning(def); !w.empty()) warn(w);
+  for (const std::string& w : ground_motion_direction_warnings(sim.ground_motion())) warn(w);
   // Step 0's forces (run() would do it first): the contacts then know which
   // pairs overlap at the start.
   sim.initialize();
@@ -323,6 +325,41 @@ std::string nodes_inside_members_warning(const CaseDef& def) {
   w << "): joints join members only where they end, so the members ending at such a node are not held to the "
        "member it lies in; split that member at the node if they should be joined";
   return w.str();
+}
+
+std::vector<std::string> ground_motion_direction_warnings(const GroundMotion& motion) {
+  std::vector<std::string> warnings;
+  for (const GroundMotionComponent& c : motion.components()) {
+    // The component: the last comma-separated field of the header line.
+    const std::string& d = c.record.description;
+    const std::size_t comma = d.rfind(',');
+    if (comma == std::string::npos) continue;
+    std::string field;
+    for (char ch : d.substr(comma + 1))
+      if (ch != ' ' && ch != '\t') field += char(std::toupper(static_cast<unsigned char>(ch)));
+    if (field.empty()) continue;
+    const bool vertical_name = field == "UP" || field == "DWN" || field == "DOWN" || field == "UD" || field == "V" ||
+                               field == "VER" || field == "VERT" || field == "Z";
+    bool azimuth = field.size() <= 3 && std::all_of(field.begin(), field.end(), [](char ch) { return ch >= '0' && ch <= '9'; });
+    // Station-prefixed azimuths ("I-ELC180"): trailing three digits.
+    if (!azimuth && field.size() > 3) {
+      const std::string tail = field.substr(field.size() - 3);
+      azimuth = std::all_of(tail.begin(), tail.end(), [](char ch) { return ch >= '0' && ch <= '9'; });
+    }
+    const bool horizontal_name = azimuth || field == "EW" || field == "NS" || field == "E" || field == "N";
+    const bool applied_vertically = std::abs(c.direction.z()) >= 0.5;
+    std::ostringstream w;
+    if (vertical_name && !applied_vertically)
+      w << c.record.source << " is a vertical component ('" << field << "' in its header: " << d
+        << ") applied along the mostly horizontal direction (" << (c.direction.array() + 0.0).transpose()
+        << "); give a horizontal record, or this one along z";
+    else if (horizontal_name && applied_vertically && !vertical_name)
+      w << c.record.source << " is a horizontal component ('" << field << "' in its header: " << d
+        << ") applied along the mostly vertical direction (" << (c.direction.array() + 0.0).transpose()
+        << "); give the record's vertical component, or this one along x or y";
+    if (!w.str().empty()) warnings.push_back(w.str());
+  }
+  return warnings;
 }
 
 bool case_has_dashpots(const CaseDef& def) {
@@ -612,6 +649,8 @@ void describe_case(const CaseDef& def, std::ostream& out) {
     out << "\n";
   }
   if (const std::string w = nodes_inside_members_warning(def); !w.empty()) out << "warning     " << w << "\n";
+  for (const std::string& w : ground_motion_direction_warnings(sim.ground_motion()))
+    out << "warning     " << w << "\n";
   out << "time step   " << s.dt_s << " s (" << integrator_name(s.integrator) << ")";
   if (scene.stable_time_step.dt_crit_s == 0.0)  // forward Euler on an undamped mode
     out << "  (no stable time step with " << integrator_name(s.integrator) << ": the stiffest mode, "

@@ -287,5 +287,43 @@ TEST(RunWarnings, ANodeInsideAMemberIsNamedAndTheShippedFramesHaveNone) {
   }
 }
 
+TEST(RunWarnings, AVerticalRecordAppliedHorizontallyAndTheReverseAreNamed) {
+  // Two PEER records whose headers name their components, "UP" and "090",
+  // applied along x and along z: the vertical one along x and the
+  // horizontal one along z are warned about, the other two pairings are
+  // not; the shipped frames (JMA Kobe NS, "0" in its header, along x)
+  // have none.
+  test::TempDir dir;
+  const std::string samples = "NPTS=    5, DT= .0100 SEC\n 0.0 0.001 0.002 0.001 0.0\n";
+  std::ofstream(dir.path() / "up.at2") << "PEER NGA STRONG MOTION DATABASE RECORD\nSome quake, 1/1/2000, Station, UP\n"
+                                          "ACCELERATION TIME SERIES IN UNITS OF G\n" << samples;
+  std::ofstream(dir.path() / "h090.at2") << "PEER NGA STRONG MOTION DATABASE RECORD\nSome quake, 1/1/2000, Station, 090\n"
+                                            "ACCELERATION TIME SERIES IN UNITS OF G\n" << samples;
+  auto warnings_for = [&](const std::string& file, const std::string& axis) {
+    const std::string text =
+        "framequake_case: 1\n"
+        "time: {dt_s: 1.0e-4, duration_s: 0.01}\n"
+        "materials: [{name: spruce, density_kg_per_m3: 450}]\n"
+        "blocks: [{id: b, size_m: [0.1, 0.1, 0.1], center_m: [0, 0, 1], material: spruce}]\n"
+        "ground_motion: {components: [{file: " + file + ", format: peer_at2, axis: " + axis + "}]}\n";
+    const CaseDef def = load_case_file(dir.write("gm.yaml", text));
+    return ground_motion_direction_warnings(build_scene(def).simulation->ground_motion());
+  };
+  const auto up_x = warnings_for("up.at2", "x");
+  ASSERT_EQ(up_x.size(), 1u);
+  EXPECT_NE(up_x[0].find("is a vertical component ('UP' in its header"), std::string::npos) << up_x[0];
+  EXPECT_NE(up_x[0].find("up.at2"), std::string::npos) << up_x[0];
+  EXPECT_TRUE(warnings_for("up.at2", "z").empty());
+  EXPECT_TRUE(warnings_for("up.at2", "[0.2, 0, -1]").empty());
+  const auto h_z = warnings_for("h090.at2", "-z");
+  ASSERT_EQ(h_z.size(), 1u);
+  EXPECT_NE(h_z[0].find("is a horizontal component ('090'"), std::string::npos) << h_z[0];
+  EXPECT_TRUE(warnings_for("h090.at2", "y").empty());
+  for (const char* name : {"frame_A.yaml", "frame_B.yaml", "frame_C.yaml"}) {
+    const CaseDef shipped = load_case_file(std::filesystem::path(FQ_SOURCE_DIR) / "cases" / name);
+    EXPECT_TRUE(ground_motion_direction_warnings(build_scene(shipped).simulation->ground_motion()).empty()) << name;
+  }
+}
+
 }  // namespace
 }  // namespace fq

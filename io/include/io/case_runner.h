@@ -100,6 +100,9 @@ struct CaseRunReport {
 //  - the time step exceeds the stable estimate (a run forced with --force);
 //  - a node lies inside a member without being one of its ends
 //    (nodes_inside_members_warning);
+//  - a record whose header names a vertical component is applied along a
+//    horizontal direction, or a horizontal one vertically
+//    (ground_motion_direction_warnings);
 //  - bodies not held by a joint overlap at the start by more than
 //    kInitialOverlapTolerance_m (contacts/contact_system.h), which their
 //    contacts then take as their rest state (initial_overlap_warning);
@@ -155,6 +158,15 @@ std::string initial_overlap_warning(const std::vector<InitialOverlap>& overlaps,
 // its thinner section size of its axis. Names the first three, with their
 // lines; empty when there are none.
 std::string nodes_inside_members_warning(const CaseDef& def);
+
+// Warnings for ground-motion components whose record's header names a
+// component at odds with the direction it is applied in: a vertical one
+// ("UP", "DWN", "UD", "V", "VER", "VERT" as the last field of a PEER
+// header's line 2) along a mostly horizontal direction (|d_z| < 0.5), or a
+// horizontal one (an azimuth such as "000", "090", "360", or "EW", "NS")
+// along a mostly vertical direction. One message per such component; none
+// when the header names no component (two-column records).
+std::vector<std::string> ground_motion_direction_warnings(const GroundMotion& motion);
 
 // The checks run_case makes before it writes anything (the scene builds;
 // the integrator can serve its force providers; dt is within the stable
