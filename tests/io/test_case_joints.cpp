@@ -129,7 +129,8 @@ TEST(CaseJoints, UserErrorsNameFileLineAndField) {
                "yield_force_tension_N: 1, ultimate_strain_tension: 0.02, ultimate_force_tension_N: 1.5, "
                "yield_strain_compression: 0.01, yield_force_compression_N: 1, ultimate_strain_compression: 0.02, "
                "ultimate_force_compression_N: 1.5}"),
-       20, "joint_types[0].normal", "invalid trilinear law parameters"},
+       20, "joint_types[0].normal.ultimate_strain_tension",
+       "invalid trilinear law parameters: ultimate_strain_tension must be > yield_strain_tension"},
       {"strain limit without its criterion", replace("    shear:", "    fracture: {criterion: never, strain_limit: 0.1}\n    shear:"),
        21, "joint_types[0].fracture.strain_limit", "applies only"},
       {"link keys on a point layout", replace("    shear:", "    gap_m: 0.01\n    shear:"), 21,
