@@ -578,21 +578,21 @@ SpringDef parse_spring(const Reader& r, const Field& f, const std::string& what)
     // The law names the parameter it refuses first ("trilinear spring:
     // ultimate_strain_tension must be > ..."): point at that key's line and
     // say the law's name once.
-    std::string what = e.what();
-    if (const std::size_t colon = what.find(": "); colon != std::string::npos && what.compare(0, law.size(), law) == 0)
-      what = what.substr(colon + 2);
+    std::string reason = e.what();
+    if (const std::size_t colon = reason.find(": "); colon != std::string::npos && reason.compare(0, law.size(), law) == 0)
+      reason = reason.substr(colon + 2);
     std::optional<Field> at;
     std::size_t first = std::string::npos;
     for (const Keys* keys : {static_cast<const Keys*>(&params), &common})
       for (const auto& key : *keys) {
-        const std::size_t pos = what.find(std::string(key));
+        const std::size_t pos = reason.find(std::string(key));
         if (pos == std::string::npos || pos >= first) continue;
         if (const auto field = r.get(f.value, key, f.path)) {
           first = pos;
           at = *field;
         }
       }
-    r.fail(at ? *at : f, std::string("invalid ") + law + " law parameters: " + what);
+    r.fail(at ? *at : f, std::string("invalid ") + law + " law parameters: " + reason);
   }
   return def;
 }
