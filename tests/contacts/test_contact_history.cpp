@@ -8,7 +8,6 @@
 #include <cmath>
 #include <numbers>
 #include <vector>
-#include <cstdio>
 
 #include "scene_helpers.h"
 
@@ -21,12 +20,9 @@ constexpr double kKn = 1e5;      // normal stiffness per point (N/m)
 constexpr double kKt = 8e4;      // tangential stiffness per point (N/m)
 constexpr double kDt = 1e-5;     // (s)
 
-// A fixed cube at the origin and a free cube of the same size above it at
-// `lift` (m) from touching. No gravity, no dashpots (restitution 1).
-fq::test::ContactScene stacked_cubes(double lift_m, double mu) {
-  fq::BodyStore store;
-  fq::test::add_box(store, Vec3::Constant(kSide), 500.0, Vec3::Zero(), fq::Quat::Identity(), true);
-  fq::test::add_box(store, Vec3::Constant(kSide), 500.0, Vec3(0, 0, kSide + lift_m));
+// A fixed box and a free box (store bodies 0 and 1) pressed together by
+// hand. No gravity, no dashpots (restitution 1), friction mu.
+fq::test::ContactScene pressed_pair(fq::BodyStore store, double mu) {
   fq::SimulationSettings s;
   s.dt_s = kDt;
   s.duration_s = 1.0;
@@ -36,18 +32,28 @@ fq::test::ContactScene stacked_cubes(double lift_m, double mu) {
   });
 }
 
-// Moves the upper cube, unturned, from `from` (where the last step
-// evaluated it) to `to` before the next step, with the velocity (to - from) / dt that the
-// step's increments read, runs the step and sets `from` to `to`. Returns
-// the total force on the upper cube from the pair's points.
-Vec3 step_to(fq::test::ContactScene& scene, Vec3& from, const Vec3& to) {
+// A fixed cube at the origin and a free cube of the same size above it at
+// `lift` (m) from touching, turned by `turn` about its centre.
+fq::test::ContactScene stacked_cubes(double lift_m, double mu, const fq::Quat& turn = fq::Quat::Identity()) {
+  fq::BodyStore store;
+  fq::test::add_box(store, Vec3::Constant(kSide), 500.0, Vec3::Zero(), fq::Quat::Identity(), true);
+  fq::test::add_box(store, Vec3::Constant(kSide), 500.0, Vec3(0, 0, kSide + lift_m), turn);
+  return pressed_pair(std::move(store), mu);
+}
+
+// Moves the upper box, held at orientation `turn`, from `from` (where the
+// last step evaluated it) to `to` before the next step, with the velocity
+// (to - from) / dt that the step's increments read, runs the step and sets
+// `from` to `to`. Returns the total force on the upper box from the pair's
+// points.
+Vec3 step_to(fq::test::ContactScene& scene, Vec3& from, const Vec3& to, const fq::Quat& turn = fq::Quat::Identity()) {
   auto& bodies = scene.sim->bodies();
   bodies.velocity_mps[1] = (to - from) / kDt;
   bodies.position_m[1] = to;
   from = to;
-  // No turning: the last step's torques would spin the cube a little.
-  bodies.orientation[1] = fq::Quat::Identity();
-  bodies.rotation[1] = fq::Mat3::Identity();
+  // No turning: the last step's torques would spin the box a little.
+  bodies.orientation[1] = turn;
+  bodies.rotation[1] = turn.toRotationMatrix();
   bodies.angular_velocity_radps[1] = Vec3::Zero();
   bodies.angular_momentum_Nms[1] = Vec3::Zero();
   EXPECT_TRUE(scene.sim->step());
@@ -110,10 +116,6 @@ TEST(ContactHistory, PointsThatAppearInAPairStartedInOverlapResistFurtherPenetra
   EXPECT_NEAR(f1.z(), 4.0 * kKn * e, 1e-9 * kKn * e);
 }
 
-}  // namespace
-
-namespace {
-
 TEST(ContactHistory, CornersKeepTheirShearSpringsWhileCrossingsRaceAlongTheEdges) {
   // The upper cube is twisted by theta = 1e-8 rad about the vertical: its
   // sides cross the lower cube's sides near their middles, at x = y / theta
@@ -127,33 +129,15 @@ TEST(ContactHistory, CornersKeepTheirShearSpringsWhileCrossingsRaceAlongTheEdges
   // (Taking records in the order of the points' features, a crossing 1 mm
   // from a renamed corner took its record, and the corner started empty.)
   const double d = 1e-6, theta = 1e-8;
-  fq::BodyStore store;
-  fq::test::add_box(store, Vec3::Constant(kSide), 500.0, Vec3::Zero(), fq::Quat::Identity(), true);
   const fq::Quat twist(Eigen::AngleAxisd(theta, Vec3::UnitZ()));
-  fq::test::add_box(store, Vec3::Constant(kSide), 500.0, Vec3(0, 0, kSide + 1e-6), twist);
-  fq::SimulationSettings s;
-  s.dt_s = kDt;
-  s.duration_s = 1.0;
-  s.gravity_mps2 = Vec3::Zero();
-  auto scene = fq::test::make_scene(std::move(store), s, [](fq::ContactSystem& c) {
-    c.set_pair_params(0, 0, fq::test::params(kKn, 1.0, 10.0, kKt));
-  });
-  auto& bodies = scene.sim->bodies();
-  Vec3 at = bodies.position_m[1];
+  auto scene = stacked_cubes(1e-6, 10.0, twist);
+  Vec3 at = scene.sim->bodies().position_m[1];
   EXPECT_TRUE(scene.sim->step());  // apart
   const Vec3 pressed(0, 0, kSide - d);
   int corner_checks = 0;
   const double offsets[] = {0.0, 1e-10, -1e-10, 2e-10, -2e-10, 3e-10, -3e-10, -2.4e-10, 3e-10, 2.4e-10, -2.6e-10, 1e-10, 0.0};
   for (double y : offsets) {
-    const Vec3 to = pressed + Vec3(0, y, 0);
-    bodies.velocity_mps[1] = (to - at) / kDt;
-    bodies.position_m[1] = to;
-    at = to;
-    bodies.orientation[1] = twist;
-    bodies.rotation[1] = twist.toRotationMatrix();
-    bodies.angular_velocity_radps[1] = Vec3::Zero();
-    bodies.angular_momentum_Nms[1] = Vec3::Zero();
-    ASSERT_TRUE(scene.sim->step());
+    step_to(scene, at, pressed + Vec3(0, y, 0), twist);
     for (const auto& c : scene.contacts->contacts()) {
       if (c.body_b != 1 || c.stiffness_scale < 0.5) continue;
       ++corner_checks;
@@ -163,10 +147,6 @@ TEST(ContactHistory, CornersKeepTheirShearSpringsWhileCrossingsRaceAlongTheEdges
   }
   EXPECT_GE(corner_checks, 4 * 13);
 }
-
-}  // namespace
-
-namespace {
 
 TEST(ContactHistory, ACornerSplitByASidePlaneHandsItsSpringOnAtTheNewShare) {
   // A small cube (side 20 mm, turned 20 deg about the vertical) pressed on
@@ -186,29 +166,14 @@ TEST(ContactHistory, ACornerSplitByASidePlaneHandsItsSpringOnAtTheNewShare) {
   // Start with that corner 0.12 mm inside the side: the split comes at the third push.
   const Vec3 first(0.05 - reach_x.x() - 1.2e-4, 0.0, 0.05 + half + 1e-6);
   fq::test::add_box(store, Vec3::Constant(2 * half), 500.0, first, turn);
-  fq::SimulationSettings s;
-  s.dt_s = kDt;
-  s.duration_s = 1.0;
-  s.gravity_mps2 = Vec3::Zero();
-  auto scene = fq::test::make_scene(std::move(store), s, [](fq::ContactSystem& c) {
-    c.set_pair_params(0, 0, fq::test::params(kKn, 1.0, 10.0, kKt));
-  });
-  auto& bodies = scene.sim->bodies();
-  Vec3 at = bodies.position_m[1];
+  auto scene = pressed_pair(std::move(store), 10.0);
+  Vec3 at = scene.sim->bodies().position_m[1];
   EXPECT_TRUE(scene.sim->step());  // apart
   const Vec3 x0 = first - Vec3(0, 0, 1e-6 + d);
   std::vector<fq::ContactPoint> before;
   bool split_seen = false;
   for (int k = 0; k < 5 && !split_seen; ++k) {
-    const Vec3 to = x0 + Vec3(k * step, 0, 0);
-    bodies.velocity_mps[1] = (to - at) / kDt;
-    bodies.position_m[1] = to;
-    at = to;
-    bodies.orientation[1] = turn;
-    bodies.rotation[1] = turn.toRotationMatrix();
-    bodies.angular_velocity_radps[1] = Vec3::Zero();
-    bodies.angular_momentum_Nms[1] = Vec3::Zero();
-    ASSERT_TRUE(scene.sim->step());
+    step_to(scene, at, x0 + Vec3(k * step, 0, 0), turn);
     std::vector<fq::ContactPoint> now;
     for (const auto& c : scene.contacts->contacts())
       if (c.body_b == 1) now.push_back(c);

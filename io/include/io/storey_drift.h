@@ -113,6 +113,7 @@ class StoreyDriftMonitor {
     Eigen::Vector2d ratio;
   };
   std::vector<std::deque<TimedRatio>> window_;
+  std::vector<Eigen::Vector2d> window_sum_;  // per storey, the sum of window_'s ratios
   std::int64_t last_step_ = -1;
 };
 
