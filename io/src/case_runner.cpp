@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <optional>
 #include <iomanip>
+#include <map>
 #include <sstream>
 #include <unordered_map>
 #include <unordered_set>
@@ -369,9 +370,24 @@ bool case_has_dashpots(const CaseDef& def) {
       return true;
   if (def.contact) {
     const ContactDef& c = *def.contact;
-    if ((c.ground && c.ground->restitution < 1.0) || c.default_pair.restitution < 1.0) return true;
-    for (const ContactPairDef& p : c.pairs)
-      if (p.params.restitution < 1.0) return true;
+    if (c.ground && c.ground->restitution < 1.0) return true;
+    // A pair's restitution damps only where two bodies of its materials
+    // exist: a lone block on the ground has no pair contact, whatever the
+    // default pair's restitution (which defaults to 0.5).
+    std::map<std::string, int> bodies_of_material;
+    for (const MemberDef& m : def.members) ++bodies_of_material[m.material];
+    for (const BlockDef& b : def.blocks) ++bodies_of_material[b.material];
+    for (auto i = bodies_of_material.begin(); i != bodies_of_material.end(); ++i) {
+      for (auto j = i; j != bodies_of_material.end(); ++j) {
+        if (i == j && i->second < 2) continue;
+        const ContactParams* params = &c.default_pair;
+        for (const ContactPairDef& p : c.pairs)
+          if ((p.material_1 == i->first && p.material_2 == j->first) ||
+              (p.material_1 == j->first && p.material_2 == i->first))
+            params = &p.params;
+        if (params->restitution < 1.0) return true;
+      }
+    }
   }
   return false;
 }

@@ -202,8 +202,30 @@ TEST(RunWarnings, CaseHasDashpotsWhereAJointOrAContactDampsIt) {
   CaseDef damped_ground = elastic_contacts;
   damped_ground.contact->ground->restitution = 0.5;
   EXPECT_TRUE(case_has_dashpots(damped_ground));
-  CaseDef damped_pair = elastic_contacts;
-  damped_pair.contact->pairs.push_back({});
+  // A pair's restitution counts only where two bodies of its materials
+  // exist: a lone block on elastic ground has no dashpot, whatever the
+  // default pair's restitution (a probe got "the dashpots gained" from a
+  // 1 cm cube on ground with restitution 1).
+  CaseDef lone_block = elastic_contacts;
+  lone_block.contact->default_pair.restitution = 0.5;
+  lone_block.blocks.push_back({});
+  lone_block.blocks.back().material = "spruce";
+  EXPECT_FALSE(case_has_dashpots(lone_block));
+  CaseDef two_blocks = lone_block;
+  two_blocks.blocks.push_back(two_blocks.blocks.back());
+  EXPECT_TRUE(case_has_dashpots(two_blocks));
+  // Two bodies of different materials: their pair's entry decides, and the
+  // default pair's restitution (0.5 here) no longer matters.
+  CaseDef mixed = lone_block;
+  mixed.members.push_back({});
+  mixed.members.back().material = "oak";
+  EXPECT_TRUE(case_has_dashpots(mixed));
+  mixed.contact->pairs.push_back({});
+  mixed.contact->pairs.back().material_1 = "oak";
+  mixed.contact->pairs.back().material_2 = "spruce";
+  mixed.contact->pairs.back().params.restitution = 1.0;
+  EXPECT_FALSE(case_has_dashpots(mixed));
+  CaseDef damped_pair = mixed;
   damped_pair.contact->pairs.back().params.restitution = 0.9;
   EXPECT_TRUE(case_has_dashpots(damped_pair));
   CaseDef damped_joint;

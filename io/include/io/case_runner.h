@@ -134,7 +134,8 @@ constexpr double kWarnViscousGainRelative = 1e-3;
 // The ledger's two warnings above for the end of a run (empty when the
 // balance closes and the dashpots dissipated). Without dashpots in the
 // scene (`has_dashpots` false: no joint spring with a dashpot, no contact
-// with restitution below 1) the viscous book holds only the discretisation
+// with restitution below 1 that can happen: the ground's, or a material
+// pair's where two bodies of those materials exist) the viscous book holds only the discretisation
 // error of the contact springs, and its sign is not warned about; the
 // advice of the balance warning names the integrator when dt cannot help
 // (forward Euler).
