@@ -11,8 +11,9 @@
 //
 // Exit codes: 0 run completed; 1 the run became unstable (output kept up to
 // the last good frame); 2 bad input or usage (nothing written); 3 output
-// could not be written; 130 interrupted (SIGINT; final frame and summary
-// written).
+// could not be written (summary.json, where the disk allows it, says
+// output_failed); 130 interrupted by SIGINT, 143 by SIGTERM (final frame
+// and summary written).
 #include <unistd.h>
 
 #include <atomic>
@@ -47,11 +48,32 @@ constexpr int kExitOk = 0;
 constexpr int kExitUnstable = 1;
 constexpr int kExitBadInput = 2;
 constexpr int kExitOutputFailed = 3;
-constexpr int kExitInterrupted = 130;
+constexpr int kExitInterrupted = 130;  // 128 + SIGINT; a SIGTERM ends with 143
 
 std::atomic<bool> g_stop_requested{false};
+// The first stop signal received (SIGINT or SIGTERM), for the exit code.
+std::atomic<int> g_stop_signal{0};
 
-extern "C" void on_sigint(int) { g_stop_requested.store(true); }
+extern "C" void on_stop_signal(int signal_number) {
+  int none = 0;
+  g_stop_signal.compare_exchange_strong(none, signal_number);
+  g_stop_requested.store(true);
+}
+
+// Ctrl-C (SIGINT) and a polite kill (SIGTERM: `kill`, `timeout`, a batch
+// scheduler at its time limit) both stop a run at the end of its step, with
+// its final frame and summary written.
+void install_stop_handlers() {
+  std::signal(SIGINT, on_stop_signal);
+  std::signal(SIGTERM, on_stop_signal);
+}
+
+// The exit code of an interrupted run: 128 + the signal's number, as a
+// shell reports a process the signal ended (130 Ctrl-C, 143 SIGTERM).
+int interrupted_exit_code() {
+  const int s = g_stop_signal.load();
+  return s > 0 ? 128 + s : kExitInterrupted;
+}
 
 const char* kMainHelp =
     "framequake - discrete-element simulation of wooden frames in earthquakes\n"
@@ -91,7 +113,8 @@ const char* kRunHelp =
     "  --help         this text\n"
     "Every option also takes the form --option=value.\n"
     "\n"
-    "Exit codes: 0 completed, 1 unstable, 2 bad input, 3 output failed, 130 interrupted.\n";
+    "Exit codes: 0 completed, 1 unstable, 2 bad input, 3 output failed, 130 interrupted\n"
+    "(Ctrl-C), 143 stopped by SIGTERM.\n";
 
 const char* kResumeHelp =
     "Usage: framequake resume DIR [options]\n"
@@ -203,7 +226,7 @@ int command_run(int argc, char** argv) {
     return kExitBadInput;
   }
 
-  std::signal(SIGINT, on_sigint);
+  install_stop_handlers();
   fq::CaseRunOptions options;
   options.output_folder = args.out;
   options.allow_unstable_time_step = args.force;
@@ -232,7 +255,7 @@ int command_run(int argc, char** argv) {
             << "framequake: output in " << report.output_folder.string() << " (open case.pvd in ParaView)\n";
   switch (r.status) {
     case fq::RunStatus::Completed: return kExitOk;
-    case fq::RunStatus::Stopped: return kExitInterrupted;
+    case fq::RunStatus::Stopped: return interrupted_exit_code();
     case fq::RunStatus::Unstable:
       std::cerr << "framequake: error: the run became unstable: " << r.message << "\n";
       return kExitUnstable;
@@ -272,7 +295,7 @@ int command_resume(int argc, char** argv) {
   }
   if (folder.empty()) usage_error("missing DIR (the output folder of a run with --checkpoint-every)", kResumeHelp);
 
-  std::signal(SIGINT, on_sigint);
+  install_stop_handlers();
   fq::CaseRunOptions options;
   options.stop_requested = &g_stop_requested;
   options.on_warning = print_warning;
@@ -299,7 +322,7 @@ int command_resume(int argc, char** argv) {
             << " steps, t = " << r.simulated_s << " s, wall " << r.wall_s << " s\n";
   switch (r.status) {
     case fq::RunStatus::Completed: return kExitOk;
-    case fq::RunStatus::Stopped: return kExitInterrupted;
+    case fq::RunStatus::Stopped: return interrupted_exit_code();
     case fq::RunStatus::Unstable:
       std::cerr << "framequake: error: the run became unstable: " << r.message << "\n";
       return kExitUnstable;
@@ -343,6 +366,8 @@ int main(int argc, char** argv) {
       words.push_back(arg);
     }
   }
+  // "framequake help run": the command's own help.
+  if (words.size() >= 3 && words[1] == "help") words = {words[0], words[2], "--help"};
   std::vector<char*> split_argv;
   for (std::string& w : words) split_argv.push_back(w.data());
   split_argv.push_back(nullptr);
@@ -369,9 +394,10 @@ int main(int argc, char** argv) {
     if (command == "run") return command_run(argc, argv);
     if (command == "info") return command_info(argc, argv);
     if (command == "compare" || command == "sweep") {
-      std::signal(SIGINT, on_sigint);
-      return command == "compare" ? fq_app::command_compare(argc, argv, &g_stop_requested)
-                                  : fq_app::command_sweep(argc, argv, &g_stop_requested);
+      install_stop_handlers();
+      const int code = command == "compare" ? fq_app::command_compare(argc, argv, &g_stop_requested)
+                                            : fq_app::command_sweep(argc, argv, &g_stop_requested);
+      return code == kExitInterrupted ? interrupted_exit_code() : code;
     }
     if (command == "resume") return command_resume(argc, argv);
     if (command == "render") return command_render(argc, argv);

@@ -56,7 +56,7 @@ const char* kCompareHelp =
     "  --help               this text\n"
     "\n"
     "Exit codes: 0 all runs completed and everything was written; 1 a run became\n"
-    "unstable; 2 bad input (nothing run); 3 output failed; 130 interrupted.\n";
+    "unstable; 2 bad input (nothing run); 3 output failed; 130 interrupted (143 by SIGTERM).\n";
 
 const char* kSweepHelp =
     "Usage: framequake sweep CASE... [options]\n"

@@ -218,7 +218,23 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
     if (const std::string w = initial_overlap_warning(scene.contacts->initial_overlaps(), sim.bodies()); !w.empty())
       warn(w);
   }
-  report.result = sim.run(options.stop_requested);
+  try {
+    report.result = sim.run(options.stop_requested);
+  } catch (const OutputError& e) {
+    // A frame, a row or a checkpoint could not be written: the folder is
+    // left with whole rows and a summary saying so (where the disk allows).
+    const bool summary_written = writer.abandon(sim, e.what());
+    std::ostringstream m;
+    m << e.what() << " (the run ended at t = " << sim.time_s() << " s; the rows and frames before it are kept"
+      << (summary_written ? ", and summary.json says output_failed)" : "; summary.json could not be written either)");
+    throw OutputError(m.str());
+  }
+  if (report.result.status == RunStatus::Stopped && report.result.message.empty()) {
+    std::ostringstream m;
+    m << "stopped on request (Ctrl-C or SIGTERM) at t = " << report.result.simulated_s << " s of "
+      << sim.settings().duration_s << " s";
+    report.result.message = m.str();
+  }
   // An unstable run has already failed with its own message.
   if (report.result.status != RunStatus::Unstable)
     for (const std::string& w : energy_warnings(sim.ledger(), case_has_dashpots(def), sim.settings().integrator))

@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include "io/atomic_file.h"
+
 #include "number_format.h"
 
 namespace fq::detail {
@@ -28,7 +30,7 @@ void append_csv_text(std::string& out, const char* text) {
 
 void EventCsvWriter::open(const std::filesystem::path& file) {
   auto out = std::make_unique<std::ofstream>(file, std::ios::binary | std::ios::trunc);
-  if (!*out) throw std::runtime_error("cannot create '" + file.string() + "'");
+  if (!*out) throw std::runtime_error("cannot create '" + file.string() + "': " + last_system_error());
   *out << "time_s,step,kind,joint_id,body_a,body_b,spring_index,mode,force_N,x_m,y_m,z_m\n";
   if (!*out) throw std::runtime_error("cannot write '" + file.string() + "'");
   out_ = std::move(out);
@@ -107,6 +109,17 @@ void EventCsvWriter::close() {
   flush();
   out_->close();
   out_.reset();
+}
+
+void EventCsvWriter::abandon() noexcept {
+  if (!out_) return;
+  // The stream's buffer may hold part of a row the disk refused: dropped
+  // with the stream (its close may fail again; nothing throws here).
+  out_.reset();
+  cut_back_to_last_line_end(file_);
+  // The rows the file now holds (less its header line).
+  const std::int64_t lines = count_line_ends(file_);
+  if (lines >= 1) rows_ = lines - 1;
 }
 
 }  // namespace fq::detail

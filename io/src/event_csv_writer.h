@@ -28,6 +28,8 @@ class EventCsvWriter {
   void write_new(const EventLog& log);
   void flush();
   void close();
+  // As HistoryWriter::abandon: closed, cut back to its last complete row.
+  void abandon() noexcept;
   std::int64_t rows() const { return rows_; }
 
  private:

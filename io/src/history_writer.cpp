@@ -3,6 +3,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "io/atomic_file.h"
+
 #include "number_format.h"
 
 namespace fq {
@@ -55,7 +57,7 @@ void HistoryWriter::open(const std::filesystem::path& file, const Simulation& si
   if (out_) throw std::logic_error("history.csv opened twice");
   *reference_position_m_ = sim.bodies().position_m;
   auto out = std::make_unique<std::ofstream>(file, std::ios::binary | std::ios::trunc);
-  if (!*out) throw std::runtime_error("cannot create '" + file.string() + "'");
+  if (!*out) throw std::runtime_error("cannot create '" + file.string() + "': " + detail::last_system_error());
   std::string header;
   for (std::size_t c = 0; c < headers_.size(); ++c) {
     if (c > 0) header.push_back(',');
@@ -118,6 +120,17 @@ void HistoryWriter::close() {
   flush();
   out_->close();
   out_.reset();
+}
+
+void HistoryWriter::abandon() noexcept {
+  if (!out_) return;
+  // The stream's buffer may hold part of a row the disk refused: dropped
+  // with the stream (its close may fail again; nothing throws here).
+  out_.reset();
+  detail::cut_back_to_last_line_end(file_);
+  // The rows the file now holds (less its header line).
+  const std::int64_t lines = detail::count_line_ends(file_);
+  if (lines >= 1) rows_ = lines - 1;
 }
 
 bool HistoryWriter::is_open() const { return out_ != nullptr; }

@@ -112,14 +112,33 @@ std::int64_t steps_per_interval(double interval_s, double dt_s) {
 struct RunOutput::Impl {
   // Observers the simulation calls; they forward to Impl, whose address is
   // stable behind RunOutput's unique_ptr.
+  // A write that fails in the step loop (std::runtime_error from a writer)
+  // becomes an OutputError, which ends the run: the command line reports
+  // it as an output failure (exit 3), not as an internal error.
   struct HistoryObserver final : StepObserver {
     explicit HistoryObserver(Impl* o) : owner(o) {}
-    void on_sample(const Simulation& sim) override { owner->sample_history(sim); }
+    void on_sample(const Simulation& sim) override {
+      try {
+        owner->sample_history(sim);
+      } catch (const OutputError&) {
+        throw;
+      } catch (const std::runtime_error& e) {
+        throw OutputError(e.what());
+      }
+    }
     Impl* owner;
   };
   struct FrameObserver final : StepObserver {
     explicit FrameObserver(Impl* o) : owner(o) {}
-    void on_sample(const Simulation& sim) override { owner->write_frame(sim); }
+    void on_sample(const Simulation& sim) override {
+      try {
+        owner->write_frame(sim);
+      } catch (const OutputError&) {
+        throw;
+      } catch (const std::runtime_error& e) {
+        throw OutputError(e.what());
+      }
+    }
     Impl* owner;
   };
 
@@ -145,7 +164,8 @@ struct RunOutput::Impl {
     events.flush();
   }
 
-  void write_summary(const Simulation& sim, const RunResult& result) const;
+  // `status_override`, when given, replaces the run status's name (abandon()).
+  void write_summary(const Simulation& sim, const RunResult& result, const char* status_override = nullptr) const;
 
   OutputDef def;
   std::string case_name;
@@ -320,13 +340,34 @@ void RunOutput::finish(const Simulation& sim, const RunResult& result) {
   o.write_summary(sim, result);
 }
 
-void RunOutput::Impl::write_summary(const Simulation& sim, const RunResult& result) const {
+bool RunOutput::abandon(const Simulation& sim, const std::string& why) noexcept {
+  Impl& o = *impl_;
+  if (o.finished) return false;
+  o.finished = true;
+  o.history.abandon();
+  o.events.abandon();
+  try {
+    RunResult reached;
+    reached.status = RunStatus::Stopped;
+    reached.steps = sim.steps_done();
+    reached.simulated_s = sim.time_s();
+    reached.message = "the output could not be written: " + why;
+    o.write_summary(sim, reached, "output_failed");
+    return true;
+  } catch (...) {
+    // The disk refuses the summary too: the folder then has no summary.json,
+    // which no reader takes for a completed run.
+    return false;
+  }
+}
+
+void RunOutput::Impl::write_summary(const Simulation& sim, const RunResult& result, const char* status_override) const {
   JsonWriter w;
   w.begin_object();
   w.key("program").value("framequake");
   w.key("program_version").value(FQ_VERSION_STRING);
   w.key("case").value(case_name);
-  w.key("status").value(run_status_name(result.status));
+  w.key("status").value(status_override ? status_override : run_status_name(result.status));
   w.key("message").value(result.message);
   w.key("steps").value(result.steps);
   w.key("dt_s").value(sim.settings().dt_s);

@@ -398,6 +398,13 @@ TEST(CliUsage, HelpForEveryCommandExitsZeroWithUsage) {
   const auto run_help = run_app({"run", "--help"}, dir.path());
   EXPECT_NE(run_help.out.find("--out DIR"), std::string::npos);
   EXPECT_NE(run_help.out.find("Exit codes"), std::string::npos);
+  // "help COMMAND" gives that command's help, as "COMMAND --help" does.
+  for (const std::string command : {"run", "info", "resume", "compare", "sweep"}) {
+    const auto asked = run_app({"help", command}, dir.path());
+    const auto direct = run_app({command, "--help"}, dir.path());
+    EXPECT_EQ(asked.code, 0) << command << ": " << asked.err;
+    EXPECT_EQ(asked.out, direct.out) << command;
+  }
   const auto version = run_app({"--version"}, dir.path());
   EXPECT_EQ(version.code, 0);
   EXPECT_EQ(version.out.rfind("framequake ", 0), 0u) << version.out;

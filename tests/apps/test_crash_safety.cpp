@@ -1,11 +1,12 @@
 // Crash-safe output: a `framequake run` killed at any moment leaves a folder
-// ParaView can open, and SIGINT stops a run cleanly.
+// ParaView can open, and SIGINT or SIGTERM stops a run cleanly.
 //
 // What must hold (apps/main.cpp, io/run_output.h): case.pvd is replaced
 // atomically after each frame, so at any instant it is well-formed XML that
 // lists only frames already complete on disk; each listed frame opens with
 // VTK's own reader and has one hexahedron per body (vtk_frame_writer.cpp,
-// add_bodies). SIGINT: exit code 130, summary.json with status "stopped",
+// add_bodies). SIGINT or SIGTERM: exit code 128 + the signal (130, 143),
+// summary.json with status "stopped" and a message saying why,
 // and a final frame at the time the run stopped.
 //
 // The case is N spinning blocks in space (no gravity, no ground, no
@@ -170,19 +171,22 @@ double json_number(const std::string& json, const std::string& key) {
   return std::stod(m[1].str());
 }
 
-TEST(CrashSafety, SigintStopsCleanlyWithSummaryAndFinalFrame) {
+// Ctrl-C (SIGINT) and SIGTERM (kill, timeout, a batch scheduler's time
+// limit) both stop the run at the end of a step: exit 128 + the signal.
+void stop_with_signal_and_check(int signal_number) {
   TempDir dir;
   std::ofstream(dir.path() / "case.yaml") << long_case();
   const fs::path out = dir.path() / "out";
   AppProcess app({"run", (dir.path() / "case.yaml").string(), "--out", out.string(), "--quiet"}, dir.path());
   ASSERT_TRUE(wait_for_file(out / "case.pvd")) << app.err();
   std::this_thread::sleep_for(std::chrono::milliseconds(300));  // let it write some frames
-  app.signal(SIGINT);
-  ASSERT_EQ(app.wait(), 130) << app.err();
+  app.signal(signal_number);
+  ASSERT_EQ(app.wait(), 128 + signal_number) << app.err();
 
   const std::string summary = fq_test::read_text(out / "summary.json");
   ASSERT_FALSE(summary.empty()) << "summary.json missing";
   EXPECT_TRUE(std::regex_search(summary, std::regex("\"status\"\\s*:\\s*\"stopped\""))) << summary;
+  EXPECT_NE(summary.find("stopped on request"), std::string::npos) << summary;
   const double simulated_s = json_number(summary, "simulated_time_s");
   ASSERT_TRUE(std::isfinite(simulated_s)) << summary;
   EXPECT_GT(simulated_s, 0.0);
@@ -199,6 +203,14 @@ TEST(CrashSafety, SigintStopsCleanlyWithSummaryAndFinalFrame) {
   // for a writer that prints 17 significant digits instead.
   EXPECT_NEAR(entries.back().time_s, simulated_s, 1e-12 * simulated_s);
   EXPECT_EQ(json_number(summary, "frames_written"), double(entries.size()));
+}
+
+TEST(CrashSafety, SigintStopsCleanlyWithSummaryAndFinalFrame) {
+  ASSERT_NO_FATAL_FAILURE(stop_with_signal_and_check(SIGINT));
+}
+
+TEST(CrashSafety, SigtermStopsCleanlyWithSummaryAndFinalFrame) {
+  ASSERT_NO_FATAL_FAILURE(stop_with_signal_and_check(SIGTERM));
 }
 
 }  // namespace

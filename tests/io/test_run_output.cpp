@@ -46,6 +46,7 @@
 #include "dem_core/simulation.h"
 #include "io/case_file.h"
 #include "io/case_runner.h"
+#include "io/atomic_file.h"
 #include "io/json_writer.h"
 #include "io/run_output.h"
 #include "io_test_util.h"
@@ -945,4 +946,93 @@ TEST(RunOutput, StoppedRunEndsWithAFrameOfTheLastState) {
   EXPECT_NEAR(entries.back().time_s, 13 * kDt_s, 1e-12);
   EXPECT_EQ(read_lines(def.folder / "history.csv").size(), 1u + 4u);  // steps 0, 5, 10, 13
   EXPECT_NE(read_text(def.folder / "summary.json").find("\"status\": \"stopped\""), std::string::npos);
+}
+
+// A write that fails in the middle of a run (a full disk, a folder made
+// read-only or removed) ends the run with an OutputError (exit 3 of the
+// command line), not an internal error, and leaves a folder that claims
+// nothing it does not hold: history.csv cut back to whole rows, case.pvd
+// listing only frames on disk, and summary.json saying output_failed with
+// the step reached. The failure is made portably (root ignores file modes):
+// at step 2000 an observer replaces frames/ by a regular file, so the frame
+// due at step 2100 cannot be created.
+namespace {
+class ReplaceFramesFolderWithAFile : public fq::StepObserver {
+ public:
+  explicit ReplaceFramesFolderWithAFile(fs::path folder) : folder_(std::move(folder)) {}
+  void on_sample(const fq::Simulation& sim) override {
+    if (done_ || sim.steps_done() < 2000) return;
+    done_ = true;
+    fs::remove_all(folder_ / "frames");
+    std::ofstream(folder_ / "frames") << "not a folder\n";
+  }
+
+ private:
+  fs::path folder_;
+  bool done_ = false;
+};
+}  // namespace
+
+TEST(RunOutput, AWriteFailingMidRunEndsWithAnOutputErrorWholeRowsAndASummarySayingSo) {
+  fq::test::TempDir dir;
+  const fs::path file = dir.path() / "block.yaml";
+  std::ofstream(file) << "framequake_case: 1\n"
+                         "time: {dt_s: 1.0e-5, duration_s: 0.05}\n"
+                         "materials: [{name: spruce, density_kg_per_m3: 450}]\n"
+                         "ground: {level_m: 0.0}\n"
+                         "blocks: [{id: b, size_m: [0.1, 0.1, 0.1], center_m: [0, 0, 0.05], material: spruce}]\n"
+                         "contact: {ground: {normal_stiffness_N_per_m: 1.0e6, restitution: 0.5}}\n"
+                         "output: {frame_interval_s: 0.001, history_interval_s: 0.0001}\n";
+  const fs::path out = dir.path() / "out";
+  ReplaceFramesFolderWithAFile saboteur(out);
+  fq::CaseRunOptions options;
+  options.output_folder = out;
+  options.progress = &saboteur;  // asked every 1000 steps
+  std::string message;
+  try {
+    fq::run_case(fq::load_case_file(file), options);
+    ADD_FAILURE() << "the run did not report the failed frame";
+  } catch (const fq::OutputError& e) {
+    message = e.what();
+  }
+  EXPECT_NE(message.find("frame_000021.vtu"), std::string::npos) << message;
+  EXPECT_NE(message.find("summary.json says output_failed"), std::string::npos) << message;
+
+  const std::string summary = read_text(out / "summary.json");
+  EXPECT_EQ(json_field(summary, "status"), "\"output_failed\"") << summary;
+  EXPECT_EQ(json_field(summary, "steps"), "2100");  // the frame due at step 2100 failed
+  // The rows written before the failure (steps 0, 10, ..., 2100) and no
+  // part of one; the summary counts what the file holds.
+  const std::string history = read_text(out / "history.csv");
+  ASSERT_FALSE(history.empty());
+  EXPECT_EQ(history.back(), '\n');
+  const std::vector<std::string> rows = read_lines(out / "history.csv");
+  EXPECT_EQ(rows.size(), 1u + 211u);
+  EXPECT_EQ(json_field(summary, "history_rows"), std::to_string(rows.size() - 1));
+  // case.pvd lists only frames that existed when it was written (0..20).
+  bool ok = false;
+  const std::vector<PvdEntry> entries = parse_pvd(out / "case.pvd", &ok);
+  ASSERT_TRUE(ok);
+  EXPECT_EQ(entries.size(), 21u);
+}
+
+// The cut itself: an appended file that ends in part of a row loses that
+// part and nothing else; whole files and files without a line end stay.
+TEST(RunOutput, AnAppendedFileIsCutBackToItsLastCompleteRow) {
+  fq::test::TempDir dir;
+  const fs::path f = dir.path() / "rows.csv";
+  std::ofstream(f, std::ios::binary) << "time_s,x_m\n0,1\n0.1,2\n0.2,";
+  fq::detail::cut_back_to_last_line_end(f);
+  EXPECT_EQ(read_text(f), "time_s,x_m\n0,1\n0.1,2\n");
+  EXPECT_EQ(fq::detail::count_line_ends(f), 3);
+  fq::detail::cut_back_to_last_line_end(f);  // already whole
+  EXPECT_EQ(read_text(f), "time_s,x_m\n0,1\n0.1,2\n");
+  // A long row (longer than one read block) after the last line end.
+  std::ofstream(f, std::ios::binary | std::ios::app) << std::string(10000, '7');
+  fq::detail::cut_back_to_last_line_end(f);
+  EXPECT_EQ(read_text(f), "time_s,x_m\n0,1\n0.1,2\n");
+  std::ofstream(f, std::ios::binary | std::ios::trunc) << "no line end";
+  fq::detail::cut_back_to_last_line_end(f);
+  EXPECT_EQ(read_text(f), "no line end");
+  EXPECT_EQ(fq::detail::count_line_ends(dir.path() / "missing.csv"), -1);
 }

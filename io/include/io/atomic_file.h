@@ -18,7 +18,9 @@
 // hide them and a later run recognises them as its own leftovers.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
+#include <string>
 #include <string_view>
 
 namespace fq::detail {
@@ -34,5 +36,18 @@ void commit_file(const std::filesystem::path& temporary, const std::filesystem::
 // std::runtime_error naming the file when it cannot; the temporary is then
 // removed and `target` is left as it was.
 void write_file_atomically(const std::filesystem::path& target, std::string_view content);
+
+// Cuts an appended text file (history.csv, events.csv) back to the end of
+// its last complete line, after a write into it failed part-way (a full
+// disk): a reader then finds whole rows only. Best effort, never throws; a
+// file without any line end is left as it is.
+void cut_back_to_last_line_end(const std::filesystem::path& file) noexcept;
+
+// Line ends ('\n') in `file`, or -1 when it cannot be read. Never throws.
+std::int64_t count_line_ends(const std::filesystem::path& file) noexcept;
+
+// The reason the C library gives for the last failed call (errno), for
+// messages about files that could not be created or written.
+std::string last_system_error();
 
 }  // namespace fq::detail

@@ -21,16 +21,12 @@
 #include "dem_core/simulation.h"
 #include "contacts/contact_system.h"
 #include "io/case_def.h"
+#include "io/run_output.h"
 #include "io/storey_drift.h"
 #include "joints/joint_system.h"
 
 namespace fq {
 
-// The output folder could not be prepared or written.
-class OutputError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
 
 struct CaseRunOptions {
   std::optional<std::filesystem::path> output_folder;  // overrides the case's output.folder

@@ -69,6 +69,10 @@ class HistoryWriter {
   void write_row(const Simulation& sim);
   void flush();
   void close();
+  // After a failed write (OutputError during a run): closes the file without
+  // asking more of the disk and cuts it back to its last complete row.
+  // Never throws.
+  void abandon() noexcept;
   bool is_open() const;
   std::int64_t rows() const { return rows_; }
 

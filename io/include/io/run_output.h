@@ -25,6 +25,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <stdexcept>
 #include <string>
 
 #include "dem_core/simulation.h"
@@ -36,6 +37,14 @@ namespace fq {
 
 class StateWriter;  // dem_core/state_io.h
 class StateReader;
+
+// The output folder could not be prepared or written (exit code 3 of the
+// command line). A frame or history row that cannot be written during the
+// run ends it with this error (see RunOutput::abandon).
+class OutputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
 
 class RunOutput {
  public:
@@ -85,6 +94,15 @@ class RunOutput {
   // writes summary.json. Call once after run(), also after an unstable or
   // stopped run (the frames and rows up to the last good state are kept).
   void finish(const Simulation& sim, const RunResult& result);
+  // Instead of finish() when writing failed during the run (an OutputError
+  // from a frame, a history row or a checkpoint: a full disk, a folder made
+  // read-only): cuts history.csv and events.csv back to their last complete
+  // rows, keeps case.pvd (it lists only frames on disk) and tries to write
+  // summary.json with status "output_failed", `why`, and the step and time
+  // reached, so that nothing in the folder claims a completed run. Best
+  // effort on a disk that may refuse everything; never throws. Returns true
+  // when summary.json was written.
+  bool abandon(const Simulation& sim, const std::string& why) noexcept;
 
   const std::filesystem::path& folder() const;
   std::int64_t frame_every_steps() const;    // 0 before attach()
