@@ -6,6 +6,7 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -940,6 +941,10 @@ StiffestMode ContactSystem::later_stiffest_mode(const BodyStore& bodies) const {
   double best_dt = HUGE_VAL;
   std::string where;
   ContactCoefficients where_sc;
+  // A box whose eigenvalue overflows (a stiffness of 1e308, a mass of
+  // 1e-300): the limit is not a number, reported as NaN so that the run is
+  // refused rather than left without a limit.
+  bool not_finite = false;
 
   // One box on a fixed surface. Undamped lambda of every free box; the
   // damped limit of one box lies between 2 / (sqrt(l_k + l_c^2 / 4) +
@@ -957,6 +962,11 @@ StiffestMode ContactSystem::later_stiffest_mode(const BodyStore& bodies) const {
       const double lk = one_sided_contact_eigenvalue(bodies.half_extents_m[i], bodies.mass_kg[i],
                                                      bodies.principal_inertia_kgm2[i], surface.normal_stiffness_N_per_m,
                                                      surface.tangential_stiffness_N_per_m);
+      if (!std::isfinite(lk)) {
+        not_finite = true;
+        where = "a face contact of '" + bodies.info[i].name + "'";
+        where_sc = surface;
+      }
       if (!(lk > 0.0)) continue;
       const ContactDashpots c = corner_dashpots(surface, bodies.mass_kg[i]);
       const double lc = one_sided_contact_eigenvalue(bodies.half_extents_m[i], bodies.mass_kg[i],
@@ -987,6 +997,11 @@ StiffestMode ContactSystem::later_stiffest_mode(const BodyStore& bodies) const {
       const double lk = one_sided_contact_eigenvalue(bodies.half_extents_m[i], bodies.mass_kg[i],
                                                      bodies.principal_inertia_kgm2[i], pair.normal_stiffness_N_per_m,
                                                      pair.tangential_stiffness_N_per_m);
+      if (!std::isfinite(lk)) {
+        not_finite = true;
+        where = "a face contact of '" + bodies.info[i].name + "' on another free box";
+        where_sc = pair;
+      }
       if (lk > top1) {
         top2 = top1;
         top2_body = top1_body;
@@ -1010,8 +1025,12 @@ StiffestMode ContactSystem::later_stiffest_mode(const BodyStore& bodies) const {
       }
     }
   }
-  if (!(best_dt < HUGE_VAL) || !(best_dt > 0.0)) return mode;
-  mode.omega_radps = 2.0 / best_dt;
+  if (not_finite) {
+    mode.omega_radps = std::numeric_limits<double>::quiet_NaN();
+  } else {
+    if (!(best_dt < HUGE_VAL) || !(best_dt > 0.0)) return mode;
+    mode.omega_radps = 2.0 / best_dt;
+  }
   std::ostringstream w;
   w << "contact springs (k_n = " << where_sc.normal_stiffness_N_per_m << " N/m, k_t = "
     << where_sc.tangential_stiffness_N_per_m << " N/m per point, damping ratio " << where_sc.damping_ratio << ") of "

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <string>
 
 namespace fq {
 
@@ -44,6 +46,9 @@ NetworkStableStep network_stable_step(const std::vector<LinearisedSpring>& rows,
         yy += y[i].squaredNorm();
         xx += x[i].squaredNorm();
       }
+      // An overflowed product (a stiffness of 1e308, a mass of 1e-300):
+      // no eigenvalue, and the caller must not read it as "no stiffness".
+      if (!std::isfinite(yy) || !std::isfinite(xy)) return std::numeric_limits<double>::quiet_NaN();
       if (!(yy > 0.0)) return 0.0;
       lambda = xy / xx;
       const double scale = 1.0 / std::sqrt(yy);
@@ -53,6 +58,11 @@ NetworkStableStep network_stable_step(const std::vector<LinearisedSpring>& rows,
   };
   const double lambda_c = top_eigenvalue([](const LinearisedSpring& r) { return r.c_Nspm; });
   const double omega2 = top_eigenvalue([](const LinearisedSpring& r) { return r.k_Npm; });  // x: top stiffness mode
+  if (std::isnan(omega2) || std::isnan(lambda_c)) {
+    result.omega_radps = std::numeric_limits<double>::quiet_NaN();
+    result.dt_crit_s = std::numeric_limits<double>::quiet_NaN();
+    return result;
+  }
   if (!(omega2 > 0.0)) return result;
   // The damped limit itself (header). The bound takes omega and lambda_C
   // from two different modes when the stiffest mode is not the most
@@ -107,9 +117,10 @@ StiffestMode ForceProvider::stiffest_mode(const BodyStore& bodies) const {
   linearised_springs(bodies, rows);
   const NetworkStableStep now = network_stable_step(rows, bodies.size());
   StiffestMode mode = later_stiffest_mode(bodies);
-  if (now.omega_radps > mode.omega_radps) {
+  if (now.omega_radps > mode.omega_radps || std::isnan(now.omega_radps)) {
     mode.omega_radps = now.omega_radps;
-    mode.where = describe_linearised_spring(bodies, rows[now.stiffest].element);
+    mode.where = now.stiffest < rows.size() ? describe_linearised_spring(bodies, rows[now.stiffest].element)
+                                            : std::string("a spring whose stiffness or body overflows");
   }
   return mode;
 }

@@ -5,7 +5,10 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <iomanip>
 #include <limits>
+#include <sstream>
+#include <string>
 #include <string_view>
 #include <system_error>
 #include <utility>
@@ -17,6 +20,39 @@
 namespace fq {
 
 namespace {
+
+// Bounds on what a ground-motion record can hold; outside them a file is
+// refused at the line that breaks them, because only a wrong unit or a
+// typing error gets there (a probe's value of 1e300 g ran to the end with
+// infinite displacements and a balance error of 1e290).
+// - Acceleration: the largest ground acceleration ever recorded is about
+//   4 g (4 022 cm/s^2, three components combined, station IWTH25 in the
+//   2008 Iwate-Miyagi Nairiku earthquake; Aoi et al., Science 322, 2008).
+//   20 g is five times that; a record in cm/s^2 read as g gives hundreds.
+// - Sampling interval: strong-motion records are sampled at 50-1000 Hz
+//   (dt 0.001-0.02 s). Above 1 s the record cannot carry motion above
+//   0.5 Hz, where a building's response lies; below 1e-6 s (1 MHz) no
+//   accelerometer samples, and a time in ms read as s gives that.
+constexpr double kMaxAbsAcceleration_g = 20.0;
+constexpr double kMinSampleInterval_s = 1e-6;
+constexpr double kMaxSampleInterval_s = 1.0;
+
+std::string sample_interval_problem(double dt_s) {
+  if (dt_s >= kMinSampleInterval_s && dt_s <= kMaxSampleInterval_s) return "";
+  std::ostringstream why;
+  why << "expected a sampling interval of " << kMinSampleInterval_s << " to " << kMaxSampleInterval_s
+      << " s (strong-motion records are sampled every 0.001-0.02 s), got " << dt_s << " s: a time unit off?";
+  return why.str();
+}
+
+std::string acceleration_problem(double a_mps2) {
+  if (std::abs(a_mps2) <= kMaxAbsAcceleration_g * kStandardGravity_mps2) return "";
+  std::ostringstream why;
+  why << std::setprecision(4) << "expected at most " << kMaxAbsAcceleration_g
+      << " g in magnitude (the largest ground acceleration ever recorded is about 4 g), got "
+      << a_mps2 / kStandardGravity_mps2 << " g: a wrong unit (cm/s^2 read as g?) or a typing error";
+  return why.str();
+}
 
 // ---- text access -------------------------------------------------------------
 
@@ -228,6 +264,7 @@ At2Size parse_npts_dt(const std::string& file, std::string_view line) {
   const NumberStatus st = parse_number(number, dt);
   if (st != NumberStatus::Ok || !std::isfinite(dt) || dt <= 0.0)
     throw InputError(file, kLine, "DT", "expected a positive finite time step in s, got " + quoted(tok));
+  if (const std::string why = sample_interval_problem(dt); !why.empty()) throw InputError(file, kLine, "DT", why);
   out.dt_s = dt;
   return out;
 }
@@ -398,6 +435,10 @@ AccelerationRecord read_peer_at2(const std::filesystem::path& file) {
                          "expected a finite number (value " + std::to_string(count) + " of NPTS=" +
                              std::to_string(npts) + ", in g), got " + quoted(tok));
       rec.acceleration_mps2.push_back(v * kStandardGravity_mps2);
+      if (const std::string why = acceleration_problem(rec.acceleration_mps2.back()); !why.empty())
+        throw InputError(name, line_no, "value",
+                         "value " + std::to_string(count) + " of NPTS=" + std::to_string(npts) + ", " + quoted(tok) +
+                             ": " + why);
     }
   }
   if (count != npts) {
@@ -431,6 +472,7 @@ AccelerationRecord read_two_column(const std::filesystem::path& file, Accelerati
   double min_interval_s = std::numeric_limits<double>::infinity();
   double max_interval_s = 0.0;
   int min_interval_line = 0;
+  int max_interval_line = 0;
   bool uniform = true;
   // Relative tolerance for "uniform", from the task definition: far above the
   // rounding of times printed with 7+ significant digits on records of ~1e4
@@ -474,7 +516,10 @@ AccelerationRecord read_two_column(const std::filesystem::path& file, Accelerati
                              std::to_string(prev_line) + "): times must increase strictly, got " + quoted(fields[0]));
       if (time_s.size() == 1) first_interval_s = h;
       if (std::abs(h - first_interval_s) > kUniformRelTol * first_interval_s) uniform = false;
-      max_interval_s = std::max(max_interval_s, h);
+      if (h > max_interval_s) {
+        max_interval_s = h;
+        max_interval_line = line_no;
+      }
       if (h < min_interval_s) {
         min_interval_s = h;
         min_interval_line = line_no;
@@ -482,6 +527,8 @@ AccelerationRecord read_two_column(const std::filesystem::path& file, Accelerati
     }
     time_s.push_back(t);
     accel_mps2.push_back(a * to_mps2);
+    if (const std::string why = acceleration_problem(accel_mps2.back()); !why.empty())
+      throw InputError(name, line_no, "acceleration", quoted(fields[1]) + " " + unit_name + ": " + why);
     prev_line = line_no;
   }
   if (time_s.size() < 2)
@@ -499,6 +546,11 @@ AccelerationRecord read_two_column(const std::filesystem::path& file, Accelerati
     notes += "; times shifted by " + fmt(-t0) + " s so the first sample (t = " + fmt(t0) +
              " s in the file) is at t = 0";
 
+  // The shortest and the longest interval must both be a sampling interval.
+  if (const std::string why = sample_interval_problem(min_interval_s); !why.empty())
+    throw InputError(name, min_interval_line, "time", "the interval ending on this line: " + why);
+  if (const std::string why = sample_interval_problem(max_interval_s); !why.empty())
+    throw InputError(name, max_interval_line, "time", "the interval ending on this line: " + why);
   if (uniform) {
     rec.dt_s = span_s / double(n - 1);
     rec.acceleration_mps2 = std::move(accel_mps2);

@@ -337,7 +337,10 @@ void parse_materials(const Reader& r, const Field& f, CaseDef& def) {
                     r.fail(name, "material name '" + m.name + "' is already used by materials[" +
                                      std::to_string(other) + "] (line " +
                                      std::to_string(def.materials[std::size_t(other)].line) + ")");
-                  m.density_kg_per_m3 = r.required_positive(n, "density_kg_per_m3", path, "density in kg/m^3");
+                  const Field density = r.require(n, "density_kg_per_m3", path, "density in kg/m^3");
+                  m.density_kg_per_m3 = r.to_positive(density);
+                  if (const std::string why = density_out_of_range(m.density_kg_per_m3); !why.empty())
+                    r.fail(density, why);
                   def.materials.push_back(m);
                 });
 }

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <optional>
 #include <iomanip>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <unordered_map>
@@ -70,6 +71,10 @@ StableTimeStep estimate_stable_time_step(const Simulation& sim) {
   }
   double omega_max = 0.0;
   const NetworkStableStep net = network_stable_step(rows, bodies.size());
+  // A frequency that is not a finite number (a mass or an inertia of 1e-300,
+  // a stiffness of 1e300) makes every comparison with dt false: kept as
+  // NaN, so that check_run_start refuses the run instead of letting it pass.
+  bool not_finite = !std::isfinite(net.omega_radps);
   if (net.omega_radps > 0.0) {
     omega_max = net.omega_radps;
     const std::size_t p = std::size_t(std::upper_bound(owner_end.begin(), owner_end.end(), net.stiffest) -
@@ -82,14 +87,18 @@ StableTimeStep estimate_stable_time_step(const Simulation& sim) {
     const ForceProvider& p = *sim.providers()[k];
     const bool has_rows = owner_end[k] > (k == 0 ? 0 : owner_end[k - 1]);
     const StiffestMode mode = has_rows ? p.later_stiffest_mode(bodies) : p.stiffest_mode(bodies);
+    not_finite = not_finite || !std::isfinite(mode.omega_radps);
     if (mode.omega_radps > omega_max) {
       omega_max = mode.omega_radps;
       s.stiffest_element = mode.where;
     }
   }
-  s.omega_max_radps = omega_max;
+  s.omega_max_radps = not_finite ? std::numeric_limits<double>::quiet_NaN() : omega_max;
   const double factor = integrator_stability_factor(sim.settings().integrator);
-  if (omega_max > 0.0 && std::isfinite(factor)) s.dt_crit_s = factor / omega_max;
+  if (not_finite)
+    s.dt_crit_s = std::numeric_limits<double>::quiet_NaN();
+  else if (omega_max > 0.0 && std::isfinite(factor))
+    s.dt_crit_s = factor / omega_max;
   return s;
 }
 
@@ -513,6 +522,16 @@ void check_run_start(const CaseDef& def, const Scene& scene, const CaseRunOption
     return InputError(def.source_file.string(), line ? line : line_of(def, "time"), "time.integrator", why);
   };
   if (const std::string why = sim.integrator_refusal(); !why.empty()) throw integrator_error(why);
+  if (std::isnan(scene.stable_time_step.omega_max_radps)) {
+    // Not overridable: no dt can be checked, and the run's arithmetic would
+    // be meaningless. The masses and inertias are checked in build_model;
+    // this catches what they let pass (a stiffness of 1e300).
+    const int line = line_of(def, "time.dt_s");
+    throw InputError(def.source_file.string(), line ? line : line_of(def, "time"), "time.dt_s",
+                     "the stable time step cannot be estimated: a mode's frequency is not a finite number; a mass, "
+                     "an inertia or a stiffness of the case is out of the range double precision resolves (check the "
+                     "densities, sizes, and the joints' and contacts' stiffnesses)");
+  }
   if (dt > scene.stable_time_step.dt_crit_s && !options.allow_unstable_time_step) {
     std::ostringstream msg;
     if (method == Integrator::ForwardEuler) {
@@ -691,7 +710,10 @@ void describe_case(const CaseDef& def, std::ostream& out) {
     out << "  (stable limit " << limit_text(scene.stable_time_step.dt_crit_s) << " s, set by "
         << scene.stable_time_step.stiffest_element << ")";
   // What run will say (run_case refuses it unless forced).
-  if (scene.stable_time_step.dt_crit_s == 0.0)
+  if (std::isnan(scene.stable_time_step.dt_crit_s))
+    out << "\n            NO STABLE LIMIT CAN BE ESTIMATED (a mode's frequency is not a finite number): run refuses "
+           "this case";
+  else if (scene.stable_time_step.dt_crit_s == 0.0)
     out << "\n            UNSTABLE AT EVERY STEP: run refuses this integrator here unless --force is given";
   else if (s.dt_s > scene.stable_time_step.dt_crit_s)
     out << "\n            ABOVE THE STABLE LIMIT: run refuses this time step unless --force is given";

@@ -11,6 +11,16 @@
 
 namespace fq {
 
+std::string density_out_of_range(double density_kg_per_m3) {
+  if (density_kg_per_m3 >= kMinDensity_kg_per_m3 && density_kg_per_m3 <= kMaxDensity_kg_per_m3) return "";
+  std::ostringstream why;
+  why << "density " << density_kg_per_m3 << " kg/m^3 is outside " << kMinDensity_kg_per_m3 << " to "
+      << kMaxDensity_kg_per_m3
+      << " kg/m^3 (the lightest solids, aerogels, weigh about 1 kg/m^3 and the densest, osmium, 22 600; "
+         "wood 300-900): a typing error or a unit off by powers of ten";
+  return why.str();
+}
+
 namespace {
 
 // A member counts as vertical when its axis is within this angle of world z
@@ -32,6 +42,7 @@ constexpr double kGroundTolerance_m = 1e-9;
 // The fixed ground body is dense soil; its mass is never used (fixed bodies
 // have zero inverse mass) but add_box needs a positive density.
 constexpr double kGroundDensity_kg_per_m3 = 2000.0;
+
 
 [[noreturn]] void throw_input_error(const std::string& file, int line, const std::string& field,
                                     const std::string& message) {
@@ -114,6 +125,8 @@ Model build_model(const CaseDef& def_in) {
     if (!(m.density_kg_per_m3 > 0.0) || !std::isfinite(m.density_kg_per_m3))
       fail(m.line, item_path("materials", std::size_t(i)) + ".density_kg_per_m3",
            "expected a positive density in kg/m^3");
+    if (const std::string why = density_out_of_range(m.density_kg_per_m3); !why.empty())
+      fail(m.line, item_path("materials", std::size_t(i)) + ".density_kg_per_m3", why);
     return m.density_kg_per_m3;
   };
   auto check_unique_id = [&](const std::string& id, std::size_t upto_members, std::size_t upto_blocks, int line,

@@ -121,6 +121,18 @@ const Row kCaseRows[] = {
     // yaml-cpp 0.7 alone would loop here until memory ran out (fuzz_case_file).
     {"yaml_stray_comma", "", ",\n", "case.yaml", 1, "", "unexpected ','"},
     {"control_byte", "name: cli_errors\n", "name: cli\x01_errors\n", "case.yaml", 2, "", "control byte 0x01"},
+    // Densities no solid has (a typing error or a wrong unit): 1e-300 made
+    // every frequency overflow, so the stable-step check saw no limit and
+    // the run went on; 1e308 gave an infinite mass.
+    {"density_far_too_small", "density_kg_per_m3: 450", "density_kg_per_m3: 1.0e-300", "case.yaml", 8,
+     "materials[0].density_kg_per_m3", "is outside 0.1 to 1e+06 kg/m^3"},
+    {"density_far_too_large", "density_kg_per_m3: 450", "density_kg_per_m3: 1.0e308", "case.yaml", 8,
+     "materials[0].density_kg_per_m3", "is outside 0.1 to 1e+06 kg/m^3"},
+    // A stiffness whose modes overflow: no stable step can be estimated, and
+    // the run is refused instead of running without a limit (--force or not).
+    {"contact_stiffness_overflows", "ground_motion:\n",
+     "ground: {level_m: 0}\ncontact: {ground: {normal_stiffness_N_per_m: 1.0e308}}\nground_motion:\n", "case.yaml", 4,
+     "time.dt_s", "the stable time step cannot be estimated"},
 };
 
 // Faults in the record the case refers to (rec.AT2, read while loading).

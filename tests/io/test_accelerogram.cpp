@@ -278,6 +278,17 @@ std::vector<BadInput> bad_inputs() {
       {"at2_too_many", F::PeerAt2, kHead + "NPTS= 5, DT= .01 SEC\n" + five + "  .6E-02  .7E-02\n", 6, "NPTS",
        "holds 7 values; expected 5"},
       {"at2_header_only", F::PeerAt2, kHead + "NPTS= 5, DT= .01 SEC\n", 4, "NPTS", "holds 0 values"},
+      // Values no ground motion has (the bounds and their sources are in
+      // accelerogram.cpp): 1e300 g once ran to the end with infinite
+      // displacements; 25 g is above the 20 g bound, five times the
+      // largest acceleration ever recorded.
+      {"at2_absurd_value", F::PeerAt2, kHead + "NPTS= 5, DT= .01 SEC\n  .1E-02  .1E+301  .3E-02  .4E-02  .5E-02\n",
+       5, "value", "expected at most 20 g"},
+      {"at2_value_above_20_g", F::PeerAt2, kHead + "NPTS= 5, DT= .01 SEC\n  .1E-02  .2E-02  .3E-02  .4E-02\n -.25E+02\n",
+       6, "value", "got -25 g"},
+      {"at2_dt_far_too_small", F::PeerAt2, kHead + "NPTS= 5, DT= 1E-300 SEC\n" + five, 4, "DT",
+       "expected a sampling interval"},
+      {"at2_dt_far_too_large", F::PeerAt2, kHead + "NPTS= 5, DT= 10.0 SEC\n" + five, 4, "DT", "got 10 s"},
 
       {"two_missing", F::TwoColumn, "<missing>", 0, "file", "not found"},
       {"two_empty", F::TwoColumn, "", 0, "file", "empty"},
@@ -294,6 +305,11 @@ std::vector<BadInput> bad_inputs() {
       {"two_one_column", F::TwoColumn, "0.00 1\n0.01\n", 2, "acceleration", "found 1"},
       {"two_empty_field", F::TwoColumn, "0.00, 1\n0.01,,2\n", 2, "value", "empty field"},
       // 0.0200010 is a typo for 0.030: an interval of 1e-6 s among 0.01 s ones.
+      // cm/s^2 read as m/s^2 (the rows' unit here): 300 m/s^2 is 30.6 g.
+      {"two_gal_read_as_mps2", F::TwoColumn, "0.00 120\n0.01 -300\n0.02 80\n", 2, "acceleration",
+       "expected at most 20 g"},
+      // Times in ms read as s: intervals of 10 s.
+      {"two_times_in_ms", F::TwoColumn, "0 0.1\n10 0.2\n20 0.3\n", 2, "time", "got 10 s"},
       {"two_typo_time", F::TwoColumn, "0.00 1\n0.01 2\n0.02 3\n0.020001 4\n0.04 5\n", 4, "time", "mistyped"},
   };
 }
@@ -400,18 +416,19 @@ TEST(TwoColumn, UnitsGAndCentimetrePerSecondSquared) {
   // 1 g = 9.80665 m/s^2 (standard gravity, the PEER convention);
   // 1 cm/s^2 = 0.01 m/s^2.
   TempDir dir;
-  const fs::path file = dir.write("units.txt", "0 1\n0.01 -0.5\n0.02 250\n");
+  // (Values a ground motion can have in each unit: 2.5 g, 2.5 m/s^2, 2.5 cm/s^2.)
+  const fs::path file = dir.write("units.txt", "0 1\n0.01 -0.5\n0.02 2.5\n");
   const fq::AccelerationRecord in_g = fq::read_two_column(file, fq::AccelerationUnit::G);
   EXPECT_DOUBLE_EQ(in_g.acceleration_mps2[0], 9.80665);
   EXPECT_DOUBLE_EQ(in_g.acceleration_mps2[1], -0.5 * 9.80665);
-  EXPECT_DOUBLE_EQ(in_g.acceleration_mps2[2], 250.0 * 9.80665);
+  EXPECT_DOUBLE_EQ(in_g.acceleration_mps2[2], 2.5 * 9.80665);
   const fq::AccelerationRecord in_gal = fq::read_two_column(file, fq::AccelerationUnit::CentimetrePerSecond2);
   EXPECT_DOUBLE_EQ(in_gal.acceleration_mps2[0], 0.01);
   EXPECT_DOUBLE_EQ(in_gal.acceleration_mps2[1], -0.005);
-  EXPECT_DOUBLE_EQ(in_gal.acceleration_mps2[2], 2.5);
+  EXPECT_DOUBLE_EQ(in_gal.acceleration_mps2[2], 0.025);
   EXPECT_NE(in_gal.description.find("cm/s2"), std::string::npos) << in_gal.description;
   // The dispatcher's default unit is m/s^2.
-  EXPECT_DOUBLE_EQ(fq::read_accelerogram(file, fq::RecordFormat::TwoColumn).acceleration_mps2[2], 250.0);
+  EXPECT_DOUBLE_EQ(fq::read_accelerogram(file, fq::RecordFormat::TwoColumn).acceleration_mps2[2], 2.5);
 }
 
 TEST(TwoColumn, ReadsTheJmaKobeRecordWrittenAsTwoColumnsInGal) {

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "dem_core/linearised_network.h"
 #include "dem_core/simulation.h"
 #include "joint_test_util.h"
 #include "joints/joint_layout.h"
@@ -143,6 +144,31 @@ TEST(StableTimeStep, DampedLimitIsTheSmallestModeLimitNotTheStiffestModeWithTheS
   StiffestMode unused;
   EXPECT_LT(two_oscillators_limit(0.98 * estimate, 4000, &unused), 1e-2);
   EXPECT_GT(two_oscillators_limit(1.02 * estimate, 4000, &unused), 1.0);
+}
+
+// One spring k on a free mass m along x: omega = sqrt(k / m), the closed
+// form, and dt = 2 / omega. A stiffness whose products overflow (1e308 N/m)
+// has no limit that can be computed: NaN, never the "no stiffness" answer
+// (omega 0, dt infinite) that let such a case run unchecked.
+TEST(StableTimeStep, OneSpringGivesItsClosedFormAndAnOverflowGivesNaNNotNoLimit) {
+  BodyStore bodies;
+  BoxBodyDef box;
+  box.size_m = Vec3(0.1, 0.1, 0.1);
+  box.density_kg_per_m3 = 1000.0;  // m = 1 kg
+  const BodyId b = bodies.add_box(box);
+  auto spring = [&](double k) {
+    LinearisedSpring r;
+    r.b = b;
+    r.k_Npm = k;
+    r.gb = mass_scaled_gradient(bodies, b, Vec3::Zero(), Vec3::UnitX());
+    return std::vector<LinearisedSpring>{r};
+  };
+  const NetworkStableStep soft = network_stable_step(spring(1.0e4), bodies.size());
+  EXPECT_NEAR(soft.omega_radps, 100.0, 1e-9);
+  EXPECT_NEAR(soft.dt_crit_s, 0.02, 1e-13);
+  const NetworkStableStep overflow = network_stable_step(spring(1.0e308), bodies.size());
+  EXPECT_TRUE(std::isnan(overflow.omega_radps)) << overflow.omega_radps;
+  EXPECT_TRUE(std::isnan(overflow.dt_crit_s)) << overflow.dt_crit_s;
 }
 
 }  // namespace

@@ -58,6 +58,9 @@ struct NetworkStableStep {
   double dt_crit_s = std::numeric_limits<double>::infinity();
   // 2 / dt_crit_s: the frequency an undamped mode would need to set that
   // limit (rad/s); without dashpots exactly the top frequency. 0 = none.
+  // NaN (and dt_crit_s NaN) when a product overflowed (a stiffness of
+  // 1e308, a mass of 1e-300): no limit can be computed, which callers must
+  // not take for "no stiffness".
   double omega_radps = 0.0;
   // The term storing most energy (dt^2 k + 2 dt c weighted) in the mode
   // that sets the limit; rows.size() when none.

@@ -72,9 +72,20 @@ struct TimeDef {
 
 struct MaterialDef {
   std::string name;
-  double density_kg_per_m3 = 0.0;  // required, > 0 (0 = unset, refused)
+  double density_kg_per_m3 = 0.0;  // required, kMinDensity..kMaxDensity (0 = unset, refused)
   int line = 0;
 };
+
+// Densities a case may give (kg/m^3). Solids range from about 1 (the
+// lightest aerogels) to 22 600 (osmium); the bounds leave a decade below
+// and a factor 44 above, room for a scaled model whose mass similitude
+// raises the density, and refuse what only a typing error or a wrong unit
+// gives (a density of 1e-300 made every mode's frequency overflow, so the
+// stable-step check saw no limit and the run went on).
+inline constexpr double kMinDensity_kg_per_m3 = 0.1;
+inline constexpr double kMaxDensity_kg_per_m3 = 1.0e6;
+// Why `density_kg_per_m3` is refused, or "" when it lies in that range.
+std::string density_out_of_range(double density_kg_per_m3);
 
 // Rectangular cross-section of a member.
 struct SectionDef {
