@@ -120,4 +120,55 @@ TEST(ContactEnergy, DissipativeContactsBalanceTheLedger) {
       << " (former bound's first-order part zeta w dt D = " << zeta * w_dt * l.dissipated_J() << " J)";
 }
 
+// A cube landing on one corner, tilted (30 deg about x, then 20 deg about
+// y) so that the impact is eccentric and its corner slides while the
+// dashpots act: no gravity, 1.4 m/s straight down, k_n = 1e6 N/m, e = 0.5,
+// mu = 0.4 (a probe's scene). Coulomb sliding only dissipates, so no step
+// may take energy out of the friction book (the contacts' whole-step
+// losses; the ledger's own figure also takes back half of the current
+// step's work, contact_system.h). With the spring reset to the capped
+// force at the onset of sliding (until 2026-11-26), the book fell by
+// 0.0158 J, 3.6 % of the 0.441 J brought in: the spring gained c_t |v_t|
+// of force that no motion had worked in (linear_contact_law.h).
+struct FrictionSteps : fq::StepObserver {
+  const fq::ContactSystem* contacts = nullptr;
+  double previous_J = 0.0;
+  double most_negative_step_J = 0.0;
+  void on_sample(const fq::Simulation&) override {
+    const double now = contacts->friction_loss_whole_steps_J();
+    most_negative_step_J = std::min(most_negative_step_J, now - previous_J);
+    previous_J = now;
+  }
+};
+
+TEST(ContactEnergy, FrictionNeverCreatesEnergyInAnEccentricCornerImpact) {
+  const double size = 0.1;
+  const fq::Quat q = fq::Quat(Eigen::AngleAxisd(20.0 * M_PI / 180.0, Vec3::UnitY())) *
+                     fq::Quat(Eigen::AngleAxisd(30.0 * M_PI / 180.0, Vec3::UnitX()));
+  // The lowest corner 0.1 mm above the ground.
+  double lowest = 0.0;
+  for (int k = 0; k < 8; ++k) {
+    const Vec3 corner(k & 1 ? 0.5 : -0.5, k & 2 ? 0.5 : -0.5, k & 4 ? 0.5 : -0.5);
+    lowest = std::min(lowest, (q * (size * corner)).z());
+  }
+  fq::BodyStore store;
+  fq::test::add_box(store, Vec3::Constant(size), 450.0, Vec3(0.0, 0.0, 1e-4 - lowest), q);
+  store.velocity_mps[0] = Vec3(0.0, 0.0, -1.4);
+  fq::SimulationSettings s;
+  s.dt_s = 1e-5;
+  s.duration_s = 0.02;
+  s.gravity_mps2 = Vec3::Zero();
+  auto scene = fq::test::make_scene(std::move(store), s, [](fq::ContactSystem& c) {
+    c.set_ground(0.0, fq::test::params(1e6, 0.5, 0.4));
+  });
+  FrictionSteps obs;
+  obs.contacts = scene.contacts;
+  scene.sim->add_observer(&obs, 1);
+  scene.sim->run();
+  const double brought_in_J = 0.5 * scene.sim->bodies().mass_kg[0] * 1.4 * 1.4;
+  ASSERT_GT(scene.contacts->friction_loss_whole_steps_J(), 1e-3 * brought_in_J) << "the corner must slide";
+  // Round-off of sums of ~1e-3 J terms: 1e-12 of the energy in play.
+  EXPECT_GE(obs.most_negative_step_J, -1e-12 * brought_in_J) << "a step's friction created energy";
+}
+
 }  // namespace

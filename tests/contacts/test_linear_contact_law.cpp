@@ -120,6 +120,47 @@ TEST(LinearContactLaw, CoulombCapAndSlipWork) {
   EXPECT_NEAR(out.elastic_J, 0.5 * kn * d * d + 0.5 * cap * cap / c.tangential_stiffness_N_per_m, 1e-12);
 }
 
+TEST(LinearContactLaw, WithADashpotTheSpringRelaxesToTheCapAsAKelvinVoigtElementInSeriesWithTheSlider) {
+  // A point sticking with its shear spring at half the cap is suddenly
+  // driven at v = 1 m/s, far past the cap (c_t v >> mu F_n). The contact
+  // transmits exactly mu F_n, and the spring-dashpot element in series with
+  // the slider carries it: F_s + c_t u = F with u the element's own rate,
+  // whose step gives F_s(n) = F + alpha^n (F_s0 - F), alpha = c_t / (k_t dt
+  // + c_t) (linear_contact_law.h). The slider only dissipates: every step's
+  // friction loss is positive, also the first (the old reset of the spring
+  // to F made it negative there: the spring gained c_t v of force that no
+  // motion had worked in).
+  const double kn = 1e5, mu = 0.4, d = 1e-4, v = 1.0, dt = 1e-5;
+  const auto c = coefficients(kn, 0.5, mu);
+  fq::ContactLawInput in;
+  in.depth_m = d;
+  in.effective_mass_kg = 1.0;
+  in.dt_s = dt;
+  in.tangential_velocity_mps = Vec3(v, 0.0, 0.0);
+  const fq::ContactDashpots dashpots = fq::contact_dashpots(c, in);
+  const double kt = c.tangential_stiffness_N_per_m, ct = dashpots.tangential_Nspm;
+  const double cap = mu * kn * d;
+  ASSERT_GT(ct * v, 10.0 * cap);  // far past the cap from the first step
+  const double alpha = ct / (kt * dt + ct);
+  const double fs0 = -0.5 * cap;  // along x, opposing the coming motion
+  Vec3 shear(fs0, 0.0, 0.0);
+  double alpha_n = 1.0;
+  for (int n = 1; n <= 200; ++n) {
+    const fq::ContactLawOutput out = fq::linear_contact_law(c, in, dashpots, shear);
+    alpha_n *= alpha;
+    ASSERT_TRUE(out.sliding) << n;
+    EXPECT_NEAR(out.tangential_force_N.x(), -cap, 1e-12 * cap) << n;
+    const double expected = -cap + alpha_n * (fs0 + cap);
+    EXPECT_NEAR(shear.x(), expected, 1e-12 * cap) << n;
+    EXPECT_GT(out.friction_J, 0.0) << n;
+  }
+  // After many time constants c_t / k_t the spring holds the cap.
+  const double time_constant_steps = ct / (kt * dt);
+  ASSERT_LT(time_constant_steps, 500.0);
+  for (int n = 0; n < int(40 * time_constant_steps); ++n) (void)fq::linear_contact_law(c, in, dashpots, shear);
+  EXPECT_NEAR(shear.x(), -cap, 1e-9 * cap);
+}
+
 TEST(LinearContactLaw, SlidingDecisionAtTheCapIsThatOfTheRoot) {
   // The law decides |F_t| > mu F_n without taking |F_t| when |F_t|^2 is
   // surely below the cap (linear_contact_law.h). Reference: the Coulomb rule

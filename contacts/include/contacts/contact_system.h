@@ -246,6 +246,12 @@ class ContactSystem : public ForceProvider {
   // Cumulative losses through the current step, as reported to the ledger (J).
   double dissipated_viscous_J() const { return viscous_J_ - viscous_half_J_; }
   double dissipated_friction_J() const { return friction_J_ - friction_half_J_; }
+  // The friction losses of whole steps, through the current one (J): the
+  // ledger's figure before it takes back the half of the current step's
+  // work that falls after t_n. Coulomb sliding only dissipates, so this
+  // never decreases (the ledger's figure may dip by that half step where a
+  // sliding point's spring gains more than half the step's work).
+  double friction_loss_whole_steps_J() const { return friction_J_; }
 
  private:
   // The stiffest k_n, k_t and largest damping ratio of any coefficient set

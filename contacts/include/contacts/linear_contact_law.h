@@ -24,10 +24,23 @@
 //          removed, magnitude kept), then incremented by -k_t v_t dt. With
 //          the dashpot c_t = 2 zeta sqrt(k_t m_eff) the trial force is
 //          F_t = F_s - c_t v_t. If |F_t| > mu F_n the contact slides: F_t is
-//          scaled to mu F_n and the spring is reset to carry it, F_s = F_t
-//          (the spring holds what the cap allows; storing F_t + c_t v_t, as
-//          some history-based models do, would park the dashpot's share in
-//          the spring: see the sliding branch below).
+//          scaled to mu F_n along the trial force, and the spring follows
+//          the rheology of a Kelvin-Voigt element (spring k_t parallel to
+//          dashpot c_t) in series with the Coulomb slider: the element
+//          carries the capped force, F_s + c_t u = F_t with u its own rate
+//          of deformation, and the slider takes the rest of v_t. Over one
+//          step, from the rotated history F_s0,
+//            F_s = F_t + alpha (F_s0 - F_t),  alpha = c_t / (k_t dt + c_t),
+//          so the spring relaxes towards the cap with the element's time
+//          constant c_t / k_t (alpha^n ~ exp(-k_t t / c_t)), and without a
+//          dashpot (alpha = 0) it is reset to the cap at once, the
+//          Cundall-Strack rule. (Until 2026-11-26 the spring was reset to
+//          F_t with a dashpot too: at the onset of sliding it jumped from
+//          F_s0 to F_s0 + c_t |v_t|, energy no force had worked in, booked
+//          as negative friction loss: -3.4 % of the input in a probe's
+//          eccentric corner drop. Storing F_t + c_t v_t, as some
+//          history-based models do, parks the dashpot's share in the spring
+//          the same way.)
 // Energies (per evaluation, step dt):
 //   elastic   = 1/2 k_n d^2 + 1/2 |F_s|^2 / k_t (after the update)
 //   viscous   = (F_n - k_n d) d' dt  (normal dashpot; >= 0, includes the clamp loss)
@@ -122,6 +135,7 @@ struct ContactDashpots {
     fs = len > 0.0 ? Vec3(fs * (fs_len_old / len)) : Vec3::Zero();
   }
   const double elastic_t_old = kt > 0.0 ? 0.5 * fs.squaredNorm() / kt : 0.0;
+  const Vec3 fs_rotated = fs;  // F_s0 of the sliding branch
   const Vec3& vt = in.tangential_velocity_mps;
   fs -= (kt * dt) * vt;
   Vec3 ft = fs - ct * vt;
@@ -139,14 +153,19 @@ struct ContactDashpots {
   const bool surely_sticks = ft_sq < (cap * cap) * (1.0 - 1e-6);
   const double ft_len = surely_sticks ? 0.0 : std::sqrt(ft_sq);
   if (!surely_sticks && ft_len > cap) {
-    // Sliding: the contact transmits mu F_n along the trial force, and the
-    // spring is reset to carry exactly that force (Cundall-Strack). Storing
-    // fs = ft + c_t v_t instead would park the dashpot's share in the spring:
-    // energy that no elastic unloading gives back, and a jerk of c_t v_t when
-    // sliding stops.
+    // Sliding: the contact transmits mu F_n along the trial force. The
+    // spring-dashpot element in series with the slider carries it: the
+    // spring moves from F_s0 towards it by k_t dt / (k_t dt + c_t) (header).
+    // Without a dashpot that is all the way (Cundall-Strack), kept as a
+    // plain assignment so that such scenes keep their bits.
     out.sliding = true;
     ft = ft_len > 0.0 ? Vec3(ft * (cap / ft_len)) : Vec3::Zero();
-    fs = ft;
+    if (ct > 0.0) {
+      const double alpha = ct / (kt * dt + ct);
+      fs = ft + alpha * (fs_rotated - ft);
+    } else {
+      fs = ft;
+    }
   }
   io_shear_spring_N = fs;
   out.tangential_force_N = ft;
