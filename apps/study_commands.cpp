@@ -46,6 +46,8 @@ const char* kCompareHelp =
     "  DIR/comparison.csv, .md     peak drift ratio and verdict per storey, first joint\n"
     "                              failure, broken joints, energy balance error, wall time\n"
     "  DIR/first_storey_drift.png  first-storey drift ratio (x) against time, all cases\n"
+    "An earlier study's tables and figure in DIR are removed before the runs start.\n"
+    "A run that did not reach its end is standing or damaged only \"so far\".\n"
     "\n"
     "Options:\n"
     "  --out DIR            output folder (default out/compare)\n"
@@ -69,6 +71,7 @@ const char* kSweepHelp =
     "  DIR/collapse_scales.csv, .md    per case and record: the smallest scale at which a\n"
     "                                  storey collapsed, and the ordering of the cases\n"
     "  DIR/sweep.png                   peak first-storey drift ratio against PGA\n"
+    "An earlier study's tables and figure in DIR are removed before the runs start.\n"
     "\n"
     "Options:\n"
     "  --scales LIST        comma-separated amplitude scales (default 0.5,0.75,1,1.25,1.5,2);\n"
@@ -249,6 +252,16 @@ std::string outcome_status(const fq::BatchOutcome& o) {
   return o.exit_code == 130 ? "not run" : "failed";
 }
 
+// A storey's verdict as the tables print it. A run that did not reach its
+// end (stopped, unstable) has collapsed for good if it collapsed, but is
+// standing or damaged only "so far": the rest of the record might have
+// changed that.
+std::string verdict_text(const fq::CaseRunReport& r, const fq::StoreyOutcome& s) {
+  std::string text = fq::storey_verdict_name(s.verdict);
+  if (r.result.status != fq::RunStatus::Completed && s.verdict != fq::StoreyVerdict::Collapsed) text += " so far";
+  return text;
+}
+
 int worst_exit(const std::vector<fq::BatchOutcome>& outcomes) {
   int code = kExitOk;
   auto rank = [](int c) { return c == 0 ? 0 : c == 130 ? 1 : c == 1 ? 2 : c == 3 ? 3 : c == 2 ? 4 : 5; };
@@ -268,7 +281,7 @@ void print_done(std::size_t, const fq::BatchJob& job, const fq::BatchOutcome& ou
     line << fq::run_status_name(r.result.status) << ", t = " << fixed(r.result.simulated_s, 2) << " s in "
          << fixed(r.wall_s, 1) << " s wall";
     for (const fq::StoreyOutcome& s : r.storeys)
-      line << "; storey " << s.number << " " << fq::storey_verdict_name(s.verdict) << " (peak "
+      line << "; storey " << s.number << " " << verdict_text(r, s) << " (peak "
            << fixed(s.drift.peak_ratio_rad, 3) << " rad)";
     for (const std::string& w : r.warnings) line << "\n  warning: " << w;
   }
@@ -303,11 +316,31 @@ bool prepare_folder(const fs::path& out) {
   return true;
 }
 
-// Prepares the output folder and runs the jobs side by side, one line per
-// finished run; false when the folder cannot be made.
+// Removes the tables and figure an earlier study wrote into `out`, before
+// any run starts: a study that then fails or is stopped must not leave a
+// table of the earlier results beside its own runs' folders (a probe's
+// failed compare left comparison.md saying "completed"). False, with the
+// message printed, when one of them cannot be removed.
+bool remove_earlier_tables(const fs::path& out, const std::vector<const char*>& names) {
+  for (const char* name : names) {
+    std::error_code ec;
+    fs::remove(out / name, ec);
+    if (ec) {
+      std::cerr << "framequake: error: cannot remove the earlier study's " << (out / name).string() << ": "
+                << ec.message() << "\n";
+      return false;
+    }
+  }
+  return true;
+}
+
+// Prepares the output folder (and removes the earlier study's `tables`)
+// and runs the jobs side by side, one line per finished run; false when the
+// folder cannot be made or cleared.
 bool run_jobs(const StudyArgs& args, const std::vector<fq::BatchJob>& jobs, const std::atomic<bool>* stop_requested,
-              const std::string& what, std::vector<fq::BatchOutcome>& outcomes) {
-  if (!prepare_folder(args.out)) return false;
+              const std::string& what, const std::vector<const char*>& tables,
+              std::vector<fq::BatchOutcome>& outcomes) {
+  if (!prepare_folder(args.out) || !remove_earlier_tables(args.out, tables)) return false;
   fq::BatchOptions options;
   options.parallel_runs = args.jobs;
   options.allow_unstable_time_step = args.force;
@@ -358,7 +391,8 @@ int command_compare(int argc, char** argv, const std::atomic<bool>* stop_request
     return kExitBadInput;
   }
   std::vector<fq::BatchOutcome> outcomes;
-  if (!run_jobs(args, jobs, stop_requested, "comparing " + std::to_string(jobs.size()) + " case(s)", outcomes))
+  if (!run_jobs(args, jobs, stop_requested, "comparing " + std::to_string(jobs.size()) + " case(s)",
+                {"comparison.csv", "comparison.md", "first_storey_drift.png"}, outcomes))
     return kExitOutputFailed;
 
   const std::size_t storeys = max_storeys(outcomes);
@@ -392,7 +426,7 @@ int command_compare(int argc, char** argv, const std::atomic<bool>* stop_request
       }
     }
     for (std::size_t k = 0; k < storeys; ++k)
-      md << " | " << (o.ok && k < o.report.storeys.size() ? fq::storey_verdict_name(o.report.storeys[k].verdict) : "-");
+      md << " | " << (o.ok && k < o.report.storeys.size() ? verdict_text(o.report, o.report.storeys[k]) : "-");
     if (o.ok) {
       const fq::CaseRunReport& r = o.report;
       csv << "," << csv_number(r.first_joint_failure_time_s) << "," << r.joints.broken << "," << r.joint_count << ","
@@ -517,7 +551,8 @@ int command_sweep(int argc, char** argv, const std::atomic<bool>* stop_requested
       }
   }
   std::vector<fq::BatchOutcome> outcomes;
-  if (!run_jobs(args, jobs, stop_requested, "sweep of " + std::to_string(jobs.size()) + " run(s)", outcomes))
+  if (!run_jobs(args, jobs, stop_requested, "sweep of " + std::to_string(jobs.size()) + " run(s)",
+                {"sweep.csv", "collapse_scales.csv", "collapse_scales.md", "sweep.png"}, outcomes))
     return kExitOutputFailed;
 
   const std::size_t storeys = max_storeys(outcomes);

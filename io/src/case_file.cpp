@@ -30,6 +30,17 @@
 namespace fq {
 namespace {
 
+// Why `file` cannot be read as a file ("" when it can be opened): not
+// found, a folder, or something else (a device, a socket).
+std::string why_not_a_readable_file(const std::filesystem::path& file) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(file, ec);
+  if (ec || !std::filesystem::exists(status)) return "not found";
+  if (std::filesystem::is_directory(status)) return "is a folder, not a file";
+  if (!std::filesystem::is_regular_file(status)) return "is not a regular file";
+  return "";
+}
+
 constexpr double kRadPerDeg = std::numbers::pi / 180.0;
 
 // Compact decimal form for messages ("200", "0.02", "149.98"), 12 digits.
@@ -918,9 +929,8 @@ void parse_ground_motion(const Reader& r, const Field& f, CaseDef& def) {
         c.file = r.to_text(file);
         if (c.file.empty()) r.fail(file, "expected a file path, got an empty text");
         c.resolved_file = (c.file.is_absolute() ? c.file : case_folder / c.file).lexically_normal();
-        std::error_code ec;
-        if (!std::filesystem::is_regular_file(c.resolved_file, ec))
-          r.fail(file, "record file not found: " + c.resolved_file.string());
+        if (const std::string why = why_not_a_readable_file(c.resolved_file); !why.empty())
+          r.fail(file, "record file " + why + ": " + c.resolved_file.string());
 
         const Field format = r.require(n, "format", path, "peer_at2 or two_column");
         if (!parse_record_format(r.to_text(format), c.format))
@@ -1128,8 +1138,8 @@ class DocumentScan : public YAML::EventHandler {
 
 CaseDef load_case_file(const std::filesystem::path& file) {
   const std::string name = file.string();
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(file, ec)) throw InputError(name, 0, "", "case file not found");
+  if (const std::string why = why_not_a_readable_file(file); !why.empty())
+    throw InputError(name, 0, "", "case file " + why);
   std::ifstream in(file, std::ios::binary);
   if (!in) throw InputError(name, 0, "", "cannot open the case file for reading");
   std::stringstream buffer;

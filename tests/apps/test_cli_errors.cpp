@@ -116,6 +116,9 @@ const Row kCaseRows[] = {
      "unknown schema version 2"},
     {"missing_record_file", "file: rec.AT2", "file: missing.AT2", "case.yaml", 22, "ground_motion.components[0].file",
      "record file not found"},
+    // A folder is not "not found" (a probe's 'dir.AT2' was reported so).
+    {"record_file_is_a_folder", "file: rec.AT2", "file: .", "case.yaml", 22, "ground_motion.components[0].file",
+     "record file is a folder, not a file"},
     {"empty_case_file", "", "", "case.yaml", 0, "", "the file is empty"},
     {"two_yaml_documents", "", "framequake_case: 1\n---\nname: x\n", "case.yaml", 3, "", "one YAML document"},
     // yaml-cpp 0.7 alone would loop here until memory ran out (fuzz_case_file).
@@ -255,6 +258,16 @@ TEST(CliErrors, BinaryGarbageIsRefusedNamingTheFile) {
     EXPECT_NE(o.app.err.find(in_record ? "rec.AT2:" : "case.yaml:"), std::string::npos) << o.app.err;
     EXPECT_NE(o.app.err.find("expected"), std::string::npos) << o.app.err;
   }
+}
+
+TEST(CliErrors, ACaseFileThatIsAFolderIsCalledSo) {
+  TempDir dir;
+  fs::create_directories(dir.path() / "case.yaml");
+  const fs::path out = dir.path() / "out";
+  const auto r = run_app({"run", (dir.path() / "case.yaml").string(), "--out", out.string()}, dir.path());
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("case file is a folder, not a file"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
 }
 
 TEST(CliErrors, MissingCaseFile) {

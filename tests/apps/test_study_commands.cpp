@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
+#include <csignal>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -12,6 +14,7 @@
 #include <regex>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "app_process.h"
@@ -191,6 +194,60 @@ TEST(StudyCommands, SweepRunsNeverShareAFolder) {
 // with every column of the header, empty; an unstable run (the portal at
 // dt = 1e-3 s, forced) is no collapse of the structure and is listed under
 // the collapse table instead of setting its "smallest scale with collapse".
+// A study removes the tables and figure of an earlier study in its folder
+// before any run starts, so that a study that fails or is stopped cannot
+// leave them beside its own runs (a probe's failed compare left the old
+// comparison.md saying "completed"); one it cannot remove stops it before
+// anything runs (exit 3).
+TEST(StudyCommands, AStudyRemovesTheEarlierStudysTablesBeforeItRuns) {
+  TempDir dir;
+  const std::string portal = (kSource / "cases/demo_portal_frame.yaml").string();
+  const fs::path cmp = dir.path() / "cmp";
+  fs::create_directories(cmp);
+  std::ofstream(cmp / "comparison.md") << "stale: an earlier study\n";
+  std::ofstream(cmp / "first_storey_drift.png") << "stale figure";
+  const auto r = run_app({"compare", portal, "--window-length", "0.05", "--no-figure", "--out", cmp.string()},
+                         dir.path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(read_text(cmp / "comparison.md").find("stale"), std::string::npos);
+  EXPECT_FALSE(fs::exists(cmp / "first_storey_drift.png")) << "--no-figure must not leave the earlier figure";
+
+  const fs::path blocked = dir.path() / "blocked";
+  fs::create_directories(blocked / "collapse_scales.md" / "inside");  // a folder with content: cannot be removed
+  const auto b = run_app({"sweep", portal, "--scales", "1", "--window-length", "0.05", "--no-figure", "--out",
+                          blocked.string()},
+                         dir.path());
+  EXPECT_EQ(b.code, 3) << b.err;
+  EXPECT_NE(b.err.find("cannot remove the earlier study's"), std::string::npos) << b.err;
+  EXPECT_EQ(std::distance(fs::directory_iterator(blocked), fs::directory_iterator()), 1) << "a run started";
+}
+
+// A run stopped before its end (Ctrl-C) has not shown how it would stand
+// through the rest of the record: its verdicts read "so far" (collapsed
+// would be final). The portal demo runs on for 100 s past its record here,
+// so Ctrl-C always comes before the end.
+TEST(StudyCommands, AStoppedRunsVerdictIsOnlySoFar) {
+  TempDir dir;
+  std::string longer = read_text(kSource / "cases/demo_portal_frame.yaml");
+  const std::string dt = "  dt_s: 1.0e-5\n", record = "file: ground_motions/";
+  ASSERT_NE(longer.find(dt), std::string::npos);
+  longer.replace(longer.find(dt), dt.size(), dt + "  duration_s: 100.0\n");
+  longer.replace(longer.find(record), record.size(), "file: " + (kSource / "cases/ground_motions").string() + "/");
+  std::ofstream(dir.path() / "longer.yaml", std::ios::binary) << longer;
+  const fs::path cmp = dir.path() / "cmp";
+  fq_test::AppProcess app({"compare", (dir.path() / "longer.yaml").string(), "--no-figure", "--out", cmp.string()},
+                          dir.path());
+  for (int i = 0; i < 60000 && !fs::exists(cmp / "demo_portal_frame" / "case.pvd"); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  app.signal(SIGINT);
+  ASSERT_EQ(app.wait(), 130) << app.err();
+  const std::string md = read_text(cmp / "comparison.md");
+  EXPECT_NE(md.find("| demo_portal_frame | stopped |"), std::string::npos) << md;
+  EXPECT_NE(md.find("standing so far"), std::string::npos) << md;
+  EXPECT_NE(app.err().find("standing so far"), std::string::npos) << app.err();
+}
+
 TEST(StudyCommands, TablesCountOnlyRunsThatCompleted) {
   TempDir dir;
   const std::string portal = (kSource / "cases/demo_portal_frame.yaml").string();
