@@ -244,8 +244,10 @@ TEST(StudyCommands, AStoppedRunsVerdictIsOnlySoFar) {
   ASSERT_EQ(app.wait(), 130) << app.err();
   const std::string md = read_text(cmp / "comparison.md");
   EXPECT_NE(md.find("| demo_portal_frame | stopped |"), std::string::npos) << md;
-  EXPECT_NE(md.find("standing so far"), std::string::npos) << md;
-  EXPECT_NE(app.err().find("standing so far"), std::string::npos) << app.err();
+  // Standing or damaged, as far as it got (the portal yields near 0.7 s).
+  const std::regex so_far("(standing|damaged) so far");
+  EXPECT_TRUE(std::regex_search(md, so_far)) << md;
+  EXPECT_TRUE(std::regex_search(app.err(), so_far)) << app.err();
 }
 
 TEST(StudyCommands, TablesCountOnlyRunsThatCompleted) {
