@@ -212,6 +212,7 @@ RunArgs parse_run_args(int argc, char** argv, int first, const char* help, bool 
 // A run's warnings (io/case_runner.h, the kWarn* checks) as they arise; they are
 // also in summary.json.
 void print_warning(const std::string& text) { std::cerr << "framequake: warning: " << text << "\n"; }
+void print_note(const std::string& text) { std::cerr << "framequake: note: " << text << "\n"; }
 
 int command_run(int argc, char** argv) {
   const RunArgs args = parse_run_args(argc, argv, 2, kRunHelp, true);
@@ -234,6 +235,7 @@ int command_run(int argc, char** argv) {
   options.stop_requested = &g_stop_requested;
   options.checkpoint_every_s = args.checkpoint_every_s;
   options.on_warning = print_warning;
+  options.on_note = print_note;
   std::optional<fq::ProgressDisplay> progress;
   if (!args.quiet && isatty(fileno(stderr))) {
     progress.emplace(def.name, stderr);

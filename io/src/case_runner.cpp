@@ -575,6 +575,14 @@ CaseRunReport run_case(const CaseDef& case_def, const CaseRunOptions& options) {
   if (options.checkpoint_every_s) {
     if (!(*options.checkpoint_every_s > 0.0) || !std::isfinite(*options.checkpoint_every_s))
       throw InputError("", 0, "--checkpoint-every", "expected a positive number of simulated seconds");
+    // A checkpoint at every step writes the whole state 1e5 times a
+    // simulated second (a probe's 1e-9 s made a 0.04 s run take 5.5 s).
+    if (*options.checkpoint_every_s < def.time.dt_s * (1.0 - 1e-9)) {
+      std::ostringstream why;
+      why << "expected at least one time step (dt_s = " << def.time.dt_s << " s), got "
+          << *options.checkpoint_every_s << " s";
+      throw InputError("", 0, "--checkpoint-every", why.str());
+    }
     if (def.source_file.empty())
       throw InputError("", 0, "--checkpoint-every", "checkpoints need a case read from a file (resume reloads it)");
     if (method != Integrator::CentralDifference)
@@ -591,6 +599,14 @@ CaseRunReport run_case(const CaseDef& case_def, const CaseRunOptions& options) {
     meta->checkpoint_every_s = *options.checkpoint_every_s;
     meta->allow_unstable_time_step = options.allow_unstable_time_step;
     meta->case_name = def.name;
+  }
+  if (options.on_note) {
+    const double dt = sim.settings().dt_s;
+    for (const std::string& note :
+         {interval_rounding_note("output.frame_interval_s", output.frame_interval_s, dt),
+          interval_rounding_note("output.history_interval_s", output.history_interval_s, dt),
+          meta ? interval_rounding_note("--checkpoint-every", meta->checkpoint_every_s, dt) : std::string()})
+      if (!note.empty()) options.on_note(note);
   }
 
   std::unique_ptr<RunOutput> writer;
@@ -733,10 +749,18 @@ void describe_case(const CaseDef& def, std::ostream& out) {
   }
   OutputDef o = def.output;
   if (o.folder.empty()) o.folder = default_output_folder(def.name);
-  const double frames = std::floor(s.duration_s / o.frame_interval_s) + 1;
-  const double rows = std::floor(s.duration_s / o.history_interval_s) + 1;
-  out << "output      " << o.folder.string() << ": ~" << frames << " frames every " << o.frame_interval_s
-      << " s, ~" << rows << " history rows every " << o.history_interval_s << " s\n";
+  // What run writes: every whole number of steps (steps_per_interval),
+  // from the start, and the last state once more when it is off that grid.
+  const std::int64_t steps = sim.total_steps();
+  auto samples = [steps](std::int64_t every) { return steps / every + 1 + (steps % every != 0 ? 1 : 0); };
+  const std::int64_t frame_every = steps_per_interval(o.frame_interval_s, s.dt_s);
+  const std::int64_t history_every = steps_per_interval(o.history_interval_s, s.dt_s);
+  out << "output      " << o.folder.string() << ": " << samples(frame_every) << " frames every "
+      << double(frame_every) * s.dt_s << " s, " << samples(history_every) << " history rows every "
+      << double(history_every) * s.dt_s << " s\n";
+  for (const std::string& note : {interval_rounding_note("output.frame_interval_s", o.frame_interval_s, s.dt_s),
+                                  interval_rounding_note("output.history_interval_s", o.history_interval_s, s.dt_s)})
+    if (!note.empty()) out << "note        " << note << "\n";
 }
 
 }  // namespace fq

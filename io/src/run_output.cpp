@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <iomanip>
 #include <optional>
+#include <sstream>
 #include <stdexcept>
 #include <system_error>
 #include <utility>
@@ -103,11 +106,22 @@ void prepare_folder(const fs::path& folder) {
     throw std::runtime_error("cannot create output folder '" + (folder / kFramesDir).string() + "': " + ec.message());
 }
 
+}  // namespace
+
 std::int64_t steps_per_interval(double interval_s, double dt_s) {
   return std::max<std::int64_t>(1, std::llround(interval_s / dt_s));
 }
 
-}  // namespace
+std::string interval_rounding_note(const char* field, double interval_s, double dt_s) {
+  const std::int64_t every = steps_per_interval(interval_s, dt_s);
+  const double used_s = double(every) * dt_s;
+  if (std::fabs(used_s - interval_s) <= 1e-9 * interval_s) return "";
+  std::ostringstream note;
+  note << std::setprecision(6) << field << " = " << interval_s << " s is "
+       << (interval_s < dt_s ? "shorter than one time step" : "not a whole number of time steps") << " of " << dt_s
+       << " s: written every " << every << (every == 1 ? " step" : " steps") << " (" << used_s << " s)";
+  return note.str();
+}
 
 struct RunOutput::Impl {
   // Observers the simulation calls; they forward to Impl, whose address is
@@ -435,9 +449,12 @@ void RunOutput::Impl::write_summary(const Simulation& sim, const RunResult& resu
   w.key("history_rows").value(history.rows());
   w.key("event_rows").value(events.rows());
   w.key("output").begin_object();
-  w.key("frame_interval_s").value(def.frame_interval_s);
+  // The intervals used (whole steps), and those the case asked for.
+  w.key("frame_interval_s").value(double(frame_every) * sim.settings().dt_s);
+  w.key("frame_interval_requested_s").value(def.frame_interval_s);
   w.key("frame_every_steps").value(frame_every);
-  w.key("history_interval_s").value(def.history_interval_s);
+  w.key("history_interval_s").value(double(history_every) * sim.settings().dt_s);
+  w.key("history_interval_requested_s").value(def.history_interval_s);
   w.key("history_every_steps").value(history_every);
   w.key("vtk_binary").value(def.vtk_binary);
   w.end_object();

@@ -241,6 +241,47 @@ TEST(CliInfo, NegativeAxisPrintsWithoutNegativeZeros) {
   EXPECT_EQ(r.out.find("(-0 "), std::string::npos) << r.out;
 }
 
+// Output intervals are whole numbers of steps (io/run_output.h). info
+// counts the frames and rows run will write, and says, as run does, when
+// an interval was rounded; the run's own files are the reference. Base
+// case: 100 steps of 1e-4 s. Frames asked every 2.5 steps: every 3 (the
+// nearest, rounding half away from zero), steps 0, 3, ..., 99 and the last
+// state, step 100: 35. Rows asked every 0.1 step: every step, 101.
+TEST(CliInfo, InfoCountsTheFramesAndRowsRunWritesAndBothSayWhenAnIntervalWasRounded) {
+  TempDir dir;
+  const std::string text =
+      std::string(kBaseCase) + "output: {frame_interval_s: 0.00025, history_interval_s: 0.00001}\n";
+  std::ofstream(dir.path() / "case.yaml") << text;
+  std::ofstream(dir.path() / "rec.AT2") << kBaseRecord;
+  const auto info = run_app({"info", (dir.path() / "case.yaml").string()}, dir.path());
+  ASSERT_EQ(info.code, 0) << info.err;
+  EXPECT_NE(info.out.find(": 35 frames every 0.0003 s, 101 history rows every 0.0001 s"), std::string::npos)
+      << info.out;
+  EXPECT_NE(info.out.find("note        output.frame_interval_s = 0.00025 s is not a whole number of time steps"),
+            std::string::npos)
+      << info.out;
+  EXPECT_NE(info.out.find("output.history_interval_s = 1e-05 s is shorter than one time step"), std::string::npos)
+      << info.out;
+  const fs::path out = dir.path() / "out";
+  const auto run = run_app({"run", (dir.path() / "case.yaml").string(), "--out", out.string(), "--quiet"}, dir.path());
+  ASSERT_EQ(run.code, 0) << run.err;
+  EXPECT_NE(run.err.find("framequake: note: output.frame_interval_s = 0.00025 s"), std::string::npos) << run.err;
+  EXPECT_EQ(std::distance(fs::directory_iterator(out / "frames"), fs::directory_iterator()), 35);
+  std::ifstream history(out / "history.csv");
+  int lines = 0;
+  for (std::string line; std::getline(history, line);) ++lines;
+  EXPECT_EQ(lines, 1 + 101);
+  // A checkpoint interval shorter than a step is refused (a checkpoint at
+  // every step made a probe's 0.04 s run take 5.5 s).
+  const auto every_step = run_app({"run", (dir.path() / "case.yaml").string(), "--out", (dir.path() / "cp").string(),
+                                   "--quiet", "--checkpoint-every", "1e-9"},
+                                  dir.path());
+  EXPECT_EQ(every_step.code, 2);
+  EXPECT_NE(every_step.err.find("'--checkpoint-every': expected at least one time step"), std::string::npos)
+      << every_step.err;
+  EXPECT_FALSE(fs::exists(dir.path() / "cp"));
+}
+
 TEST(CliErrors, MalformedCaseFiles) {
   for (const Row& row : kCaseRows) check_row(row, run_case(substitute(kBaseCase, row), kBaseRecord));
 }

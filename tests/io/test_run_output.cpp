@@ -346,6 +346,23 @@ TEST(RunOutput, IntervalsAreRoundedToWholeSteps) {
   out.attach(*sim);
   EXPECT_EQ(out.frame_every_steps(), 20);
   EXPECT_EQ(out.history_every_steps(), 1);
+  // The rounding is said (run prints it as a note, info too), and the
+  // summary gives the interval used beside the one asked for.
+  const std::string frame_note = fq::interval_rounding_note("output.frame_interval_s", 0.0204, kDt_s);
+  EXPECT_NE(frame_note.find("not a whole number of time steps"), std::string::npos) << frame_note;
+  EXPECT_NE(frame_note.find("every 20 steps (0.02 s)"), std::string::npos) << frame_note;
+  const std::string row_note = fq::interval_rounding_note("output.history_interval_s", 0.0001, kDt_s);
+  EXPECT_NE(row_note.find("shorter than one time step"), std::string::npos) << row_note;
+  EXPECT_NE(row_note.find("every 1 step (0.001 s)"), std::string::npos) << row_note;
+  EXPECT_EQ(fq::interval_rounding_note("output.frame_interval_s", 0.02, kDt_s), "");  // whole steps: no note
+  sim->run();
+  out.finish(*sim, fq::RunResult{});
+  const std::string summary = read_text(def.folder / "summary.json");
+  const auto number = [&](const char* key) { return std::strtod(json_field(summary, key).c_str(), nullptr); };
+  EXPECT_DOUBLE_EQ(number("frame_interval_s"), 20 * kDt_s) << summary;
+  EXPECT_DOUBLE_EQ(number("frame_interval_requested_s"), 0.0204) << summary;
+  EXPECT_DOUBLE_EQ(number("history_interval_s"), kDt_s) << summary;
+  EXPECT_DOUBLE_EQ(number("history_interval_requested_s"), 0.0001) << summary;
 }
 
 TEST(RunOutput, FolderLayoutAndNoTemporariesLeft) {

@@ -43,6 +43,10 @@ struct CaseRunOptions {
   // time step before the first step, the ledger's checks after the last.
   // Every warning is also in the report and in summary.json.
   std::function<void(const std::string&)> on_warning;
+  // Called before the first step with notes that are not doubts about the
+  // results: an output interval rounded to whole steps (the interval used
+  // is also in summary.json). Not in the report's warnings.
+  std::function<void(const std::string&)> on_note;
 };
 
 struct StableTimeStep {

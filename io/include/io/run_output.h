@@ -46,6 +46,13 @@ class OutputError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// Steps between frames or rows for an interval: round(interval / dt), at
+// least 1 (the interval actually used is that many steps).
+std::int64_t steps_per_interval(double interval_s, double dt_s);
+// A note when that rounding changes the interval (by more than 1e-9 of
+// it), naming `field` and the interval used; "" when it does not.
+std::string interval_rounding_note(const char* field, double interval_s, double dt_s);
+
 class RunOutput {
  public:
   // Prepares `def.folder` (creates it and frames/). If the folder exists and
