@@ -16,6 +16,7 @@
 // and summary written).
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <csignal>
@@ -161,9 +162,15 @@ struct RunArgs {
 
 RunArgs parse_run_args(int argc, char** argv, int first, const char* help, bool run_options) {
   RunArgs a;
+  std::vector<std::string> seen;  // options that take a value, given once each
   for (int i = first; i < argc; ++i) {
     const std::string arg = argv[i];
     auto need_value = [&](const char* name) -> std::string {
+      // "--integrator rk4 ... --integrator verlet": which one was meant is
+      // not for us to guess (the last one used to win silently).
+      if (std::find(seen.begin(), seen.end(), name) != seen.end())
+        usage_error(std::string(name) + " is given twice; give it once", help);
+      seen.push_back(name);
       if (i + 1 >= argc) usage_error(std::string(name) + " needs a value", help);
       if (argv[i + 1][0] == '\0') usage_error(std::string(name) + " needs a value, got an empty one", help);
       return argv[++i];

@@ -330,9 +330,10 @@ void parse_time(const Reader& r, const Field& f, CaseDef& def) {
     if (!parse_integrator(r.to_text(*m), def.time.integrator))
       r.fail(*m, "expected one of " + integrator_names_list() + ", got " + describe(m->value));
   }
-  if (def.time.duration_s && def.time.dt_s >= *def.time.duration_s) {
+  // One step (dt_s == duration_s) is a run; less than one is not.
+  if (def.time.duration_s && def.time.dt_s > *def.time.duration_s) {
     const auto d = r.get(f.value, "dt_s", f.path);
-    r.fail(*d, "the time step must be smaller than duration_s");
+    r.fail(*d, "the time step must not exceed duration_s (a run takes at least one step)");
   }
 }
 

@@ -498,6 +498,9 @@ TEST(CliUsage, UsageErrorsExitTwoWithUsageOnStderr) {
       {{"run", c, "--threads", "0"}, "--threads expects a whole number"},
       {{"run", c, "--threads", "two"}, "--threads expects a whole number"},
       {{"run", c, c}, "unexpected argument"},
+      // Which of two values was meant is not guessed (the last won silently).
+      {{"run", c, "--integrator", "rk4", "--integrator", "velocity_verlet"}, "--integrator is given twice"},
+      {{"run", c, "--out", "a", "--out", "b"}, "--out is given twice"},
   };
   for (const UsageRow& row : rows) {
     std::string shown;

@@ -395,6 +395,12 @@ std::vector<BadCase> bad_cases() {
        3,
        "materials[0].density_kg_per_m3",
        {"expected a positive number", "'-450'"}},
+      {"DtAboveDuration",
+       "framequake_case: 1\ntime: {dt_s: 2.0, duration_s: 1.0}\nmaterials: [{name: s, density_kg_per_m3: 450}]\n" +
+           kBlock,
+       2,
+       "time.dt_s",
+       {"must not exceed duration_s"}},
       {"ZeroDt",
        "framequake_case: 1\ntime: {dt_s: 0, duration_s: 1.0}\nmaterials: [{name: s, density_kg_per_m3: 450}]\n" +
            kBlock,
@@ -583,6 +589,19 @@ TEST(CaseFile, MissingCaseFile) {
     EXPECT_EQ(e.line(), 0);
     EXPECT_NE(std::string(e.what()).find("not found"), std::string::npos);
   }
+}
+
+// A run of one step is a run: dt_s equal to duration_s loads and builds
+// (cases/README.md, "a run takes at least one step"); above it is refused
+// (the DtAboveDuration row of the bad-case table).
+TEST(CaseFile, DtEqualToDurationIsARunOfOneStep) {
+  TempDir dir;
+  const fs::path file = dir.write(
+      "one_step.yaml", "framequake_case: 1\ntime: {dt_s: 0.01, duration_s: 0.01}\n"
+                       "materials: [{name: spruce, density_kg_per_m3: 450}]\n" + kBlock);
+  const fq::Model m = fq::build_model(fq::load_case_file(file));
+  EXPECT_DOUBLE_EQ(m.settings.duration_s, 0.01);
+  EXPECT_DOUBLE_EQ(m.settings.dt_s, 0.01);
 }
 
 TEST(CaseFile, BuilderRejectsBlockBelowGround) {
