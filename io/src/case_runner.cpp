@@ -166,6 +166,63 @@ class CheckpointObserver final : public StepObserver {
   std::int64_t last_step_ = -1;
 };
 
+// How much a run will write, said once its first frame and row are on disk
+// (the first sample): the first frame's size times the frames to come,
+// plus the history. A warning when that exceeds the space left on the
+// output's disk (a run that fills it ends with an output error, exit 3); a
+// note above kNoteOutputBytes. Frames grow as joints break and contacts
+// appear, so it is an estimate. (A probe's duration_s of 1e5 s on the
+// falling-block demo would have written some 67 GB without a word.)
+constexpr double kNoteOutputBytes = 1e9;
+
+class OutputSizeCheck final : public StepObserver {
+ public:
+  using Say = std::function<void(const std::string&)>;
+  OutputSizeCheck(const RunOutput* writer, std::int64_t total_steps, Say note, Say warn)
+      : writer_(writer), total_steps_(total_steps), note_(std::move(note)), warn_(std::move(warn)) {}
+  void on_sample(const Simulation&) override {
+    if (done_) return;
+    done_ = true;
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    const double frame_bytes = double(fs::file_size(writer_->folder() / "frames" / "frame_000000.vtu", ec));
+    if (ec) return;
+    const double history_bytes = double(fs::file_size(writer_->folder() / "history.csv", ec));
+    if (ec) return;
+    auto samples = [this](std::int64_t every) {
+      return every > 0 ? double(total_steps_ / every + 1 + (total_steps_ % every != 0 ? 1 : 0)) : 0.0;
+    };
+    const double frames = samples(writer_->frame_every_steps());
+    const double rows = samples(writer_->history_every_steps());
+    const double estimate = frames * frame_bytes + rows * history_bytes;
+    const fs::space_info space = fs::space(writer_->folder(), ec);
+    auto amount = [](double bytes) {
+      std::ostringstream a;
+      a << std::setprecision(3) << (bytes >= 1e9 ? bytes / 1e9 : bytes / 1e6) << (bytes >= 1e9 ? " GB" : " MB");
+      return a.str();
+    };
+    std::ostringstream what;
+    what << std::setprecision(3) << "about " << amount(estimate) << " of output (" << std::llround(frames)
+         << " frames of about " << frame_bytes / 1e3 << " kB, " << std::llround(rows) << " history rows)";
+    if (!ec && estimate > double(space.available)) {
+      std::ostringstream w;
+      w << std::setprecision(3) << "this run will write " << what.str() << " into " << writer_->folder().string()
+        << ", whose disk has " << amount(double(space.available))
+        << " free: it will end with an output error when the disk is full; raise output.frame_interval_s or "
+           "history_interval_s, or free space";
+      if (warn_) warn_(w.str());
+    } else if (estimate > kNoteOutputBytes && note_) {
+      note_("this run will write " + what.str());
+    }
+  }
+
+ private:
+  const RunOutput* writer_;
+  std::int64_t total_steps_;
+  Say note_, warn_;
+  bool done_ = false;
+};
+
 // The joints' and contacts' cell blocks and history columns. The blocks
 // keep their numbers in every scene (cell_block 0 bodies, 1 springs, 2
 // contacts; docs/paraview.md): a scene with contacts but no joints gets an
@@ -205,6 +262,11 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
     report.warnings.push_back(text);
     if (options.on_warning) options.on_warning(text);
   };
+  // Registered after the output's observers, so it samples once the first
+  // frame and row are written; with the largest interval, so that it is
+  // asked at the start and the end only.
+  OutputSizeCheck size_check(&writer, sim.total_steps(), options.on_note, warn);
+  sim.add_observer(&size_check, std::max<std::int64_t>(1, sim.total_steps()));
   if (const double dt = sim.settings().dt_s; dt > scene.stable_time_step.dt_crit_s) {
     std::ostringstream w;
     w << std::setprecision(4) << "dt_s = " << dt << " s ";
