@@ -1200,6 +1200,22 @@ CaseDef load_case_file(const std::filesystem::path& file) {
                              ")");
       }
     }
+    // A tab in the indentation (YAML indents with spaces only) gives
+    // yaml-cpp's "illegal map value" or the like, which does not say so.
+    if (e.mark.line >= 0) {
+      std::size_t begin = 0;
+      for (int line = 0; line <= e.mark.line && begin != std::string::npos; ++line) {
+        const std::size_t end = text.find('\n', begin);
+        const std::string_view row(text.data() + begin, (end == std::string::npos ? text.size() : end) - begin);
+        const std::size_t first = row.find_first_not_of(" \t");
+        const std::string_view indent = row.substr(0, first == std::string_view::npos ? row.size() : first);
+        if (line >= e.mark.line - 1 && indent.find('\t') != std::string_view::npos)
+          throw InputError(name, line + 1, "",
+                           "YAML syntax error: " + e.msg +
+                               "; this line is indented with a tab character, and YAML indents with spaces only");
+        begin = end == std::string::npos ? end : end + 1;
+      }
+    }
     throw InputError(name, e.mark.line >= 0 ? e.mark.line + 1 : 0, "", "YAML syntax error: " + e.msg);
   }
   if (!root.IsDefined() || root.IsNull())

@@ -395,6 +395,14 @@ std::vector<BadCase> bad_cases() {
        3,
        "materials[0].density_kg_per_m3",
        {"expected a positive number", "'-450'"}},
+      // A tab in the indentation: yaml-cpp says "illegal map value" or the
+      // like; the message names the line and the tab.
+      {"TabIndentation",
+       "framequake_case: 1\ntime:\n\tdt_s: 1.0e-5\n  duration_s: 1.0\n"
+       "materials: [{name: spruce, density_kg_per_m3: 450}]\n" + kBlock,
+       3,
+       "",
+       {"YAML syntax error", "indented with a tab character, and YAML indents with spaces only"}},
       {"DtAboveDuration",
        "framequake_case: 1\ntime: {dt_s: 2.0, duration_s: 1.0}\nmaterials: [{name: s, density_kg_per_m3: 450}]\n" +
            kBlock,
