@@ -175,6 +175,20 @@ class CheckpointObserver final : public StepObserver {
 // falling-block demo would have written some 67 GB without a word.)
 constexpr double kNoteOutputBytes = 1e9;
 
+// A note when the run goes on after its ground motion has ended (a
+// duration_s longer than the record's window): from then on the ground is
+// still and the frame vibrates freely. "" otherwise.
+std::string ground_motion_end_note(const Simulation& sim) {
+  const GroundMotion& gm = sim.ground_motion();
+  if (gm.empty()) return "";
+  const double end_s = gm.end_time_s(), run_s = sim.settings().duration_s;
+  if (!(run_s > end_s + sim.settings().dt_s)) return "";
+  std::ostringstream note;
+  note << std::setprecision(6) << "the ground motion ends at t = " << end_s << " s; from there to the run's end at "
+       << run_s << " s the ground is still (free vibration)";
+  return note.str();
+}
+
 class OutputSizeCheck final : public StepObserver {
  public:
   using Say = std::function<void(const std::string&)>;
@@ -667,7 +681,8 @@ CaseRunReport run_case(const CaseDef& case_def, const CaseRunOptions& options) {
     for (const std::string& note :
          {interval_rounding_note("output.frame_interval_s", output.frame_interval_s, dt),
           interval_rounding_note("output.history_interval_s", output.history_interval_s, dt),
-          meta ? interval_rounding_note("--checkpoint-every", meta->checkpoint_every_s, dt) : std::string()})
+          meta ? interval_rounding_note("--checkpoint-every", meta->checkpoint_every_s, dt) : std::string(),
+          ground_motion_end_note(sim)})
       if (!note.empty()) options.on_note(note);
   }
 
@@ -821,7 +836,8 @@ void describe_case(const CaseDef& def, std::ostream& out) {
       << double(frame_every) * s.dt_s << " s, " << samples(history_every) << " history rows every "
       << double(history_every) * s.dt_s << " s\n";
   for (const std::string& note : {interval_rounding_note("output.frame_interval_s", o.frame_interval_s, s.dt_s),
-                                  interval_rounding_note("output.history_interval_s", o.history_interval_s, s.dt_s)})
+                                  interval_rounding_note("output.history_interval_s", o.history_interval_s, s.dt_s),
+                                  ground_motion_end_note(sim)})
     if (!note.empty()) out << "note        " << note << "\n";
 }
 

@@ -282,6 +282,33 @@ TEST(CliInfo, InfoCountsTheFramesAndRowsRunWritesAndBothSayWhenAnIntervalWasRoun
   EXPECT_FALSE(fs::exists(dir.path() / "cp"));
 }
 
+// A run longer than its ground motion goes on with the ground still; info
+// and run say when the motion ends (the base record: 6 samples 0.01 s
+// apart, 0.05 s), and say nothing when the run ends first.
+TEST(CliInfo, ARunLongerThanItsGroundMotionIsToldWhenTheMotionEnds) {
+  TempDir dir;
+  std::string text = kBaseCase;
+  const std::string duration = "  duration_s: 0.01\n";
+  ASSERT_NE(text.find(duration), std::string::npos);
+  std::ofstream(dir.path() / "short.yaml") << text;
+  text.replace(text.find(duration), duration.size(), "  duration_s: 0.1\n");
+  std::ofstream(dir.path() / "long.yaml") << text;
+  std::ofstream(dir.path() / "rec.AT2") << kBaseRecord;
+  const auto longer = run_app({"info", (dir.path() / "long.yaml").string()}, dir.path());
+  ASSERT_EQ(longer.code, 0) << longer.err;
+  EXPECT_NE(longer.out.find("note        the ground motion ends at t = 0.05 s; from there to the run's end at 0.1 s"),
+            std::string::npos)
+      << longer.out;
+  const auto shorter = run_app({"info", (dir.path() / "short.yaml").string()}, dir.path());
+  ASSERT_EQ(shorter.code, 0) << shorter.err;
+  EXPECT_EQ(shorter.out.find("ground motion ends"), std::string::npos) << shorter.out;
+  const auto run = run_app({"run", (dir.path() / "long.yaml").string(), "--out", (dir.path() / "out").string(),
+                            "--quiet"},
+                           dir.path());
+  ASSERT_EQ(run.code, 0) << run.err;
+  EXPECT_NE(run.err.find("framequake: note: the ground motion ends at t = 0.05 s"), std::string::npos) << run.err;
+}
+
 TEST(CliErrors, MalformedCaseFiles) {
   for (const Row& row : kCaseRows) check_row(row, run_case(substitute(kBaseCase, row), kBaseRecord));
 }
