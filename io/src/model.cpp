@@ -11,16 +11,6 @@
 
 namespace fq {
 
-std::string density_out_of_range(double density_kg_per_m3) {
-  if (density_kg_per_m3 >= kMinDensity_kg_per_m3 && density_kg_per_m3 <= kMaxDensity_kg_per_m3) return "";
-  std::ostringstream why;
-  why << "density " << density_kg_per_m3 << " kg/m^3 is outside " << kMinDensity_kg_per_m3 << " to "
-      << kMaxDensity_kg_per_m3
-      << " kg/m^3 (the lightest solids, aerogels, weigh about 1 kg/m^3 and the densest, osmium, 22 600; "
-         "wood 300-900): a typing error or a unit off by powers of ten";
-  return why.str();
-}
-
 namespace {
 
 // A member counts as vertical when its axis is within this angle of world z
