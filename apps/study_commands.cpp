@@ -69,7 +69,7 @@ const char* kSweepHelp =
     "  DIR/sweep.csv                   one row per run: scale, PGA, peak drift ratio and\n"
     "                                  verdict per storey, first failure, broken joints\n"
     "  DIR/collapse_scales.csv, .md    per case and record: the smallest scale at which a\n"
-    "                                  storey collapsed, and the ordering of the cases\n"
+    "                                  storey collapsed (from the runs that completed)\n"
     "  DIR/sweep.png                   peak first-storey drift ratio against PGA\n"
     "An earlier study's tables and figure in DIR are removed before the runs start.\n"
     "\n"
@@ -252,14 +252,24 @@ std::string outcome_status(const fq::BatchOutcome& o) {
   return o.exit_code == 130 ? "not run" : "failed";
 }
 
-// A storey's verdict as the tables print it. A run that did not reach its
-// end (stopped, unstable) has collapsed for good if it collapsed, but is
-// standing or damaged only "so far": the rest of the record might have
-// changed that.
+// A storey's verdict as the tables print it. A run stopped before its end
+// has collapsed for good if it collapsed, but is standing or damaged only
+// "so far": the rest of the record might have changed that. A run that
+// became unstable is not assessed: its drifts after the blow-up are the
+// arithmetic's, not the structure's (a probe's unstable portal read
+// "collapsed, 0.7583").
 std::string verdict_text(const fq::CaseRunReport& r, const fq::StoreyOutcome& s) {
+  if (r.result.status == fq::RunStatus::Unstable) return "not assessed (unstable)";
   std::string text = fq::storey_verdict_name(s.verdict);
   if (r.result.status != fq::RunStatus::Completed && s.verdict != fq::StoreyVerdict::Collapsed) text += " so far";
   return text;
+}
+
+// The verdict in the csv tables: the bare name, or not_assessed for an
+// unstable run (see verdict_text).
+std::string verdict_csv(const fq::CaseRunReport& r, const fq::StoreyOutcome& s) {
+  return r.result.status == fq::RunStatus::Unstable ? std::string("not_assessed")
+                                                    : std::string(fq::storey_verdict_name(s.verdict));
 }
 
 int worst_exit(const std::vector<fq::BatchOutcome>& outcomes) {
@@ -418,7 +428,7 @@ int command_compare(int argc, char** argv, const std::atomic<bool>* stop_request
       if (o.ok && k < o.report.storeys.size()) {
         const fq::StoreyOutcome& s = o.report.storeys[k];
         csv << "," << csv_number(s.drift.peak_ratio_rad) << "," << csv_number(s.drift.peak_ratio_x_rad) << ","
-            << fq::storey_verdict_name(s.verdict);
+            << verdict_csv(o.report, s);
         md << " | " << fixed(s.drift.peak_ratio_rad, 4);
       } else {
         csv << ",,,";
@@ -577,14 +587,15 @@ int command_sweep(int argc, char** argv, const std::atomic<bool>* stop_requested
         << fq::run_status_name(r.result.status);
     for (std::size_t k = 0; k < storeys; ++k) {
       if (k < r.storeys.size()) {
-        csv << "," << csv_number(r.storeys[k].drift.peak_ratio_rad) << ","
-            << fq::storey_verdict_name(r.storeys[k].verdict);
+        csv << "," << csv_number(r.storeys[k].drift.peak_ratio_rad) << "," << verdict_csv(r, r.storeys[k]);
         collapsed = collapsed || r.storeys[k].verdict == fq::StoreyVerdict::Collapsed;
       } else {
         csv << ",,";
       }
     }
-    csv << "," << (collapsed ? 1 : 0) << "," << csv_number(r.first_joint_failure_time_s) << "," << r.joints.broken
+    // Empty for an unstable run: not assessed (verdict_text).
+    csv << "," << (r.result.status == fq::RunStatus::Unstable ? "" : collapsed ? "1" : "0") << ","
+        << csv_number(r.first_joint_failure_time_s) << "," << r.joints.broken
         << "," << r.joint_count << "," << csv_number(r.energy_balance_error_relative) << "," << csv_number(r.wall_s)
         << "," << r.output_folder.string() << "\n";
   }
@@ -626,7 +637,9 @@ int command_sweep(int argc, char** argv, const std::atomic<bool>* stop_requested
       if (!ran) continue;
       cs << name << "," << record << "," << csv_number(stood) << "," << csv_number(fell) << "," << csv_number(pga)
          << "," << which << "\n";
-      md << "| " << name << " | " << record << " | " << (std::isnan(stood) ? "none" : fixed(stood, 2)) << " | "
+      md << "| " << name << " | " << record << " | "
+         << (std::isnan(largest_completed) ? std::string("-") : std::isnan(stood) ? std::string("none") : fixed(stood, 2))
+         << " | "
          << (!std::isnan(fell)                ? fixed(fell, 2)
              : std::isnan(largest_completed) ? std::string("no run completed")
                                              : "none up to " + fixed(largest_completed, 2))

@@ -124,7 +124,8 @@ def plot_sweep(folder):
     rows = read_csv(os.path.join(folder, "sweep.csv"))
     series = {}
     for row in rows:
-        if row.get("status") in ("failed", None, ""):
+        # An unstable run is not assessed: its drifts are the blow-up's.
+        if row.get("status") in ("failed", "unstable", None, ""):
             continue
         key = (row["case"], row["record"])
         series.setdefault(key, []).append(
