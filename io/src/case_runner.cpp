@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <optional>
+#include <fstream>
 #include <iomanip>
 #include <limits>
 #include <map>
@@ -699,8 +700,46 @@ CaseRunReport run_case(const CaseDef& case_def, const CaseRunOptions& options) {
   return execute(scene, *writer, options, meta ? &*meta : nullptr, def, storeys);
 }
 
+// The value of "key" in the folder's summary.json (a string without its
+// quotes, or a number as written), or "" when there is none.
+std::string summary_value(const std::filesystem::path& folder, const std::string& key) {
+  std::error_code ec;
+  const std::uintmax_t size = std::filesystem::file_size(folder / "summary.json", ec);
+  if (ec || size > (1u << 24)) return "";
+  std::ifstream in(folder / "summary.json", std::ios::binary);
+  if (!in) return "";
+  std::string text(std::size_t(size), '\0');
+  in.read(text.data(), std::streamsize(size));
+  if (in.gcount() != std::streamsize(size)) return "";
+  const std::string tag = "\"" + key + "\": ";
+  const std::size_t at = text.find(tag);
+  if (at == std::string::npos) return "";
+  std::size_t begin = at + tag.size();
+  if (begin < text.size() && text[begin] == '"') {
+    const std::size_t end = text.find('"', begin + 1);
+    return end == std::string::npos ? "" : text.substr(begin + 1, end - begin - 1);
+  }
+  std::size_t end = begin;
+  while (end < text.size() && text[end] != ',' && text[end] != '\n' && text[end] != '}') ++end;
+  return text.substr(begin, end - begin);
+}
+
 CaseRunReport resume_case(const std::filesystem::path& folder, const CaseRunOptions& options) {
   const std::filesystem::path file = folder / kCheckpointFileName;
+  // What the folder's summary says of the run, for a clear refusal: a run
+  // that completed has nothing to resume (resuming it rewrote its summary
+  // with the wall time of a no-op), and one stopped before its first step
+  // left no checkpoint (resume used to ask whether it had been started with
+  // --checkpoint-every).
+  const std::string status = summary_value(folder, "status");
+  if (status == "completed")
+    throw CheckpointError("the run in '" + folder.string() +
+                          "' completed (summary.json); there is nothing to resume");
+  std::error_code ec;
+  if (!std::filesystem::exists(file, ec) && status == "stopped" && summary_value(folder, "steps") == "0")
+    throw CheckpointError("the run in '" + folder.string() +
+                          "' was stopped before its first step, so it left no checkpoint; start it again with "
+                          "framequake run");
   const std::string payload = read_checkpoint_file(file);
   const std::string damaged = "checkpoint file '" + file.string() + "' is damaged or does not fit this case: ";
   StateReader in(payload);

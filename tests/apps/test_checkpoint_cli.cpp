@@ -161,6 +161,23 @@ TEST(CheckpointCli, BadCheckpointOrChangedCaseIsRefusedWithExitCode2) {
   // With the intact checkpoint back, the same folder resumes.
   write_text(ckpt, good);
   EXPECT_EQ(run_app({"resume", out.string(), "--quiet"}, f.dir.path()).code, 0);
+
+  // A completed run has nothing to resume: refused, its summary untouched
+  // (a probe's second resume rewrote it with the wall time of a no-op).
+  const std::string summary = read_text(out / "summary.json");
+  const auto again = run_app({"resume", out.string(), "--quiet"}, f.dir.path());
+  EXPECT_EQ(again.code, 2) << again.err;
+  EXPECT_NE(again.err.find("completed (summary.json); there is nothing to resume"), std::string::npos) << again.err;
+  EXPECT_TRUE(read_text(out / "summary.json") == summary);
+
+  // A run stopped before its first step left no checkpoint: the refusal
+  // says so instead of asking whether --checkpoint-every was given.
+  const fs::path early = f.dir.path() / "early";
+  fs::create_directories(early);
+  write_text(early / "summary.json", "{\n  \"status\": \"stopped\",\n  \"steps\": 0,\n  \"dt_s\": 1e-05\n}\n");
+  const auto e = run_app({"resume", early.string(), "--quiet"}, f.dir.path());
+  EXPECT_EQ(e.code, 2) << e.err;
+  EXPECT_NE(e.err.find("was stopped before its first step, so it left no checkpoint"), std::string::npos) << e.err;
 }
 
 TEST(CheckpointCli, BadIntervalOrMissingFolderIsAUsageError) {
