@@ -350,6 +350,24 @@ bool remove_earlier_tables(const fs::path& out, const std::vector<const char*>& 
 bool run_jobs(const StudyArgs& args, const std::vector<fq::BatchJob>& jobs, const std::atomic<bool>* stop_requested,
               const std::string& what, const std::vector<const char*>& tables,
               std::vector<fq::BatchOutcome>& outcomes) {
+  // Every run's folder is checked before the first run starts, so that a
+  // folder a run would refuse (a user's own files, a file in its place, a
+  // run named like one of the tables) stops the study with nothing run.
+  for (const fq::BatchJob& job : jobs) {
+    const std::string folder_name = job.output_folder.filename().string();
+    for (const char* table : tables)
+      if (folder_name == table) {
+        std::cerr << "framequake: error: the run '" << job.label << "' would write into " << job.output_folder.string()
+                  << ", the name of one of the study's tables; rename the case\n";
+        return false;
+      }
+    try {
+      (void)fq::check_output_folder(job.output_folder);
+    } catch (const std::exception& e) {
+      std::cerr << "framequake: error: " << e.what() << " (run '" << job.label << "'; nothing was run)\n";
+      return false;
+    }
+  }
   if (!prepare_folder(args.out) || !remove_earlier_tables(args.out, tables)) return false;
   fq::BatchOptions options;
   options.parallel_runs = args.jobs;

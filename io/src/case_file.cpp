@@ -217,7 +217,11 @@ class Reader {
         return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '-' ||
                c == '.';
       });
-      if (ok) return s;
+      // "." and ".." name folders of their own (a case named '.' wrote its
+      // run into the study's folder): at least one character not a dot.
+      const bool only_dots = s.find_first_not_of('.') == std::string::npos;
+      if (ok && !only_dots) return s;
+      if (ok) fail(f, "expected " + what + " with at least one letter, digit, '_' or '-', got " + describe(v));
     }
     fail(f, "expected " + what + " (letters, digits, '_', '-' or '.'), got " + describe(v));
   }

@@ -66,39 +66,47 @@ void remove_file_if_present(const fs::path& p) {
     throw std::runtime_error("cannot remove old output file '" + p.string() + "': " + ec.message());
 }
 
+}  // namespace
+
+bool check_output_folder(const fs::path& folder) {
+  std::error_code ec;
+  const fs::file_status st = fs::status(folder, ec);
+  if (!fs::exists(st)) return false;
+  if (!fs::is_directory(st))
+    throw std::runtime_error("output folder '" + folder.string() + "' exists and is not a folder");
+  // Empty, or holding only an empty frames/ (a run stopped between making
+  // the folders and writing case.pvd): nothing to protect.
+  bool empty = true;
+  for (const fs::directory_entry& e : fs::directory_iterator(folder, ec)) {
+    const bool empty_frames_dir = e.path().filename() == kFramesDir && e.is_directory() && fs::is_empty(e.path());
+    if (!empty_frames_dir) empty = false;
+  }
+  if (ec) throw std::runtime_error("cannot read output folder '" + folder.string() + "': " + ec.message());
+  if (empty) return false;
+  if (!fs::exists(folder / kPvdName) && !fs::exists(folder / kSummaryName))
+    throw std::runtime_error("output folder '" + folder.string() +
+                             "' is not empty and holds no previous framequake run (no case.pvd or "
+                             "summary.json); refusing to write into it: choose another folder or empty it");
+  return true;
+}
+
+namespace {
+
 // See the constructor's contract in run_output.h. Only files this class
 // writes are ever removed.
 void prepare_folder(const fs::path& folder) {
   std::error_code ec;
-  const fs::file_status st = fs::status(folder, ec);
-  if (fs::exists(st)) {
-    if (!fs::is_directory(st))
-      throw std::runtime_error("output folder '" + folder.string() + "' exists and is not a folder");
-    // Empty, or holding only an empty frames/ (a run stopped between making
-    // the folders and writing case.pvd): nothing to protect.
-    bool empty = true;
-    for (const fs::directory_entry& e : fs::directory_iterator(folder, ec)) {
-      const bool empty_frames_dir = e.path().filename() == kFramesDir && e.is_directory() && fs::is_empty(e.path());
-      if (!empty_frames_dir) empty = false;
+  if (check_output_folder(folder)) {
+    for (const char* name : {kPvdName, kSummaryName, kHistoryName, kEventsName, kCheckpointFileName}) {
+      remove_file_if_present(folder / name);
+      remove_file_if_present(detail::temporary_path_for(folder / name));
     }
-    if (ec) throw std::runtime_error("cannot read output folder '" + folder.string() + "': " + ec.message());
-    if (!empty) {
-      const bool previous_run = fs::exists(folder / kPvdName) || fs::exists(folder / kSummaryName);
-      if (!previous_run)
-        throw std::runtime_error("output folder '" + folder.string() +
-                                 "' is not empty and holds no previous framequake run (no case.pvd or "
-                                 "summary.json); refusing to write into it: choose another folder or empty it");
-      for (const char* name : {kPvdName, kSummaryName, kHistoryName, kEventsName, kCheckpointFileName}) {
-        remove_file_if_present(folder / name);
-        remove_file_if_present(detail::temporary_path_for(folder / name));
-      }
-      const fs::path frames = folder / kFramesDir;
-      if (fs::is_directory(fs::symlink_status(frames, ec))) {
-        std::vector<fs::path> old;
-        for (const fs::directory_entry& e : fs::directory_iterator(frames))
-          if (is_frame_file_name(e.path().filename().string())) old.push_back(e.path());
-        for (const fs::path& p : old) remove_file_if_present(p);
-      }
+    const fs::path frames = folder / kFramesDir;
+    if (fs::is_directory(fs::symlink_status(frames, ec))) {
+      std::vector<fs::path> old;
+      for (const fs::directory_entry& e : fs::directory_iterator(frames))
+        if (is_frame_file_name(e.path().filename().string())) old.push_back(e.path());
+      for (const fs::path& p : old) remove_file_if_present(p);
     }
   }
   fs::create_directories(folder / kFramesDir, ec);

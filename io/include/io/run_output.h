@@ -53,6 +53,13 @@ std::int64_t steps_per_interval(double interval_s, double dt_s);
 // it), naming `field` and the interval used; "" when it does not.
 std::string interval_rounding_note(const char* field, double interval_s, double dt_s);
 
+// Whether RunOutput would accept `folder`, without touching it: false when
+// it does not exist or is empty, true when it holds a previous run (which
+// would be replaced); throws std::runtime_error naming the folder when it
+// would be refused (not a folder, or not empty and holding no run). Lets a
+// study check every run's folder before the first run starts.
+bool check_output_folder(const std::filesystem::path& folder);
+
 class RunOutput {
  public:
   // Prepares `def.folder` (creates it and frames/). If the folder exists and
