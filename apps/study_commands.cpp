@@ -84,7 +84,10 @@ const char* kSweepHelp =
     "  --window-length S    use only S record seconds of the ground-motion window\n"
     "  --force              run even if dt_s exceeds the estimated stable time step\n"
     "  --no-figure          write the tables only\n"
-    "  --help               this text\n";
+    "  --help               this text\n"
+    "\n"
+    "Exit codes: 0 all runs completed and everything was written; 1 a run became\n"
+    "unstable; 2 bad input (nothing run); 3 output failed; 130 interrupted (143 by SIGTERM).\n";
 
 [[noreturn]] void usage_error(const std::string& message, const char* help) {
   std::cerr << "framequake: " << message << "\n\n" << help;
