@@ -352,7 +352,11 @@ int command_info(int argc, char** argv) {
 }
 
 // Offscreen animation of finished runs: everything lives in render/.
-int command_render(int argc, char** argv) { return fq::render::render_command(argc, argv, 2); }
+int command_render(int argc, char** argv) {
+  install_stop_handlers();
+  const int code = fq::render::render_command(argc, argv, 2, &g_stop_requested);
+  return code == kExitInterrupted ? interrupted_exit_code() : code;
+}
 
 }  // namespace
 

@@ -82,6 +82,11 @@ bool HeadlessDisplay::ensure(std::string& out_error) {
     // Child: the server must not outlive us, and must not write on our terminal.
     prctl(PR_SET_PDEATHSIG, SIGTERM);
     if (getppid() != parent) _exit(127);
+    // Its own process group: a Ctrl-C (or `timeout`'s signal) goes to the
+    // terminal's whole foreground group, and would end the server before
+    // the render stops cleanly and removes its unfinished animation (X
+    // connection broken, .part left). It still ends with us (PDEATHSIG).
+    setpgid(0, 0);
     const int devnull = open("/dev/null", O_RDWR);
     if (devnull >= 0) {
       dup2(devnull, 0);

@@ -37,13 +37,15 @@ const char* const kRenderHelp =
     "  --size WxH       pixels of each run's panel (default 800x600)\n"
     "  --help           this text\n"
     "\n"
-    "Exit codes: 0 done, 2 bad usage or run folder, 3 output or display failed.\n";
+    "Exit codes: 0 done, 2 bad usage or run folder, 3 output or display failed,\n"
+    "130 stopped by Ctrl-C (143 by SIGTERM; the unfinished animation is removed).\n";
 
 namespace {
 
 constexpr int kExitOk = 0;
 constexpr int kExitBadInput = 2;
 constexpr int kExitOutputFailed = 3;
+constexpr int kExitInterrupted = 130;  // the command line makes it 143 for SIGTERM
 
 struct Args {
   std::vector<std::filesystem::path> runs;
@@ -123,10 +125,11 @@ Args parse(int argc, char** argv, int first) {
 
 }  // namespace
 
-int render_command(int argc, char** argv, int first) {
+int render_command(int argc, char** argv, int first, const std::atomic<bool>* stop_requested) {
   Args args;
   try {
     args = parse(argc, argv, first);
+    args.options.stop_requested = stop_requested;
   } catch (const UsageError& e) {
     std::cerr << "framequake: " << e.message << "\n\n" << kRenderHelp;
     return kExitBadInput;
@@ -147,6 +150,9 @@ int render_command(int argc, char** argv, int first) {
   RenderReport report;
   try {
     report = render_runs(runs, args.options);
+  } catch (const RenderStopped& e) {
+    std::cerr << "framequake: render " << e.what() << "\n";
+    return kExitInterrupted;
   } catch (const RenderInputError& e) {
     std::cerr << "framequake: error: " << e.what() << "\n";
     return kExitBadInput;

@@ -15,6 +15,9 @@
 #include <vtkDataArray.h>
 
 #include <array>
+#include <thread>
+#include <csignal>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <cstdlib>
@@ -352,6 +355,24 @@ TEST(RenderRun, BadUsageEndsWithAClearMessageAndWritesNothing) {
   EXPECT_NE(err.find(".gif or .mp4"), std::string::npos) << err;
   EXPECT_FALSE(fs::exists(dir.path() / "a.avi"));
   EXPECT_FALSE(fs::exists(run / "animation.gif"));
+}
+
+// Ctrl-C (or SIGTERM) during a render stops it between frames: exit 130
+// (143), and the unfinished animation's FILE.part is removed (a probe found
+// it left, 710 KB, and the private Xvfb killed by the same Ctrl-C before
+// the render could clean up). 1001 frames take seconds at any size, so the
+// signal 1 s in comes before the end.
+TEST(RenderRun, CtrlCStopsARenderAndLeavesNoUnfinishedAnimation) {
+  fq_test::TempDir dir;
+  const fs::path run = run_case(dir.path(), "many", "0.001", "1.0");
+  const fs::path gif = dir.path() / "stopped.gif";
+  fq_test::AppProcess app({"render", run.string(), "--to", gif.string(), "--size", "160x120"}, dir.path());
+  std::this_thread::sleep_for(std::chrono::milliseconds(1000));
+  app.signal(SIGINT);
+  ASSERT_EQ(app.wait(), 130) << app.err();
+  EXPECT_NE(app.err().find("no animation was written"), std::string::npos) << app.err();
+  EXPECT_FALSE(fs::exists(gif));
+  EXPECT_FALSE(fs::exists(fs::path(gif).concat(".part")));
 }
 
 TEST(RenderRun, Mp4ThroughFfmpegHasOneFramePerOutputFrame) {

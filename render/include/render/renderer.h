@@ -12,6 +12,8 @@
 #pragma once
 
 #include <array>
+#include <stdexcept>
+#include <atomic>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -51,6 +53,16 @@ struct RenderOptions {
   int panel_height_px = 600;
   double frames_per_second = 10.0;
   int every = 1;  // use every n-th output frame
+  // Checked before each frame; when it reads true, render_runs throws
+  // RenderStopped and the unfinished animation file is removed (Ctrl-C,
+  // SIGTERM). PNG frames already written stay.
+  const std::atomic<bool>* stop_requested = nullptr;
+};
+
+// render_runs was stopped through RenderOptions::stop_requested.
+class RenderStopped : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
 };
 
 struct RenderReport {
