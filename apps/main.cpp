@@ -308,6 +308,7 @@ int command_resume(int argc, char** argv) {
   fq::CaseRunOptions options;
   options.stop_requested = &g_stop_requested;
   options.on_warning = print_warning;
+  options.on_note = print_note;
   std::optional<fq::ProgressDisplay> progress;
   if (!quiet && isatty(fileno(stderr))) {
     progress.emplace(std::filesystem::path(folder).filename().string(), stderr);

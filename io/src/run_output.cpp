@@ -137,11 +137,15 @@ struct RunOutput::Impl {
   // A write that fails in the step loop (std::runtime_error from a writer)
   // becomes an OutputError, which ends the run: the command line reports
   // it as an output failure (exit 3), not as an internal error.
-  struct HistoryObserver final : StepObserver {
-    explicit HistoryObserver(Impl* o) : owner(o) {}
+  // One type for both: `frames` picks what it writes.
+  struct WritingObserver final : StepObserver {
+    WritingObserver(Impl* o, bool writes_frames) : owner(o), frames(writes_frames) {}
     void on_sample(const Simulation& sim) override {
       try {
-        owner->sample_history(sim);
+        if (frames)
+          owner->write_frame(sim);
+        else
+          owner->sample_history(sim);
       } catch (const OutputError&) {
         throw;
       } catch (const std::runtime_error& e) {
@@ -149,19 +153,7 @@ struct RunOutput::Impl {
       }
     }
     Impl* owner;
-  };
-  struct FrameObserver final : StepObserver {
-    explicit FrameObserver(Impl* o) : owner(o) {}
-    void on_sample(const Simulation& sim) override {
-      try {
-        owner->write_frame(sim);
-      } catch (const OutputError&) {
-        throw;
-      } catch (const std::runtime_error& e) {
-        throw OutputError(e.what());
-      }
-    }
-    Impl* owner;
+    bool frames;
   };
 
   Impl(const OutputDef& d, std::string name)
@@ -196,8 +188,8 @@ struct RunOutput::Impl {
   detail::EventCsvWriter events;
   detail::PvdCollection pvd;
   std::vector<std::pair<std::string, std::string>> extra_fields;
-  HistoryObserver history_observer{this};
-  FrameObserver frame_observer{this};
+  WritingObserver history_observer{this, false};
+  WritingObserver frame_observer{this, true};
   std::int64_t frame_every = 0;
   std::int64_t history_every = 0;
   std::int64_t last_frame_step = -1;

@@ -306,6 +306,7 @@ TEST(StudyCommands, AStoppedRunsVerdictIsOnlySoFar) {
   for (std::string line; std::getline(lines, line); ++rows) EXPECT_EQ(fields(line), fields(header)) << line;
   EXPECT_EQ(rows, 2);
   EXPECT_NE(csv.find("demo_falling_block,not run"), std::string::npos) << csv;
+  EXPECT_NE(md.find("demo_falling_block: not run: stopped on request (Ctrl-C or SIGTERM)"), std::string::npos) << md;
 }
 
 // The collapse table counts only runs that completed: an unstable run is
