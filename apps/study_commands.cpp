@@ -170,7 +170,27 @@ void shorten_window(fq::CaseDef& def, double length_s) {
   if (!def.ground_motion)
     throw fq::InputError(def.source_file.string(), 0, "ground_motion",
                          "--window-length given but the case has no ground motion");
-  def.ground_motion->window_length_s = std::min(def.ground_motion->window_length_s, length_s);
+  fq::GroundMotionDef& gm = *def.ground_motion;
+  // The window the case would use: window_length_s, or to the end of the
+  // shortest record (no longer than a record's remaining seconds).
+  double window_s = gm.window_length_s;
+  for (const fq::GroundMotionComponentDef& c : gm.components)
+    window_s = std::min(window_s, c.record.duration_s() - gm.window_start_s);
+  if (length_s >= window_s)
+    std::cerr << "framequake: note: --window-length " << length_s << " s is not shorter than the window of '"
+              << def.name << "' (" << window_s << " record s); its whole window is used\n";
+  // An option that leaves less than one step is the option's fault, named
+  // as such (it was reported at the case file's ground_motion line).
+  if (length_s * gm.time_scale < def.time.dt_s) {
+    std::ostringstream why;
+    why << "expected at least one time step: " << length_s << " record s at the time scale " << gm.time_scale
+        << " of '" << def.name << "' is " << length_s * gm.time_scale << " s, less than its dt_s = " << def.time.dt_s
+        << " s";
+    throw fq::InputError("", 0, "--window-length", why.str());
+  }
+  // (Also when it is not shorter: a sweep's --record may be longer than the
+  // case's own record, and the option limits its window too.)
+  gm.window_length_s = std::min(gm.window_length_s, length_s);
   // A quick look: a case that runs on after its motion (time.duration_s)
   // stops with the shortened motion too.
   if (def.time.duration_s) {

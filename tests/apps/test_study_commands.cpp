@@ -309,6 +309,20 @@ TEST(StudyCommands, AStoppedRunsVerdictIsOnlySoFar) {
   EXPECT_NE(md.find("demo_falling_block: not run: stopped on request (Ctrl-C or SIGTERM)"), std::string::npos) << md;
 }
 
+// --window-length longer than a case's own window keeps that window, and
+// says so (it was capped without a word).
+TEST(StudyCommands, AWindowLengthLongerThanTheCasesWindowIsNoted) {
+  TempDir dir;
+  const auto r = run_app({"compare", (kSource / "cases/demo_portal_frame.yaml").string(), "--window-length", "200",
+                          "--no-figure", "--out", (dir.path() / "cmp").string()},
+                         dir.path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("note: --window-length 200 s is not shorter than the window of 'demo_portal_frame' (3 record "
+                       "s); its whole window is used"),
+            std::string::npos)
+      << r.err;
+}
+
 // The collapse table counts only runs that completed: an unstable run is
 // listed under it, not assessed. (A run failing at its folder, the first
 // half of this test until 2026-11-26, is now refused before any run:
@@ -411,6 +425,9 @@ TEST(StudyCommands, BadInputIsRefusedBeforeAnythingIsWritten) {
        "demo_falling_block.yaml:59: field 'ground_motion.window_start_s': the window starts at 7.6"},
       {{"compare", "--out", out.string()}, "missing CASE"},
       {{"compare", portal, "--window-length", "-1", "--out", out.string()}, "--window-length expects a positive number"},
+      // Less than one step: the option is named, not the case's line.
+      {{"compare", portal, "--window-length", "1e-9", "--out", out.string()},
+       "option '--window-length': expected at least one time step"},
       {{"sweep", portal, "--scales", "1,x", "--out", out.string()}, "--scales expects a positive number, got 'x'"},
       {{"sweep", portal, "--record", (dir.path() / "no.AT2").string(), "--out", out.string()}, "no.AT2"},
       {{"sweep", portal, "--jobs", "0", "--out", out.string()}, "--jobs expects a whole number"},
