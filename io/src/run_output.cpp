@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <fstream>
 #include <iomanip>
 #include <optional>
 #include <sstream>
@@ -68,6 +69,29 @@ void remove_file_if_present(const fs::path& p) {
 
 }  // namespace
 
+namespace {
+// The first 4 KiB of `file` ("" when it cannot be read).
+std::string file_head(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::string head(4096, '\0');
+  in.read(head.data(), std::streamsize(head.size()));
+  head.resize(std::size_t(std::max<std::streamsize>(0, in.gcount())));
+  return head;
+}
+
+// A run of ours, by its files' content and not their names alone (a user's
+// own summary.json once let a run replace the history.csv beside it): a
+// summary.json written by framequake, or a case.pvd collection whose
+// frames (if any yet) are ours.
+bool holds_framequake_run(const fs::path& folder) {
+  if (file_head(folder / kSummaryName).find("\"program\": \"framequake\"") != std::string::npos) return true;
+  const std::string pvd = file_head(folder / kPvdName);
+  if (pvd.find("<VTKFile type=\"Collection\"") == std::string::npos) return false;
+  const std::size_t file_attr = pvd.find("file=\"");
+  return file_attr == std::string::npos || pvd.compare(file_attr, 20, "file=\"frames/frame_") == 0;
+}
+}  // namespace
+
 bool check_output_folder(const fs::path& folder) {
   std::error_code ec;
   const fs::file_status st = fs::status(folder, ec);
@@ -83,10 +107,11 @@ bool check_output_folder(const fs::path& folder) {
   }
   if (ec) throw std::runtime_error("cannot read output folder '" + folder.string() + "': " + ec.message());
   if (empty) return false;
-  if (!fs::exists(folder / kPvdName) && !fs::exists(folder / kSummaryName))
+  if (!holds_framequake_run(folder))
     throw std::runtime_error("output folder '" + folder.string() +
                              "' is not empty and holds no previous framequake run (no case.pvd or "
-                             "summary.json); refusing to write into it: choose another folder or empty it");
+                             "summary.json written by framequake); refusing to write into it: choose another folder "
+                             "or empty it");
   return true;
 }
 

@@ -98,13 +98,20 @@ def plot_compare(folder):
             continue  # a case without columns has no storeys to draw
         t, drift = read_history_columns(os.path.join(out, "history.csv"),
                                         ["time_s", "storey1_drift_ratio_x_rad"])
-        label = "%s (storey 1: %s)" % (row["case"], row.get("storey1_verdict", "?"))
+        verdict = row.get("storey1_verdict", "?")
+        if row.get("status") == "unstable":
+            verdict = "not assessed (unstable)"
+        elif row.get("status") != "completed" and verdict != "collapsed":
+            verdict += " so far"  # stopped before the end of its record
+        label = "%s (storey 1: %s)" % (row["case"], verdict)
         ax.plot(t, drift, color=COLOURS[k % len(COLOURS)], lw=1.0, label=label)
         limit = limit or collapse_limit(os.path.join(out, "summary.json"))
     if limit:
         for sign in (1, -1):
             ax.axhline(sign * limit, color="0.4", ls="--", lw=0.8)
-        ax.text(ax.get_xlim()[0], limit, " collapse limit %.2f rad" % limit, va="bottom", fontsize=8, color="0.3")
+        # At the right end: the legend sits at the upper left.
+        ax.text(ax.get_xlim()[1], limit, "collapse limit %.2f rad " % limit, va="bottom", ha="right", fontsize=8,
+                color="0.3")
     peak = max([abs(number(r.get("storey1_peak_drift_ratio_x_rad"))) for r in rows] + [0.0])
     if limit and peak > 3 * limit:
         ax.set_ylim(-3 * limit, 3 * limit)  # a fallen storey would flatten the others' traces

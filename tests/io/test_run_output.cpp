@@ -640,6 +640,26 @@ TEST(RunOutput, RefusesFolderWithForeignFilesAndLeavesItUntouched) {
   EXPECT_EQ(read_text(folder / "photos" / "frame_000000.vtu"), "not ours\n");
 }
 
+// A folder is taken for an earlier run by its files' content, not their
+// names: a user's own summary.json or case.pvd (another program's) does
+// not make the run replace the history.csv beside them (a probe's did).
+TEST(RunOutput, RefusesAFolderWhoseSummaryOrPvdIsNotFramequakes) {
+  const fs::path folder = fresh_folder("foreign_summary");
+  fs::create_directories(folder);
+  { std::ofstream(folder / "summary.json") << "{\"my\": \"own summary\"}\n"; }
+  { std::ofstream(folder / "history.csv") << "my measurements\n"; }
+  fq::OutputDef def;
+  def.folder = folder;
+  EXPECT_THROW(fq::RunOutput(def, "x"), std::runtime_error);
+  EXPECT_EQ(read_text(folder / "history.csv"), "my measurements\n");
+  fs::remove(folder / "summary.json");
+  { std::ofstream(folder / "case.pvd") << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\">\n<Collection>\n"
+                                          "<DataSet timestep=\"0\" file=\"scans/scan_0.vtu\"/>\n"; }
+  EXPECT_THROW(fq::RunOutput(def, "x"), std::runtime_error);
+  EXPECT_EQ(read_text(folder / "history.csv"), "my measurements\n");
+  EXPECT_TRUE(fs::exists(folder / "case.pvd"));
+}
+
 TEST(RunOutput, AcceptsAnEmptyFolderOrOneWithAnEmptyFramesFolder) {
   for (const bool with_frames : {false, true}) {
     const fs::path folder = fresh_folder(with_frames ? "empty_frames" : "empty");
