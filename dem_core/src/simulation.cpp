@@ -130,10 +130,12 @@ std::string Simulation::integrator_refusal() const {
   for (const auto& p : providers_) {
     if (!p->supports_trial_states()) {
       std::ostringstream m;
+      const std::string obstacle = p->trial_state_obstacle();
       m << "integrator " << integrator_name(settings_.integrator)
         << " evaluates forces at trial states within a step, but force provider '" << p->name()
-        << "' keeps history between evaluations (plastic or fracturing joint laws, joint strain limits, "
-           "contacts); use central_difference, velocity_verlet or symplectic_euler for this scene";
+        << "' keeps history between evaluations ("
+        << (obstacle.empty() ? std::string("plastic or fracturing joint laws, joint strain limits, contacts") : obstacle)
+        << "); use central_difference, velocity_verlet or symplectic_euler for this scene";
       return m.str();
     }
   }

@@ -770,6 +770,17 @@ bool JointSystem::supports_trial_states() const {
   return true;
 }
 
+std::string JointSystem::trial_state_obstacle() const {
+  std::string what;
+  auto add = [&what](const std::string& item) { what += (what.empty() ? "" : ", ") + item; };
+  if (!trilinear_.ids.empty()) add(std::to_string(trilinear_.ids.size()) + " springs of law trilinear");
+  if (!curee_.ids.empty()) add(std::to_string(curee_.ids.size()) + " springs of law curee");
+  std::size_t strain_limit = 0;
+  for (const JointBreakDef& b : joint_break_) strain_limit += b.criterion == BreakCriterion::StrainLimit;
+  if (strain_limit > 0) add(std::to_string(strain_limit) + " joints with fracture: strain_limit");
+  return what;
+}
+
 SpringStatus JointSystem::spring_status(std::size_t s) const {
   if (alive_.empty()) return SpringStatus::Elastic;
   if (!alive_[s]) return SpringStatus::Deleted;

@@ -418,6 +418,16 @@ TEST(CliErrors, IntegratorTheSceneCannotUseIsRefusedWhereItWasChosen) {
   EXPECT_EQ(option.code, 2) << option.err;
   EXPECT_NE(option.err.find("error: option '--integrator': integrator gsl_rk8pd"), std::string::npos) << option.err;
   EXPECT_EQ(option.err.find("cube.yaml:"), std::string::npos) << option.err;
+  // The refusal says what keeps history, in the case file's words: the
+  // contacts here, the trilinear springs of the breaking cantilever's
+  // joints there.
+  EXPECT_NE(option.err.find("contact shear springs and friction"), std::string::npos) << option.err;
+  const auto trilinear = run_app({"run", (fs::path(FQ_SOURCE_DIR) / "cases/demo_breaking_cantilever.yaml").string(),
+                                  "--integrator", "rk4", "--out", out.string(), "--quiet"},
+                                 dir.path());
+  EXPECT_EQ(trilinear.code, 2) << trilinear.err;
+  EXPECT_NE(trilinear.err.find("springs of law trilinear"), std::string::npos) << trilinear.err;
+  EXPECT_FALSE(fs::exists(out));
   EXPECT_FALSE(fs::exists(out));
 
   const auto euler = run_app({"run", cube_case, "--integrator=forward_euler", "--out", out.string(), "--quiet"},

@@ -215,6 +215,9 @@ class ContactSystem : public ForceProvider {
   void set_ground(double level_m, const ContactParams& params);
 
   const char* name() const override { return "contacts"; }
+  std::string trial_state_obstacle() const override {
+    return "contact shear springs and friction (the case's contact section)";
+  }
   void prepare(const BodyStore& bodies) override;
   void accumulate_forces(BodyStore& bodies, const StepInfo& step) override;
   // Books the losses of step n from the work of the contact forces with

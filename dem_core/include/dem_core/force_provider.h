@@ -82,6 +82,10 @@ class ForceProvider {
   // is always at the step's final state. Energy books that integrate
   // dashpot power assume one call per step and become approximate.
   virtual bool supports_trial_states() const { return false; }
+  // When supports_trial_states() is false: what keeps history, in the
+  // words of the case file (which law, which criterion), for the refusal's
+  // message; "" names nothing beyond the provider.
+  virtual std::string trial_state_obstacle() const { return ""; }
   virtual void save_state(StateWriter& /*out*/) const;
   virtual void load_state(StateReader& /*in*/);
 };

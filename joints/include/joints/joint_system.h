@@ -130,6 +130,7 @@ class JointSystem final : public ForceProvider {
   // elastic (no history, never fails) and no joint has a strain limit (which
   // could break it at a trial state). Dashpot books are then approximate.
   bool supports_trial_states() const override;
+  std::string trial_state_obstacle() const override;
   // Checkpoints (force_provider.h; joint_system_state.cpp): broken and
   // pending flags, every spring's deformation, rate and law force (the
   // previous values of the next step), history (law states, alive/yielded,
