@@ -204,11 +204,8 @@ class OutputSizeCheck final : public StepObserver {
     if (ec) return;
     const double history_bytes = double(fs::file_size(writer_->folder() / "history.csv", ec));
     if (ec) return;
-    auto samples = [this](std::int64_t every) {
-      return every > 0 ? double(total_steps_ / every + 1 + (total_steps_ % every != 0 ? 1 : 0)) : 0.0;
-    };
-    const double frames = samples(writer_->frame_every_steps());
-    const double rows = samples(writer_->history_every_steps());
+    const double frames = double(samples_written(total_steps_, writer_->frame_every_steps()));
+    const double rows = double(samples_written(total_steps_, writer_->history_every_steps()));
     const double estimate = frames * frame_bytes + rows * history_bytes;
     const fs::space_info space = fs::space(writer_->folder(), ec);
     auto amount = [](double bytes) {
@@ -868,7 +865,7 @@ void describe_case(const CaseDef& def, std::ostream& out) {
   // What run writes: every whole number of steps (steps_per_interval),
   // from the start, and the last state once more when it is off that grid.
   const std::int64_t steps = sim.total_steps();
-  auto samples = [steps](std::int64_t every) { return steps / every + 1 + (steps % every != 0 ? 1 : 0); };
+  auto samples = [steps](std::int64_t every) { return samples_written(steps, every); };
   const std::int64_t frame_every = steps_per_interval(o.frame_interval_s, s.dt_s);
   const std::int64_t history_every = steps_per_interval(o.history_interval_s, s.dt_s);
   out << "output      " << o.folder.string() << ": " << samples(frame_every) << " frames every "

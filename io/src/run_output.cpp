@@ -145,6 +145,10 @@ std::int64_t steps_per_interval(double interval_s, double dt_s) {
   return std::max<std::int64_t>(1, std::llround(interval_s / dt_s));
 }
 
+std::int64_t samples_written(std::int64_t total_steps, std::int64_t every) {
+  return total_steps / every + 1 + (total_steps % every != 0 ? 1 : 0);
+}
+
 std::string interval_rounding_note(const char* field, double interval_s, double dt_s) {
   const std::int64_t every = steps_per_interval(interval_s, dt_s);
   const double used_s = double(every) * dt_s;

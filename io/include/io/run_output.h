@@ -49,6 +49,10 @@ class OutputError : public std::runtime_error {
 // Steps between frames or rows for an interval: round(interval / dt), at
 // least 1 (the interval actually used is that many steps).
 std::int64_t steps_per_interval(double interval_s, double dt_s);
+// Frames or rows a run of `total_steps` writes sampling every `every` steps
+// (>= 1): steps 0, every, 2 every, ..., and the last state once more when
+// it is off that grid.
+std::int64_t samples_written(std::int64_t total_steps, std::int64_t every);
 // A note when that rounding changes the interval (by more than 1e-9 of
 // it), naming `field` and the interval used; "" when it does not.
 std::string interval_rounding_note(const char* field, double interval_s, double dt_s);
