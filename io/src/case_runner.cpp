@@ -200,9 +200,9 @@ class OutputSizeCheck final : public StepObserver {
     done_ = true;
     namespace fs = std::filesystem;
     std::error_code ec;
-    const double frame_bytes = double(fs::file_size(writer_->folder() / "frames" / "frame_000000.vtu", ec));
+    const double frame_bytes = double(fs::file_size(frame_path(writer_->folder(), 0), ec));
     if (ec) return;
-    const double history_bytes = double(fs::file_size(writer_->folder() / "history.csv", ec));
+    const double history_bytes = double(fs::file_size(history_path(writer_->folder()), ec));
     if (ec) return;
     const double frames = double(samples_written(total_steps_, writer_->frame_every_steps()));
     const double rows = double(samples_written(total_steps_, writer_->history_every_steps()));
@@ -701,9 +701,9 @@ CaseRunReport run_case(const CaseDef& case_def, const CaseRunOptions& options) {
 // quotes, or a number as written), or "" when there is none.
 std::string summary_value(const std::filesystem::path& folder, const std::string& key) {
   std::error_code ec;
-  const std::uintmax_t size = std::filesystem::file_size(folder / "summary.json", ec);
+  const std::uintmax_t size = std::filesystem::file_size(summary_path(folder), ec);
   if (ec || size > (1u << 24)) return "";
-  std::ifstream in(folder / "summary.json", std::ios::binary);
+  std::ifstream in(summary_path(folder), std::ios::binary);
   if (!in) return "";
   std::string text(std::size_t(size), '\0');
   in.read(text.data(), std::streamsize(size));
@@ -783,7 +783,7 @@ CaseRunReport resume_case(const std::filesystem::path& folder, const CaseRunOpti
     if (!scene.storeys.empty()) {
       attach_storey_output(*writer, storeys);
       // The peaks so far are in the rows kept from before the checkpoint.
-      storeys.replay_history(writer->folder() / "history.csv");
+      storeys.replay_history(history_path(writer->folder()));
     }
     writer->attach(sim, &initial_position_m);
   } catch (const std::exception& e) {

@@ -92,6 +92,10 @@ bool holds_framequake_run(const fs::path& folder) {
 }
 }  // namespace
 
+fs::path summary_path(const fs::path& folder) { return folder / kSummaryName; }
+fs::path history_path(const fs::path& folder) { return folder / kHistoryName; }
+fs::path frame_path(const fs::path& folder, std::size_t index) { return folder / kFramesDir / frame_file_name(index); }
+
 bool check_output_folder(const fs::path& folder) {
   std::error_code ec;
   const fs::file_status st = fs::status(folder, ec);

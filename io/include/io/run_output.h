@@ -64,6 +64,13 @@ std::string interval_rounding_note(const char* field, double interval_s, double 
 // study check every run's folder before the first run starts.
 bool check_output_folder(const std::filesystem::path& folder);
 
+// Where a run in `folder` keeps its summary, its history and its frame
+// number `index` (frames/frame_NNNNNN.vtu): the names RunOutput writes,
+// for code that reads a run's files back.
+std::filesystem::path summary_path(const std::filesystem::path& folder);
+std::filesystem::path history_path(const std::filesystem::path& folder);
+std::filesystem::path frame_path(const std::filesystem::path& folder, std::size_t index);
+
 class RunOutput {
  public:
   // Prepares `def.folder` (creates it and frames/). If the folder exists and
