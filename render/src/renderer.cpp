@@ -504,8 +504,14 @@ RenderReport render_runs(const std::vector<RunData>& runs, const RenderOptions& 
       p->scene->ResetCameraClippingRange(lo[0] - 4 * d, hi[0] + 4 * d, lo[1] - 4 * d, hi[1] + 4 * d, lo[2] - d, hi[2] + d);
     }
 
-    p->time_text = make_text(p->scene, time_label(times.front()), 0.02, 0.97, 20, {0, 0, 0});
-    make_text(p->scene, p->run->label, 0.98, 0.97, 20, {0, 0, 0}, true);
+    // Text sizes are chosen for the default 800 px panel; a narrower panel
+    // scales them down (to half at most, 7 pt at least, which stays
+    // legible) so that the label row and the legend still fit side by side
+    // (at 320 px wide the full sizes ran into the next panel).
+    const double text_scale = std::clamp(options.panel_width_px / 800.0, 0.5, 1.0);
+    const auto font = [&](int size_pt) { return std::max(7, int(std::lround(size_pt * text_scale))); };
+    p->time_text = make_text(p->scene, time_label(times.front()), 0.02, 0.97, font(20), {0, 0, 0});
+    make_text(p->scene, p->run->label, 0.98, 0.97, font(20), {0, 0, 0}, true);
 
     // Acceleration trace, common scale over the panels.
     const std::array<std::uint8_t, 3> light{220, 220, 220};
@@ -546,16 +552,19 @@ RenderReport render_runs(const std::vector<RunData>& runs, const RenderOptions& 
     } else {
       label << "no ground motion (zero or absent in history.csv)";
     }
-    make_text(p->trace, label.str(), 0.02, 0.97, 13, light);
-    // Legend of the damage colours, right-aligned on the label row.
-    // Laid out from the right edge with an estimated glyph width (Arial at
-    // 12 pt is at most about 8 px per character), on the row below the label.
+    make_text(p->trace, label.str(), 0.02, 0.97, font(13), light);
+    // Legend of the damage colours, right-aligned, on the row below the
+    // label. Laid out from the right edge with an estimated glyph width
+    // (Arial is at most about 2/3 of its point size wide per character:
+    // 8 px at 12 pt) and a gap of 16 px at 12 pt.
     static const char* names[5] = {"intact", "yielded", "damaged", "detached", "* broken joint"};
+    const int legend_pt = font(12);
     double x = 0.98;
     for (int s = 4; s >= 0; --s) {
       const auto& colour = s == 4 ? kBrokenJointColour : kDamageColour[std::size_t(s)];
-      make_text(p->trace, names[s], x, 0.80, 12, colour, true);
-      x -= (8.0 * double(std::char_traits<char>::length(names[s])) + 16.0) / options.panel_width_px;
+      make_text(p->trace, names[s], x, 0.80, legend_pt, colour, true);
+      x -= (legend_pt / 12.0) * (8.0 * double(std::char_traits<char>::length(names[s])) + 16.0) /
+           options.panel_width_px;
     }
     make_polyline_2d(p->trace, p->cursor, {255, 204, 0}, 2.0f);
     set_cursor(p->cursor, plot_x(times.front()));
