@@ -290,6 +290,29 @@ TEST(CaseFile, MemberOrientationConvention) {
   expect_vec(r.col(0).cross(r.col(1)), r.col(2), 1e-15);
 }
 
+TEST(CaseFile, LeaningColumnKeepsItsSection) {
+  // A column 0.3 m tall whose top is 1 um off along x or y, or 3 mm (a
+  // coordinate rounded to a millimetre): its frame is the vertical
+  // column's turned by the lean, so every axis is within the lean angle
+  // (1 um / 0.3 m = 3.3e-6 rad; 3 mm / 0.3 m = 1e-2 rad) of the vertical
+  // column's. The sloped rule would put local y along world y for a lean
+  // along x: a quarter turn of the section (width and depth swapped).
+  const fq::Mat3 upright = fq::member_orientation({0, 0, 0}, {0, 0, 0.3}, 0.0).toRotationMatrix();
+  for (const fq::Vec3& top : {fq::Vec3(1e-6, 0, 0.3), fq::Vec3(0, 1e-6, 0.3), fq::Vec3(-1e-6, 1e-6, 0.3),
+                             fq::Vec3(3e-3, 0, 0.3), fq::Vec3(0, -3e-3, 0.3)}) {
+    const double lean_rad = std::atan2(std::hypot(top.x(), top.y()), top.z());
+    const fq::Mat3 r = fq::member_orientation({0, 0, 0}, top, 0.0).toRotationMatrix();
+    for (int c = 0; c < 3; ++c) EXPECT_LE((r.col(c) - upright.col(c)).norm(), 1.01 * lean_rad) << top.transpose();
+  }
+  // A brace 30 degrees from vertical in the x-z plane follows the sloped
+  // rule: depth (local z) in the vertical plane through it, width along y.
+  const fq::Mat3 brace =
+      fq::member_orientation({0, 0, 0}, {std::sin(std::numbers::pi / 6), 0, std::cos(std::numbers::pi / 6)}, 0.0)
+          .toRotationMatrix();
+  EXPECT_NEAR(brace.col(2).y(), 0.0, 1e-15);
+  EXPECT_NEAR(std::abs(brace.col(1).y()), 1.0, 1e-15);
+}
+
 // ---- bad case files -----------------------------------------------------------
 
 // Common valid beginning: lines 1-3.

@@ -17,10 +17,10 @@
 // Member geometry (the convention build_model applies; cases/README.md):
 //   - body local x runs from node a to node b; the box length along local x
 //     is the node distance, and the box centre is the midpoint of the nodes;
-//   - a member that is not vertical has local z = world z made orthogonal to
-//     local x, so the section depth (along local z) of a beam is vertical and
-//     its width (along local y) horizontal;
-//   - a member within 1e-9 rad of vertical has local y = world x made
+//   - a member more than 10 degrees from vertical has local z = world z made
+//     orthogonal to local x, so the section depth (along local z) of a beam
+//     is vertical and its width (along local y) horizontal;
+//   - a member within 10 degrees of vertical has local y = world x made
 //     orthogonal to local x (then local z = x × y: world +y for a column
 //     drawn upwards);
 //   - roll_rad then turns the section about local x (right-handed: local y
