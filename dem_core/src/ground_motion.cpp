@@ -1,5 +1,6 @@
 #include "dem_core/ground_motion.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -75,18 +76,29 @@ double GroundMotion::end_time_s() const {
   return end;
 }
 
-Vec3 GroundMotion::peak_abs_mps2() const {
-  // Components may share a world axis (oblique directions), so the peak is
-  // that of the summed a_g(t), evaluated at every component's sample times.
-  Vec3 peak = Vec3::Zero();
+template <class Visit>
+void GroundMotion::for_each_sample_(Visit&& visit) const {
+  // Components may share a world axis (oblique directions), so peaks are
+  // those of the summed a_g(t), evaluated at every component's sample times.
   for (const GroundMotionComponent& c : components_) {
     const std::size_t n = c.record.acceleration_mps2.size();
     for (std::size_t k = 0; k < n; ++k) {
       const double t_rec = double(k) * c.record.dt_s;
       if (t_rec < c.window_start_s || t_rec > c.window_start_s + c.window_length_s) continue;
-      peak = peak.cwiseMax(acceleration((t_rec - c.window_start_s) * c.time_scale).cwiseAbs());
+      visit(acceleration((t_rec - c.window_start_s) * c.time_scale));
     }
   }
+}
+
+Vec3 GroundMotion::peak_abs_mps2() const {
+  Vec3 peak = Vec3::Zero();
+  for_each_sample_([&](const Vec3& a) { peak = peak.cwiseMax(a.cwiseAbs()); });
+  return peak;
+}
+
+double GroundMotion::peak_horizontal_mps2() const {
+  double peak = 0.0;
+  for_each_sample_([&](const Vec3& a) { peak = std::max(peak, std::hypot(a.x(), a.y())); });
   return peak;
 }
 

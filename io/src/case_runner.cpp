@@ -350,10 +350,7 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
   }
   report.first_joint_failure_time_s = first_joint_failure_time_s(sim.events());
   report.energy_balance_error_relative = sim.ledger().balance_error_relative();
-  {
-    const Vec3 peak = sim.ground_motion().peak_abs_mps2();
-    report.peak_ground_acceleration_mps2 = std::max(peak.x(), peak.y());
-  }
+  report.peak_ground_acceleration_mps2 = sim.ground_motion().peak_horizontal_mps2();
   report.wall_s = report.result.wall_s;
   return report;
 }
@@ -853,7 +850,8 @@ void describe_case(const CaseDef& def, std::ostream& out) {
   } else {
     const Vec3 peak = gm.peak_abs_mps2();
     out << "ground      " << gm.components().size() << " component(s), peak |a_g| x/y/z = " << peak.x() << " / "
-        << peak.y() << " / " << peak.z() << " m/s^2\n";
+        << peak.y() << " / " << peak.z() << " m/s^2, horizontal |(a_x, a_y)| " << gm.peak_horizontal_mps2()
+        << " m/s^2\n";
     for (const GroundMotionComponent& c : gm.components())
       // + 0.0 prints a negative zero component of `-z` as 0.
       out << "            " << c.record.source << "  along (" << (c.direction.array() + 0.0).transpose() << ") x "

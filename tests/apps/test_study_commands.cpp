@@ -132,6 +132,37 @@ TEST(StudyCommands, CompareShowsTheWarningsOfAForcedRun) {
   EXPECT_NE(r.err.find("\n  warning: dt_s = 0.001 s is 4.2"), std::string::npos) << r.err;
 }
 
+// The sweep's PGA is the horizontal ground acceleration's magnitude, so a
+// frame turned about the vertical with its record reports the record's
+// peak (818.1 cm/s^2 at 8.52 s, ../shared/data/ground_motions/README.md)
+// along the diagonal too, not its x or y part (8.181 / sqrt 2 = 5.785).
+TEST(StudyCommands, SweepPgaDoesNotDependOnTheRecordsHorizontalDirection) {
+  TempDir dir;
+  for (const char* axis : {"x", "[1, 1, 0]", "[-0.6, 0.8, 0]"}) {
+    const std::string name = std::string("cube_") + (axis[0] == 'x' ? "x" : axis[1] == '1' ? "diagonal" : "oblique");
+    std::ofstream(dir.path() / (name + ".yaml"))
+        << "framequake_case: 1\n"
+           "time: {dt_s: 1.0e-4, duration_s: 0.2}\n"
+           "materials: [{name: spruce, density_kg_per_m3: 450}]\n"
+           "blocks: [{id: cube, size_m: [0.1, 0.1, 0.1], center_m: [0, 0, 0.05], material: spruce}]\n"
+           "contact:\n"
+           "  ground: {normal_stiffness_N_per_m: 1.0e6, restitution: 0.5, friction_coefficient: 0.4}\n"
+           "ground_motion:\n"
+           "  window_start_s: 8.4\n"
+           "  components:\n"
+           "    - {file: "
+        << (kSource / "cases/ground_motions/RSN1106_KOBE_KJM000.AT2").string() << ", format: peer_at2, axis: " << axis << "}\n";
+    const fs::path out = dir.path() / ("sweep_" + name);
+    const auto r = run_app({"sweep", (dir.path() / (name + ".yaml")).string(), "--scales", "1", "--out",
+                            out.string(), "--no-figure"},
+                           dir.path());
+    ASSERT_EQ(r.code, 0) << r.err;
+    const Table rows = read_csv(out / "sweep.csv");
+    ASSERT_EQ(rows.size(), 1u);
+    EXPECT_NEAR(std::stod(rows[0].at("pga_mps2")), 8.181, 0.001) << axis;
+  }
+}
+
 TEST(StudyCommands, SweepScalesTheMotionAndFindsNoCollapseInTheDemoPortal) {
   TempDir dir;
   const fs::path out = dir.path() / "sweep";

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -303,6 +304,34 @@ TEST(GroundMotion, PeakAbsIsPerWorldAxisOverTheWindows) {
   GroundMotion gm_late;
   gm_late.add_component(late);
   EXPECT_TRUE(gm_late.peak_abs_mps2().isApprox(Vec3(0.0, 0.0, 4.0), 1e-15));
+}
+
+TEST(GroundMotion, HorizontalPeakIsTheSameWhateverTheHorizontalDirection) {
+  // Record R (peak |4| at 0.75 s) along x, along y, and along directions
+  // turned 30 and 45 degrees about z: the horizontal PGA is 4 every time
+  // (|(a_x, a_y)| is unchanged by a turn about z), where the larger of the
+  // x and y peaks gives 4 cos 45 = 2.83 on the diagonal. A vertical part
+  // does not count: along (3, 0, 4) / 5 it is 4 x 3/5 = 2.4.
+  for (const double turn_deg : {0.0, 90.0, 30.0, 45.0, -135.0}) {
+    const double turn = turn_deg * std::numbers::pi / 180.0;
+    GroundMotion gm;
+    gm.add_component(component(record_r(), Vec3(std::cos(turn), std::sin(turn), 0.0)));
+    EXPECT_NEAR(gm.peak_horizontal_mps2(), 4.0, 1e-14) << turn_deg;
+  }
+  GroundMotion inclined;
+  inclined.add_component(component(record_r(), Vec3(3.0, 0.0, 4.0)));
+  EXPECT_NEAR(inclined.peak_horizontal_mps2(), 2.4, 1e-14);
+  // Two horizontal components at once: the peak of the vector sum, not of
+  // either part. S {3} along x and {4} along y at t = 0 give |(3, 4)| = 5.
+  AccelerationRecord sx, sy;
+  sx.dt_s = sy.dt_s = 0.5;
+  sx.acceleration_mps2 = {3.0, 0.0};
+  sy.acceleration_mps2 = {4.0, 0.0};
+  GroundMotion both;
+  both.add_component(component(sx, Vec3::UnitX()));
+  both.add_component(component(sy, Vec3::UnitY()));
+  EXPECT_NEAR(both.peak_horizontal_mps2(), 5.0, 1e-14);
+  EXPECT_EQ(GroundMotion{}.peak_horizontal_mps2(), 0.0);
 }
 
 TEST(GroundMotion, PeakAbsOfComponentsSharingAnAxisIsThePeakOfTheirSum) {

@@ -58,8 +58,15 @@ class GroundMotion {
   // Peak magnitude of each world component of the summed a_g(t) over the
   // windows (m/s^2), sampled at every record's own sample times.
   Vec3 peak_abs_mps2() const;
+  // Peak of the horizontal ground acceleration's magnitude |(a_x, a_y)|
+  // over the windows (m/s^2), sampled as peak_abs_mps2: the horizontal PGA
+  // whatever the record's direction (RotD100), unchanged when the scene and
+  // its ground motion are turned about the vertical together.
+  double peak_horizontal_mps2() const;
 
  private:
+  template <class Visit>
+  void for_each_sample_(Visit&& visit) const;
   std::vector<GroundMotionComponent> components_;
 };
 

@@ -90,7 +90,7 @@ struct CaseRunReport {
   std::size_t joint_count = 0;
   double first_joint_failure_time_s = std::numeric_limits<double>::quiet_NaN();  // NaN: none
   double energy_balance_error_relative = 0.0;
-  double peak_ground_acceleration_mps2 = 0.0;  // horizontal PGA: larger of the x and y peaks of |a_g| (scaled)
+  double peak_ground_acceleration_mps2 = 0.0;  // horizontal PGA: peak of |(a_x, a_y)| of a_g (scaled)
   double wall_s = 0.0;
   // Reasons to doubt a run that ran (the kWarn* checks below); empty for a sound run.
   std::vector<std::string> warnings;
