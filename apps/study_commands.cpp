@@ -45,7 +45,8 @@ const char* kCompareHelp =
     "  DIR/<case name>/            each run's full output (case.pvd, history.csv, ...)\n"
     "  DIR/comparison.csv, .md     peak drift ratio and verdict per storey, first joint\n"
     "                              failure, broken joints, energy balance error, wall time\n"
-    "  DIR/first_storey_drift.png  first-storey drift ratio (x) against time, all cases\n"
+    "  DIR/first_storey_drift.png  first-storey drift ratio against time, all cases, along\n"
+    "                              x, or y when the runs drifted more along y\n"
     "An earlier study's tables and figure in DIR are removed before the runs start.\n"
     "A run that did not reach its end is standing or damaged only \"so far\".\n"
     "\n"
@@ -453,7 +454,7 @@ int command_compare(int argc, char** argv, const std::atomic<bool>* stop_request
   md << "| case | status";
   for (std::size_t k = 1; k <= storeys; ++k) {
     csv << ",storey" << k << "_peak_drift_ratio_rad,storey" << k << "_peak_drift_ratio_x_rad,storey" << k
-        << "_verdict";
+        << "_peak_drift_ratio_y_rad,storey" << k << "_verdict";
     md << " | storey " << k << " peak drift ratio (rad)";
   }
   for (std::size_t k = 1; k <= storeys; ++k) md << " | storey " << k;
@@ -470,10 +471,10 @@ int command_compare(int argc, char** argv, const std::atomic<bool>* stop_request
       if (o.ok && k < o.report.storeys.size()) {
         const fq::StoreyOutcome& s = o.report.storeys[k];
         csv << "," << csv_number(s.drift.peak_ratio_rad) << "," << csv_number(s.drift.peak_ratio_x_rad) << ","
-            << verdict_csv(o.report, s);
+            << csv_number(s.drift.peak_ratio_y_rad) << "," << verdict_csv(o.report, s);
         md << " | " << fixed(s.drift.peak_ratio_rad, 4);
       } else {
-        csv << ",,,";
+        csv << ",,,,";
         md << " | -";
       }
     }

@@ -88,6 +88,13 @@ def collapse_limit(summary_path):
 
 def plot_compare(folder):
     rows = read_csv(os.path.join(folder, "comparison.csv"))
+    # One direction for every trace: x (the usual shaking direction), or y
+    # when the runs' first storeys drifted further along y (a frame turned
+    # with its record, a record along y).
+    def peak_along(axis):
+        return max([abs(number(r.get("storey1_peak_drift_ratio_%s_rad" % axis))) for r in rows
+                    if r.get("storey1_peak_drift_ratio_%s_rad" % axis)] + [0.0])
+    axis = "y" if peak_along("y") > peak_along("x") else "x"
     fig, ax = plt.subplots()
     limit = None
     for k, row in enumerate(rows):
@@ -97,7 +104,7 @@ def plot_compare(folder):
         if not row.get("storey1_verdict"):
             continue  # a case without columns has no storeys to draw
         t, drift = read_history_columns(os.path.join(out, "history.csv"),
-                                        ["time_s", "storey1_drift_ratio_x_rad"])
+                                        ["time_s", "storey1_drift_ratio_%s_rad" % axis])
         verdict = row.get("storey1_verdict", "?")
         if row.get("status") == "unstable":
             verdict = "not assessed (unstable)"
@@ -112,14 +119,14 @@ def plot_compare(folder):
         # At the right end: the legend sits at the upper left.
         ax.text(ax.get_xlim()[1], limit, "collapse limit %.2f rad " % limit, va="bottom", ha="right", fontsize=8,
                 color="0.3")
-    peak = max([abs(number(r.get("storey1_peak_drift_ratio_x_rad"))) for r in rows] + [0.0])
+    peak = peak_along(axis)
     if limit and peak > 3 * limit:
         ax.set_ylim(-3 * limit, 3 * limit)  # a fallen storey would flatten the others' traces
         ax.text(0.99, 0.02, "clipped at +/- %.2f rad" % (3 * limit), transform=ax.transAxes, ha="right",
                 fontsize=8, color="0.3")
     ax.set_xlabel("simulated time t (s)")
-    ax.set_ylabel("first-storey drift ratio, x (rad)")
-    ax.set_title("First-storey drift ratio, main shaking direction (x)")
+    ax.set_ylabel("first-storey drift ratio, %s (rad)" % axis)
+    ax.set_title("First-storey drift ratio, main shaking direction (%s)" % axis)
     ax.legend(loc="upper left", fontsize=8)
     fig.tight_layout()
     target = os.path.join(folder, "first_storey_drift.png")

@@ -253,6 +253,34 @@ TEST(StudyCommands, AStudyRemovesTheEarlierStudysTablesBeforeItRuns) {
   EXPECT_EQ(std::distance(fs::directory_iterator(blocked), fs::directory_iterator()), 1) << "a run started";
 }
 
+// The comparison gives the peak drift along y as well as x, and the figure
+// draws the direction the runs drifted most in: the demo portal shaken
+// along y (out of its plane) drifts along y only, which an x-only table
+// and figure showed as no drift at all (geometry probe).
+TEST(StudyCommands, CompareReportsDriftAlongYForAMotionAlongY) {
+  TempDir dir;
+  std::string portal = read_text(kSource / "cases/demo_portal_frame.yaml");
+  const std::string record = "file: ground_motions/";
+  portal.replace(portal.find(record), record.size(), "file: " + (kSource / "cases/ground_motions").string() + "/");
+  const std::string axis = "axis: x";
+  ASSERT_NE(portal.find(axis), std::string::npos);
+  portal.replace(portal.find(axis), axis.size(), "axis: y");
+  std::ofstream(dir.path() / "portal_y.yaml", std::ios::binary) << portal;
+  const fs::path cmp = dir.path() / "cmp";
+  const auto r = run_app({"compare", (dir.path() / "portal_y.yaml").string(), "--window-length", "0.3", "--out",
+                          cmp.string()},
+                         dir.path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Table rows = read_csv(cmp / "comparison.csv");
+  ASSERT_EQ(rows.size(), 1u);
+  const double peak = std::stod(rows[0].at("storey1_peak_drift_ratio_rad"));
+  EXPECT_GT(peak, 1e-4);
+  // A motion along y of a symmetric portal: the drift is along y alone.
+  EXPECT_EQ(std::stod(rows[0].at("storey1_peak_drift_ratio_y_rad")), peak);
+  EXPECT_LT(std::stod(rows[0].at("storey1_peak_drift_ratio_x_rad")), 1e-9 * peak);
+  EXPECT_TRUE(is_png(cmp / "first_storey_drift.png"));
+}
+
 // Every run's folder is checked before the first run starts: a folder a
 // run would refuse (a user's own files in it), or a case named like one of
 // the tables, stops the study with nothing run (a probe's compare ran one
