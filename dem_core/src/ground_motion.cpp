@@ -9,6 +9,15 @@ namespace fq {
 double AccelerationRecord::at(double t_s) const {
   const std::size_t n = acceleration_mps2.size();
   if (n == 0 || !(t_s >= 0.0)) return 0.0;
+  if (!sample_time_s.empty()) {
+    // Non-uniform: the segment [k, k + 1] holding t_s by bisection.
+    const double end_s = sample_time_s.back();
+    if (t_s >= end_s) return t_s <= end_s + 1e-9 * dt_s ? acceleration_mps2[n - 1] : 0.0;
+    const std::size_t k =
+        std::size_t(std::upper_bound(sample_time_s.begin(), sample_time_s.end(), t_s) - sample_time_s.begin()) - 1;
+    const double f = (t_s - sample_time_s[k]) / (sample_time_s[k + 1] - sample_time_s[k]);
+    return (1.0 - f) * acceleration_mps2[k] + f * acceleration_mps2[k + 1];
+  }
   const double x = t_s / dt_s;
   const double k_floor = std::floor(x);
   if (k_floor >= double(n - 1)) {
@@ -29,7 +38,7 @@ double AccelerationRecord::peak_mps2(double* out_time_s) const {
       at_k = k;
     }
   }
-  if (out_time_s) *out_time_s = double(at_k) * dt_s;
+  if (out_time_s) *out_time_s = time_of(at_k);
   return peak;
 }
 
@@ -39,6 +48,14 @@ void GroundMotion::add_component(GroundMotionComponent c) {
     throw std::invalid_argument(who + ": a record needs at least 2 samples");
   if (!(c.record.dt_s > 0.0) || !std::isfinite(c.record.dt_s))
     throw std::invalid_argument(who + ": sampling interval DT must be a positive number of seconds");
+  if (!c.record.sample_time_s.empty()) {
+    const std::vector<double>& t = c.record.sample_time_s;
+    if (t.size() != c.record.acceleration_mps2.size() || t.front() != 0.0)
+      throw std::invalid_argument(who + ": sample times must start at 0 s, one per sample");
+    for (std::size_t k = 1; k < t.size(); ++k)
+      if (!(t[k] > t[k - 1]) || !std::isfinite(t[k]))
+        throw std::invalid_argument(who + ": sample times must increase strictly");
+  }
   if (!(c.direction.norm() > 0.0) || !c.direction.allFinite())
     throw std::invalid_argument(who + ": direction must be a non-zero vector");
   if (!(c.time_scale > 0.0) || !std::isfinite(c.time_scale))
@@ -83,7 +100,7 @@ void GroundMotion::for_each_sample_(Visit&& visit) const {
   for (const GroundMotionComponent& c : components_) {
     const std::size_t n = c.record.acceleration_mps2.size();
     for (std::size_t k = 0; k < n; ++k) {
-      const double t_rec = double(k) * c.record.dt_s;
+      const double t_rec = c.record.time_of(k);
       if (t_rec < c.window_start_s || t_rec > c.window_start_s + c.window_length_s) continue;
       visit(acceleration((t_rec - c.window_start_s) * c.time_scale));
     }

@@ -1,6 +1,6 @@
 // Accelerogram readers (io/accelerogram.h): the eight PEER records shipped in
 // ../shared/data/ground_motions, line-end independence, every malformed-input
-// error, and the two-column reader's uniform / resampled / unit paths.
+// error, and the two-column reader's uniform / non-uniform / unit paths.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -11,8 +11,10 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "dem_core/ground_motion.h"
 #include "io/accelerogram.h"
 #include "io/input_error.h"
 
@@ -383,33 +385,64 @@ TEST(TwoColumn, NonzeroStartIsShiftedAndStated) {
   EXPECT_DOUBLE_EQ(rec.at(0.0), 1.0);
 }
 
-TEST(TwoColumn, NonUniformIsResampledLinearlyOntoSmallestInterval) {
-  // Times 0, .02, .05, .06 (intervals .02, .03, .01) -> grid h = .01, k = 0..6.
-  // Linear interpolation by hand:
-  //   t=.00: 1;  .01: (1+3)/2 = 2;  .02: 3;
-  //   .03: 3 + (1/3)(-3-3) = 1;  .04: 3 + (2/3)(-6) = -1;  .05: -3;  .06: 0.
+TEST(TwoColumn, NonUniformSamplesAreKeptWhereTheFilePutsThem) {
+  // Times 0, .02, .05, .06 (intervals .02, .03, .01): the samples stay at
+  // their times, dt_s is the smallest interval, and the motion between them
+  // is linear. By hand: at .01 (1 + 3) / 2 = 2; at .03 3 + (1/3)(-3 - 3) = 1;
+  // at .04 3 + (2/3)(-6) = -1; at .055 (-3 + 0) / 2 = -1.5.
   TempDir dir;
   const fq::AccelerationRecord rec = fq::read_two_column(
       dir.write("irregular.txt", "0.00 1\n0.02 3\n0.05 -3\n0.06 0\n"), fq::AccelerationUnit::MetrePerSecond2);
   EXPECT_NEAR(rec.dt_s, 0.01, 1e-15);
-  const std::vector<double> expected = {1.0, 2.0, 3.0, 1.0, -1.0, -3.0, 0.0};
-  ASSERT_EQ(rec.acceleration_mps2.size(), expected.size());
-  for (std::size_t k = 0; k < expected.size(); ++k)
-    EXPECT_NEAR(rec.acceleration_mps2[k], expected[k], 1e-12) << k;  // rounding of printed times only
-  EXPECT_NE(rec.description.find("resampled"), std::string::npos) << rec.description;
+  EXPECT_EQ(rec.acceleration_mps2, (std::vector<double>{1.0, 3.0, -3.0, 0.0}));
+  ASSERT_EQ(rec.sample_time_s.size(), 4u);
+  EXPECT_EQ(rec.sample_time_s[0], 0.0);
+  EXPECT_EQ(rec.sample_time_s[2], 0.05);
+  EXPECT_NEAR(rec.duration_s(), 0.06, 1e-15);
+  const std::pair<double, double> expected[] = {{0.0, 1.0},  {0.01, 2.0}, {0.02, 3.0},  {0.03, 1.0},
+                                                {0.04, -1.0}, {0.05, -3.0}, {0.055, -1.5}, {0.06, 0.0}};
+  for (const auto& [t, a] : expected) EXPECT_NEAR(rec.at(t), a, 1e-12) << t;  // rounding of printed times only
+  EXPECT_EQ(rec.at(0.0601), 0.0);  // past the last sample: no motion
+  EXPECT_NE(rec.description.find("kept as given"), std::string::npos) << rec.description;
 }
 
-TEST(TwoColumn, ResamplingDropsTailShorterThanOneInterval) {
-  // Times 0, .02, .05: h = .02, span .05 -> grid 0, .02, .04 (floor(2.5) = 2).
-  // At .04: between (.02, 10) and (.05, -20), f = 2/3 -> 10 + (2/3)(-30) = -10.
+TEST(TwoColumn, APeakBetweenTheSmallestIntervalsGridIsKept) {
+  // The geometry probe's file: times 0, .010, .020, .027, .037, .047 with
+  // 5 m/s^2 at .037 s. A grid of the smallest interval (.007 s) from t = 0
+  // passes .035 and .042 and cut the peak to 4 m/s^2; the record's peak is
+  // the file's sample.
   TempDir dir;
-  const fq::AccelerationRecord rec = fq::read_two_column(dir.write("tail.txt", "0 4\n0.02 10\n0.05 -20\n"),
-                                                         fq::AccelerationUnit::MetrePerSecond2);
-  EXPECT_NEAR(rec.dt_s, 0.02, 1e-15);
-  ASSERT_EQ(rec.acceleration_mps2.size(), 3u);
-  EXPECT_NEAR(rec.acceleration_mps2[0], 4.0, 1e-12);
-  EXPECT_NEAR(rec.acceleration_mps2[1], 10.0, 1e-12);
-  EXPECT_NEAR(rec.acceleration_mps2[2], -10.0, 1e-12);
+  const fq::AccelerationRecord rec = fq::read_two_column(
+      dir.write("spike.txt", "0 0\n0.010 1\n0.020 2\n0.027 1\n0.037 5\n0.047 0\n"),
+      fq::AccelerationUnit::MetrePerSecond2);
+  double t = 0.0;
+  EXPECT_EQ(rec.peak_mps2(&t), 5.0);
+  EXPECT_NEAR(t, 0.037, 1e-15);
+  EXPECT_NEAR(rec.at(0.037), 5.0, 1e-12);
+  fq::GroundMotion gm;
+  fq::GroundMotionComponent c;
+  c.record = rec;
+  gm.add_component(c);
+  EXPECT_NEAR(gm.peak_abs_mps2().x(), 5.0, 1e-12);
+}
+
+TEST(TwoColumn, TimesRoundedInPrintAreUniformSampling) {
+  // 300 samples per second with times printed to four decimals: intervals
+  // of 0.0033 and 0.0034 s, each time within 1e-4 s (one unit of its last
+  // digit) of the uniform grid. Read as uniform: the values as given and
+  // dt = t_last / (n - 1) = 0.03 / 9, i.e. 1/300 s.
+  TempDir dir;
+  std::ostringstream text;
+  text.setf(std::ios::fixed);
+  text.precision(4);
+  for (int k = 0; k < 10; ++k) text << k / 300.0 << " " << (k == 6 ? 5.79 : 0.5 * k) << "\n";
+  const fq::AccelerationRecord rec =
+      fq::read_two_column(dir.write("rounded.txt", text.str()), fq::AccelerationUnit::MetrePerSecond2);
+  EXPECT_TRUE(rec.sample_time_s.empty());
+  EXPECT_NEAR(rec.dt_s, 1.0 / 300.0, 1e-15);
+  ASSERT_EQ(rec.acceleration_mps2.size(), 10u);
+  EXPECT_EQ(rec.acceleration_mps2[6], 5.79);
+  EXPECT_NE(rec.description.find("read as uniform"), std::string::npos) << rec.description;
 }
 
 TEST(TwoColumn, UnitsGAndCentimetrePerSecondSquared) {

@@ -24,10 +24,17 @@ namespace fq {
 struct AccelerationRecord {
   std::string source;       // file it came from (for messages and the summary)
   std::string description;  // header text (event, station, component)
-  double dt_s = 0.0;        // sampling interval (s)
+  double dt_s = 0.0;        // sampling interval (s); of a non-uniform record, its smallest interval
   std::vector<double> acceleration_mps2;  // (m/s^2)
-  double duration_s() const { return acceleration_mps2.empty() ? 0.0 : dt_s * double(acceleration_mps2.size() - 1); }
-  // Value at record time t_s (linear interpolation); 0 outside [0, duration].
+  // Empty for a uniform record (sample k at k dt_s). Otherwise the time of
+  // each sample (s): from 0, strictly increasing, one per acceleration (a
+  // digitised record whose samples are where the trace bends; resampling
+  // it onto a grid would cut the peaks that fall between grid points).
+  std::vector<double> sample_time_s;
+  double time_of(std::size_t k) const { return sample_time_s.empty() ? double(k) * dt_s : sample_time_s[k]; }
+  double duration_s() const { return acceleration_mps2.empty() ? 0.0 : time_of(acceleration_mps2.size() - 1); }
+  // Value at record time t_s (linear interpolation between samples); 0
+  // outside [0, duration].
   double at(double t_s) const;
   // Signed sample of largest magnitude (m/s^2) and its time (s).
   double peak_mps2(double* out_time_s = nullptr) const;

@@ -61,25 +61,23 @@ AccelerationRecord read_peer_at2(const std::filesystem::path& file);
 // or one comma; blank lines and lines starting with '#' are skipped. Time in
 // s, strictly increasing; acceleration in `unit`.
 //
-// Sampling. If every interval is within a relative 1e-6 of the first one the
-// record is uniform and dt_s is the mean interval (t_last - t_first)/(n - 1),
+// Sampling. If every interval is within a relative 1e-6 of the first one, or
+// every time is within one unit of its last printed digit of the uniform
+// grid t_0 + k (t_last - t_0)/(n - 1) (1/300 s printed to four decimals),
+// the record is uniform and dt_s is the mean interval (t_last - t_0)/(n - 1),
 // which averages out the rounding of printed times; the values are taken as
-// they are. Otherwise the record is resampled by linear interpolation onto a
-// uniform grid with the smallest interval found, h_min, at t = k h_min for
-// k = 0 .. floor((t_last - t_first) / h_min): the smallest interval keeps the
-// finest time resolution the file has (no peak between two close samples is
-// averaged away), linear interpolation is what AccelerationRecord::at()
-// assumes between samples anyway, and a tail shorter than h_min after the last
-// grid point is dropped rather than extrapolated. A file whose smallest
-// interval is more than 100 times finer than its mean interval is refused
-// (field "time", at the line of that interval): real irregular sampling does
-// not span such a range, a mistyped time does, and resampling it would blow
-// the record up a hundredfold or more.
+// they are. Otherwise the samples are kept where the file puts them
+// (AccelerationRecord::sample_time_s, dt_s their smallest interval) and the
+// ground motion is linear between them: a digitised record's samples are
+// where its trace bends, and a grid would cut the peaks between its points.
+// A file whose smallest interval is more than 100 times finer than its mean
+// interval is refused (field "time", at the line of that interval): real
+// irregular sampling does not span such a range, a mistyped time does.
 //
 // The first time need not be 0: the record is shifted so its first sample is
 // at t = 0, and the shift is stated in `description`. description = the text
 // of the first '#' comment line (if any) followed by notes on the unit, the
-// shift and any resampling.
+// shift and any non-uniform sampling.
 AccelerationRecord read_two_column(const std::filesystem::path& file, AccelerationUnit unit);
 
 // Dispatch on `format`; two_column_unit is used only for TwoColumn.
