@@ -952,9 +952,13 @@ void parse_ground_motion(const Reader& r, const Field& f, CaseDef& def) {
         // Read now: a bad record fails with its own file, line and field.
         c.record = read_accelerogram(c.resolved_file, c.format, c.unit);
         const double record_end_s = c.record.duration_s();
-        if (gm.window_start_s >= record_end_s)
+        // Within half a sample of the end counts as at the end: the window
+        // would hold no sample interval (a start written as the record's
+        // last time, N*DT, lands just before or after the end).
+        if (gm.window_start_s >= record_end_s - 0.5 * c.record.dt_s)
           r.fail(start_field ? *start_field : file, "the window starts at " + fmt(gm.window_start_s) +
-                                                        " s, at or beyond the end of record " +
+                                                        " s, at or within half a sample (" +
+                                                        fmt(0.5 * c.record.dt_s) + " s) of the end of record " +
                                                         c.resolved_file.string() + " (" + fmt(record_end_s) + " s)");
         // Half a sample of slack: a window written as N*DT must not be
         // refused over the rounding of DT.

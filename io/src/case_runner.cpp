@@ -444,9 +444,13 @@ std::vector<std::string> ground_motion_direction_warnings(const GroundMotion& mo
       azimuth = std::all_of(tail.begin(), tail.end(), [](char ch) { return ch >= '0' && ch <= '9'; });
     }
     const bool horizontal_name = azimuth || field == "EW" || field == "NS" || field == "E" || field == "N";
-    const bool applied_vertically = std::abs(c.direction.z()) >= 0.5;
+    // Mostly vertical: more than 45 degrees above the horizontal (a 30
+    // degree cut called a direction 42 degrees up "mostly vertical"); at 45
+    // degrees exactly, neither warning.
+    const double up = std::abs(c.direction.normalized().z());
+    const bool applied_vertically = up > std::sqrt(0.5), applied_horizontally = up < std::sqrt(0.5);
     std::ostringstream w;
-    if (vertical_name && !applied_vertically)
+    if (vertical_name && applied_horizontally)
       w << c.record.source << " is a vertical component ('" << field << "' in its header: " << d
         << ") applied along the mostly horizontal direction (" << (c.direction.array() + 0.0).transpose()
         << "); give a horizontal record, or this one along z";

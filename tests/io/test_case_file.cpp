@@ -520,7 +520,17 @@ std::vector<BadCase> bad_cases() {
            "  window_start_s: 5.0\n  components:\n    - {file: rec.txt, format: two_column, axis: x}\n",
        6,
        "ground_motion.window_start_s",
-       {"beyond the end of record", "rec.txt"}},
+       {"of the end of record", "rec.txt"}},
+      // Within half a sample of the record's end (rec.txt ends at 1 s, DT
+      // 0.01 s): no sample interval left to run (records probe: a start
+      // written as the last sample's time ran, or failed naming a key the
+      // file did not have).
+      {"WindowStartsAtTheLastSample",
+       kHead + kBlock + gm_head +
+           "  window_start_s: 0.997\n  components:\n    - {file: rec.txt, format: two_column, axis: x}\n",
+       6,
+       "ground_motion.window_start_s",
+       {"within half a sample (0.005 s) of the end of record", "rec.txt"}},
       {"WindowPastEnd",
        kHead + kBlock + gm_head +
            "  window_length_s: 3.0\n  components:\n    - {file: rec.txt, format: two_column, axis: x}\n",

@@ -341,6 +341,15 @@ TEST(RunWarnings, AVerticalRecordAppliedHorizontallyAndTheReverseAreNamed) {
   ASSERT_EQ(h_z.size(), 1u);
   EXPECT_NE(h_z[0].find("is a horizontal component ('090'"), std::string::npos) << h_z[0];
   EXPECT_TRUE(warnings_for("h090.at2", "y").empty());
+  // "Mostly" is a side of 45 degrees above the horizontal: 42 degrees up
+  // ([1, 0, 0.9]) is mostly horizontal (a 30 degree cut called it mostly
+  // vertical), 50 degrees up is mostly vertical, 45 degrees is neither.
+  EXPECT_TRUE(warnings_for("h090.at2", "[1, 0, 0.9]").empty());
+  EXPECT_EQ(warnings_for("up.at2", "[1, 0, 0.9]").size(), 1u);
+  EXPECT_EQ(warnings_for("h090.at2", "[1, 0, 1.2]").size(), 1u);
+  EXPECT_TRUE(warnings_for("up.at2", "[1, 0, 1.2]").empty());
+  EXPECT_TRUE(warnings_for("h090.at2", "[0, 1, 1]").empty());
+  EXPECT_TRUE(warnings_for("up.at2", "[0, 1, 1]").empty());
   for (const char* name : {"frame_A.yaml", "frame_B.yaml", "frame_C.yaml"}) {
     const CaseDef shipped = load_case_file(std::filesystem::path(FQ_SOURCE_DIR) / "cases" / name);
     EXPECT_TRUE(ground_motion_direction_warnings(build_scene(shipped).simulation->ground_motion()).empty()) << name;
