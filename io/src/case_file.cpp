@@ -389,7 +389,9 @@ void parse_nodes(const Reader& r, const Field& f, CaseDef& def) {
                   if (const int other = def.node_index(nd.id); other >= 0)
                     r.fail(id, "node id '" + nd.id + "' is already used by nodes[" + std::to_string(other) +
                                    "] (line " + std::to_string(def.nodes[std::size_t(other)].line) + ")");
-                  nd.xyz_m = r.to_vec3(r.require(n, "xyz_m", path, "position x, y, z in m"), "x, y, z in m");
+                  const Field xyz = r.require(n, "xyz_m", path, "position x, y, z in m");
+                  nd.xyz_m = r.to_vec3(xyz, "x, y, z in m");
+                  if (const std::string why = coordinate_out_of_range(nd.xyz_m); !why.empty()) r.fail(xyz, why);
                   def.nodes.push_back(nd);
                 });
 }
@@ -502,7 +504,9 @@ void parse_blocks(const Reader& r, const Field& f, CaseDef& def) {
         for (std::size_t k = 0; k < 3; ++k)
           if (!(b.size_m[Eigen::Index(k)] > 0.0))
             r.fail(Reader::item(size, k), "expected a positive edge length in m, got " + describe(size.value[k]));
-        b.center_m = r.to_vec3(r.require(n, "center_m", path, "centre x, y, z in m"), "x, y, z in m");
+        const Field centre = r.require(n, "center_m", path, "centre x, y, z in m");
+        b.center_m = r.to_vec3(centre, "x, y, z in m");
+        if (const std::string why = coordinate_out_of_range(b.center_m); !why.empty()) r.fail(centre, why);
         b.rotation_rad =
             r.optional_vec3(n, "rotation_deg", path, Vec3::Zero(), "angles about world x, then y, then z in degrees") *
             kRadPerDeg;
@@ -1154,6 +1158,16 @@ std::string density_out_of_range(double density_kg_per_m3) {
       << kMaxDensity_kg_per_m3
       << " kg/m^3 (the lightest solids, aerogels, weigh about 1 kg/m^3 and the densest, osmium, 22 600; "
          "wood 300-900): a typing error or a unit off by powers of ten";
+  return why.str();
+}
+
+std::string coordinate_out_of_range(const Vec3& xyz_m) {
+  if (xyz_m.cwiseAbs().maxCoeff() <= kMaxCoordinate_m) return "";
+  std::ostringstream why;
+  why << "position (" << xyz_m.x() << ", " << xyz_m.y() << ", " << xyz_m.z() << ") m lies more than "
+      << kMaxCoordinate_m
+      << " m from the origin: coordinates that large lose the resolution a time step's motion needs; "
+         "place the structure near the origin (a typing error or a unit off by powers of ten?)";
   return why.str();
 }
 

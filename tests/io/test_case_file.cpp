@@ -402,6 +402,18 @@ std::vector<BadCase> bad_cases() {
        5,
        "nodes[0].xyz_m",
        {"expected a list of 3 numbers"}},
+      // Beyond kMaxCoordinate_m (1e5 m): a length of 1e300 m overflowed and
+      // was refused as "edge length not positive" at the member.
+      {"NodeFarAway",
+       kHead + "nodes:\n  - {id: n1, xyz_m: [0, 0, 0]}\n  - {id: n2, xyz_m: [1e300, 0, 0.3]}\n" + kBlock,
+       6,
+       "nodes[1].xyz_m",
+       {"more than 100000 m from the origin"}},
+      {"BlockFarAway",
+       kHead + "blocks: [{id: b, size_m: [0.1, 0.1, 0.1], center_m: [0, -2.0e5, 1], material: spruce}]\n",
+       4,
+       "blocks[0].center_m",
+       {"more than 100000 m from the origin"}},
       {"ListForName",
        "framequake_case: 1\nname: [a, b]\n" + kHead.substr(19) + kBlock,
        2,

@@ -87,6 +87,17 @@ inline constexpr double kMaxDensity_kg_per_m3 = 1.0e6;
 // Why `density_kg_per_m3` is refused, or "" when it lies in that range.
 std::string density_out_of_range(double density_kg_per_m3);
 
+// Largest coordinate magnitude of a node or a block centre (m). At 1e5 m a
+// double resolves 1.5e-11 m, still well below the 1e-7 m a body moves in a
+// step; at map coordinates (1e6-1e7 m) it resolves 1e-10-2e-9 m, the size
+// of the contact tolerances, and beyond ~1e154 m a member's length
+// overflows (a node at 1e300 m was refused as "edge length not positive").
+// A structure is put near the origin; a larger number is a typing error.
+inline constexpr double kMaxCoordinate_m = 1.0e5;
+// Why the position `xyz_m` is refused, or "" when every coordinate lies
+// within kMaxCoordinate_m.
+std::string coordinate_out_of_range(const Vec3& xyz_m);
+
 // Rectangular cross-section of a member.
 struct SectionDef {
   std::string name;
