@@ -37,9 +37,16 @@ std::vector<Storey> find_storeys(const Model& model) {
     if (std::abs(a.z() - b.z()) < kLevelTolerance_m) continue;  // a horizontal "column" spans no storey
     if (a.z() > b.z()) std::swap(a, b);
     columns.push_back({i, a, b});
-    levels.push_back(a.z());
     levels.push_back(b.z());
   }
+  // Levels are the column tops and the lowest column foot. A foot higher
+  // up (a column on a hillside step, a post standing on a beam) is no
+  // level of its own: it made a storey between the two feet, of the longer
+  // column alone.
+  if (!columns.empty())
+    levels.push_back(std::min_element(columns.begin(), columns.end(), [](const ColumnSpan& p, const ColumnSpan& q) {
+                       return p.low_m.z() < q.low_m.z();
+                     })->low_m.z());
   std::sort(levels.begin(), levels.end());
   std::vector<double> merged;
   for (double z : levels)
@@ -52,7 +59,10 @@ std::vector<Storey> find_storeys(const Model& model) {
     s.bottom_z_m = merged[k - 1];
     s.top_z_m = merged[k];
     for (const ColumnSpan& c : columns) {
-      if (c.low_m.z() > s.bottom_z_m + kLevelTolerance_m || c.high_m.z() < s.top_z_m - kLevelTolerance_m) continue;
+      // A column of the band reaches its top level and starts at or below
+      // it; one whose foot lies inside the band counts from its foot.
+      if (c.low_m.z() > s.top_z_m - kLevelTolerance_m || c.high_m.z() < s.top_z_m - kLevelTolerance_m) continue;
+      const double foot_z = c.low_m.z() > s.bottom_z_m + kLevelTolerance_m ? c.low_m.z() : s.bottom_z_m;
       const BodyId body = model.member_body[c.member];
       auto point_at = [&](double z) {  // on the column axis at height z
         const double f = (z - c.low_m.z()) / (c.high_m.z() - c.low_m.z());
@@ -60,7 +70,7 @@ std::vector<Storey> find_storeys(const Model& model) {
       };
       StoreyColumn sc;
       sc.body = body;
-      sc.bottom_start_m = point_at(s.bottom_z_m);
+      sc.bottom_start_m = point_at(foot_z);
       sc.top_start_m = point_at(s.top_z_m);
       const Mat3& r = model.bodies.rotation[body];
       const Vec3& x = model.bodies.position_m[body];

@@ -77,6 +77,40 @@ TEST(StoreyDrift, StoreysAreTheBandsBetweenColumnLevels) {
   for (const Storey& s : storeys) EXPECT_NEAR(storey_drift_m(s, model.bodies).norm(), 0.0, 1e-15);
 }
 
+// A one-storey portal on a hillside: feet at z = 0 and 0.1 m, both tops at
+// 0.39 m. One storey (a foot is no level; the geometry probe got a storey
+// 0-0.1 m of the long column alone), both columns in it, the short one
+// counted from its foot: turned by theta about their feet, the columns
+// drift 0.39 sin(theta) and 0.29 sin(theta), the storey their mean.
+TEST(StoreyDrift, AColumnOnAHillsideStepCountsFromItsFoot) {
+  TempDir dir;
+  Model model = build_model(load_case_file(dir.write("hillside.yaml",
+      "framequake_case: 1\n"
+      "time: {dt_s: 1.0e-5, duration_s: 0.01}\n"
+      "materials: [{name: wood, density_kg_per_m3: 450}]\n"
+      "sections: [{name: col, width_m: 0.010, depth_m: 0.020}]\n"
+      "nodes:\n"
+      "  - {id: a0, xyz_m: [0, 0, 0]}\n"
+      "  - {id: a1, xyz_m: [0, 0, 0.39]}\n"
+      "  - {id: b0, xyz_m: [0.5, 0, 0.1]}\n"
+      "  - {id: b1, xyz_m: [0.5, 0, 0.39]}\n"
+      "members:\n"
+      "  - {id: long, kind: column, nodes: [a0, a1], section: col, material: wood}\n"
+      "  - {id: short, kind: column, nodes: [b0, b1], section: col, material: wood}\n"
+      "  - {id: beam, kind: beam, nodes: [a1, b1], section: col, material: wood}\n")));
+  const std::vector<Storey> storeys = find_storeys(model);
+  ASSERT_EQ(storeys.size(), 1u);
+  EXPECT_DOUBLE_EQ(storeys[0].bottom_z_m, 0.0);
+  EXPECT_DOUBLE_EQ(storeys[0].top_z_m, 0.39);
+  EXPECT_EQ(storeys[0].column_names, (std::vector<std::string>{"long", "short"}));
+  const double theta = 0.05;
+  turn_about_y(model.bodies, model.member_body[0], Vec3(0, 0, 0), theta);
+  turn_about_y(model.bodies, model.member_body[1], Vec3(0.5, 0, 0.1), theta);
+  const Eigen::Vector2d d = storey_drift_m(storeys[0], model.bodies);
+  EXPECT_NEAR(d.x(), 0.5 * (0.39 + 0.29) * std::sin(theta), 1e-12);
+  EXPECT_NEAR(d.y(), 0.0, 1e-12);
+}
+
 TEST(StoreyDrift, TurnedColumnDriftsHeightTimesSine) {
   Model model = frame_model();
   const std::vector<Storey> storeys = find_storeys(model);

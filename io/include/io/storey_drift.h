@@ -1,11 +1,13 @@
 // Storeys of a framed structure, their inter-storey drift and the verdict on
 // each (cases/README.md, `assessment`).
 //
-// Storey levels are the distinct heights (z) at which columns end. Storey k
-// (1-based) is the band between level k-1 and level k; its columns are the
-// column members spanning that band. Each column contributes two material
-// points on its axis, at the band's bottom and top heights, fixed in the
-// column's body frame. The drift of the storey (m) is the mean over its
+// Storey levels are the distinct heights (z) at which columns end at their
+// top, and the lowest column foot. Storey k (1-based) is the band between
+// level k-1 and level k; its columns are the column members reaching its
+// top level from at or below it. Each column contributes two material
+// points on its axis, at the band's top height and at its bottom height (or
+// the column's own foot where that lies inside the band: a column on a
+// hillside step, a post on a beam), fixed in the column's body frame. The drift of the storey (m) is the mean over its
 // columns of the horizontal displacement of the top point relative to the
 // bottom point; the drift ratio (rad) is drift / height. While the joints
 // hold, these points coincide with the nodes and this is the usual relative
