@@ -399,16 +399,24 @@ std::string nodes_inside_members_warning(const CaseDef& def) {
     const double length = axis.norm();
     if (!(length > 2.0 * kEndClearance_m)) continue;
     const Vec3 dir = axis / length;
-    const double reach = 0.5 * std::min(sec->second->width_m, sec->second->depth_m);
+    // The member's box (model.h, member_orientation: width along local y,
+    // depth along local z) and 1 mm beyond its faces: a node on a face (a
+    // post drawn standing on a beam's top) is held no better than one
+    // inside.
+    const Mat3 frame = member_orientation(pa, b->second->xyz_m, m.roll_rad).toRotationMatrix();
+    const double half_width = 0.5 * sec->second->width_m + kEndClearance_m;
+    const double half_depth = 0.5 * sec->second->depth_m + kEndClearance_m;
     for (const NodeDef* n : ends) {
       if (n->id == m.node_a || n->id == m.node_b) continue;
       const double along = (n->xyz_m - pa).dot(dir);
       if (along <= kEndClearance_m || along >= length - kEndClearance_m) continue;
-      if ((n->xyz_m - pa - along * dir).norm() > reach) continue;
+      const Vec3 across = n->xyz_m - pa - along * dir;
+      if (std::abs(across.dot(frame.col(1))) > half_width || std::abs(across.dot(frame.col(2))) > half_depth) continue;
       ++count;
       if (found.size() < 3) {
         std::ostringstream f;
-        f << "node '" << n->id << "' (line " << n->line << ") inside member '" << m.id << "' (line " << m.line << ")";
+        f << "node '" << n->id << "' (line " << n->line << ") inside or on member '" << m.id << "' (line " << m.line
+          << ")";
         found.push_back(f.str());
       }
     }
@@ -416,7 +424,7 @@ std::string nodes_inside_members_warning(const CaseDef& def) {
   if (count == 0) return {};
   std::ostringstream w;
   w << def.source_file.string() << ": " << count << (count == 1 ? " node lies" : " nodes lie")
-    << " inside a member without being one of its ends (";
+    << " inside or on a member without being one of its ends (";
   for (std::size_t k = 0; k < found.size(); ++k) w << (k ? "; " : "") << found[k];
   if (count > found.size()) w << "; ...";
   w << "): joints join members only where they end, so the members ending at such a node are not held to the "

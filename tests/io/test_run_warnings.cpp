@@ -269,6 +269,37 @@ TEST(RunWarnings, BodiesOverlappingAtTheStartAreNamedWithTheirDepth) {
   EXPECT_EQ(w.find("'right'"), std::string::npos) << "touching is not overlapping: " << w;
 }
 
+// A king post drawn standing on the top face of a beam 20 mm deep and
+// 10 mm wide (its foot 10 mm above the beam's axis, beyond the 5 mm the
+// old test of the inscribed circle reached): no joint holds it to the
+// beam, which the warning names (geometry probe). A post 3 mm above the
+// face is clear of the beam (1 mm allowance) and not named.
+TEST(RunWarnings, ANodeOnAMembersFaceIsNamed) {
+  test::TempDir dir;
+  auto warning_for = [&](double foot_z_m) {
+    std::ostringstream text;
+    text << "framequake_case: 1\n"
+            "time: {dt_s: 1.0e-5, duration_s: 0.001}\n"
+            "materials: [{name: wood, density_kg_per_m3: 450}]\n"
+            "sections: [{name: beam, width_m: 0.010, depth_m: 0.020}]\n"
+            "nodes:\n"
+            "  - {id: a, xyz_m: [0, 0, 0.3]}\n"
+            "  - {id: b, xyz_m: [0.6, 0, 0.3]}\n"
+            "  - {id: foot, xyz_m: [0.3, 0, "
+         << foot_z_m
+         << "]}\n"
+            "  - {id: ridge, xyz_m: [0.3, 0, 0.45]}\n"
+            "members:\n"
+            "  - {id: tie_beam, kind: beam, nodes: [a, b], section: beam, material: wood}\n"
+            "  - {id: king_post, kind: other, nodes: [foot, ridge], section: beam, material: wood}\n";
+    return nodes_inside_members_warning(load_case_file(dir.write("king_post.yaml", text.str())));
+  };
+  const std::string on_face = warning_for(0.31);
+  EXPECT_NE(on_face.find("node 'foot' (line 8) inside or on member 'tie_beam' (line 11)"), std::string::npos)
+      << on_face;
+  EXPECT_EQ(warning_for(0.313), "");
+}
+
 TEST(RunWarnings, ANodeInsideAMemberIsNamedAndTheShippedFramesHaveNone) {
   // A column drawn through the floor node m1 (from m0 to m2) and a beam
   // ending at m1: no joint holds the beam to the column there. A second
@@ -297,9 +328,9 @@ TEST(RunWarnings, ANodeInsideAMemberIsNamedAndTheShippedFramesHaveNone) {
       "  - {id: beam_2, kind: beam, nodes: [beside, far], section: s, material: wood}\n";
   const CaseDef def = load_case_file(dir.write("through.yaml", text));
   const std::string w = nodes_inside_members_warning(def);
-  EXPECT_NE(w.find("2 nodes lie inside a member"), std::string::npos) << w;
-  EXPECT_NE(w.find("node 'm1' (line 7) inside member 'col_m' (line 15)"), std::string::npos) << w;
-  EXPECT_NE(w.find("node 'n1' (line 10) inside member 'col_n' (line 16)"), std::string::npos) << w;
+  EXPECT_NE(w.find("2 nodes lie inside or on a member"), std::string::npos) << w;
+  EXPECT_NE(w.find("node 'm1' (line 7) inside or on member 'col_m' (line 15)"), std::string::npos) << w;
+  EXPECT_NE(w.find("node 'n1' (line 10) inside or on member 'col_n' (line 16)"), std::string::npos) << w;
   EXPECT_EQ(w.find("'beside'"), std::string::npos) << w;
   EXPECT_NE(w.find("through.yaml"), std::string::npos) << w;
   // The shipped frames join every member at its ends.
