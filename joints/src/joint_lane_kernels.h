@@ -46,10 +46,8 @@ void JointSystem::FQ_LANE_KERNEL(update_lane_frames_)(const BodyStore& bodies, s
       jb[k] = &joint_frame_b_[j];
     }
     const lanes::QuatLanes fa = lanes::product(lanes::load_quats(qa, n), lanes::load_quats(ja, n));
-    lanes::QuatLanes fb = lanes::product(lanes::load_quats(qb, n), lanes::load_quats(jb, n));
-    const v4m flip = lanes::dot(fa, fb) < 0.0;
-    fb = {lanes::select(flip, -fb.x, fb.x), lanes::select(flip, -fb.y, fb.y), lanes::select(flip, -fb.z, fb.z),
-          lanes::select(flip, -fb.w, fb.w)};
+    // The sum of the two, unturned: update_joint_frame_ says why.
+    const lanes::QuatLanes fb = lanes::product(lanes::load_quats(qb, n), lanes::load_quats(jb, n));
     v4d m[9];
     lanes::to_rotation_matrix(lanes::normalized({fa.x + fb.x, fa.y + fb.y, fa.z + fb.z, fa.w + fb.w}), m);
     // Lanes back to one matrix per joint: after the two transposes, m[k]

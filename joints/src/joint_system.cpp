@@ -385,9 +385,18 @@ void JointSystem::point_springs_general_(std::size_t p, const double d_axis[3], 
 }
 
 Mat3 JointSystem::update_joint_frame_(const BodyStore& bodies, std::size_t j) {
+  // qa and qb start equal (add_joint) and each follows its body's
+  // orientation quaternion, which the integrator moves continuously, so
+  // their sum is continuous in time: its rotation is the half-way frame,
+  // and it stays continuous through a half turn of the two bodies against
+  // each other. (Turning qb to the hemisphere of qa, as before, jumped the
+  // frame by half a turn there, flipping the normal and a shear axis: a
+  // spring stiffer in compression than in tension, or a joint left with
+  // one-sided springs, jumped its force and energy.) The sum vanishes only
+  // at a whole relative turn, where its rotation is continuous up to that
+  // one instant (q and -q are the same rotation).
   const Quat qa = bodies.orientation[joint_body_a_[j]] * joint_frame_a_[j];
-  Quat qb = bodies.orientation[joint_body_b_[j]] * joint_frame_b_[j];
-  if (qa.dot(qb) < 0.0) qb.coeffs() = -qb.coeffs();
+  const Quat qb = bodies.orientation[joint_body_b_[j]] * joint_frame_b_[j];
   Quat qm;
   qm.coeffs() = qa.coeffs() + qb.coeffs();
   qm.normalize();
