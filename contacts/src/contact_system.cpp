@@ -686,6 +686,19 @@ void ContactSystem::report_energy(EnergyLedger& ledger) const {
   ledger.dissipated_friction_J += dissipated_friction_J();
 }
 
+Vec3 ContactSystem::force_from_fixed_bodies_N(const BodyStore& bodies) const {
+  Vec3 sum = Vec3::Zero();
+  for (const ContactPoint& c : contacts_) {
+    // force_N() acts on b; the ground is always a.
+    const bool ground = (c.pair_key & kGroundKeyHigh) == kGroundKeyHigh;
+    const bool fixed_a = ground || (c.body_a >= 0 && bodies.is_fixed[std::size_t(c.body_a)] != 0);
+    const bool fixed_b = c.body_b >= 0 && bodies.is_fixed[std::size_t(c.body_b)] != 0;
+    if (fixed_a && !fixed_b) sum += c.force_N();
+    if (fixed_b && !fixed_a) sum -= c.force_N();
+  }
+  return sum;
+}
+
 double ContactSystem::ground_normal_force_N() const {
   double sum = 0.0;
   for (const ContactPoint& c : contacts_)

@@ -245,6 +245,7 @@ void attach_provider_output(RunOutput& writer, const Scene& scene) {
   else if (scene.contacts)
     writer.add_cell_block("springs", [](const Simulation&, VtkFrameBuilder&) {});
   if (scene.contacts) attach_contact_output(writer, *scene.contacts);
+  if (scene.joints || scene.contacts) attach_base_force_output(writer, scene.joints, scene.contacts);
 }
 
 // The part of a run shared by run_case and resume_case: observers, the

@@ -90,6 +90,18 @@ void attach_contact_output(RunOutput& output, const ContactSystem& contacts) {
   output.add_history_column("ground_normal_force_N", [cs](const Simulation&) { return cs->ground_normal_force_N(); });
 }
 
+void attach_base_force_output(RunOutput& output, const JointSystem* joints, const ContactSystem* contacts) {
+  auto base_force = [joints, contacts](const Simulation& sim) {
+    Vec3 f = Vec3::Zero();
+    if (joints) f += joints->force_from_fixed_bodies_N(sim.bodies());
+    if (contacts) f += contacts->force_from_fixed_bodies_N(sim.bodies());
+    return f;
+  };
+  output.add_history_column("base_shear_x_N", [base_force](const Simulation& sim) { return base_force(sim).x(); });
+  output.add_history_column("base_shear_y_N", [base_force](const Simulation& sim) { return base_force(sim).y(); });
+  output.add_history_column("base_reaction_z_N", [base_force](const Simulation& sim) { return base_force(sim).z(); });
+}
+
 void add_joint_summary(RunOutput& output, const JointSystem& joints, const EventLog& events) {
   const JointCounts c = joints.counts();
   std::ostringstream counts;

@@ -38,4 +38,11 @@ void add_storey_summary(RunOutput& output, const StoreyDriftMonitor& monitor);
 // ground_normal_force_N.
 void attach_contact_output(RunOutput& output, const ContactSystem& contacts);
 
+// History columns base_shear_x_N, base_shear_y_N and base_reaction_z_N: the
+// force the ground and fixed bodies apply to the structure through support
+// joints and contacts (N, world; + along the axis, so + z carries the
+// weight). At rest under gravity the reaction is the weight; moving with a
+// ground acceleration a_g the base shear is the mass times a_g.
+void attach_base_force_output(RunOutput& output, const JointSystem* joints, const ContactSystem* contacts);
+
 }  // namespace fq

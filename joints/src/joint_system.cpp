@@ -810,6 +810,19 @@ JointStatus JointSystem::joint_status(std::size_t j) const {
   return JointStatus::Intact;
 }
 
+Vec3 JointSystem::force_from_fixed_bodies_N(const BodyStore& bodies) const {
+  Vec3 sum = Vec3::Zero();
+  if (slot_force_N_.size() < 2 * joint_count()) return sum;  // before the first force evaluation
+  for (std::size_t j = 0; j < joint_count(); ++j) {
+    if (joint_broken_[j]) continue;
+    const bool fixed_a = bodies.is_fixed[std::size_t(joint_body_a_[j])] != 0;
+    const bool fixed_b = bodies.is_fixed[std::size_t(joint_body_b_[j])] != 0;
+    if (fixed_a && !fixed_b) sum += slot_force_N_[2 * j + 1];
+    if (fixed_b && !fixed_a) sum += slot_force_N_[2 * j];
+  }
+  return sum;
+}
+
 JointCounts JointSystem::counts() const {
   JointCounts c;
   for (std::size_t j = 0; j < joint_body_a_.size(); ++j) {

@@ -239,6 +239,10 @@ class ContactSystem : public ForceProvider {
   std::size_t contact_count() const { return contacts_.size(); }
   // Sum of the normal forces of ground contacts (N) at the last evaluation.
   double ground_normal_force_N() const;
+  // Force the ground and fixed bodies apply through contacts to the free
+  // bodies they touch, summed (N, world; from the last force evaluation).
+  // Part of the base shear (io: history.csv).
+  Vec3 force_from_fixed_bodies_N(const BodyStore& bodies) const;
   std::int64_t broad_phase_rebuilds() const { return broad_.rebuild_count(); }
   std::size_t candidate_pair_count() const { return broad_.pairs().size(); }
   double skin_m() const { return broad_.skin_m(); }

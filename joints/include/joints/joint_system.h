@@ -157,6 +157,10 @@ class JointSystem final : public ForceProvider {
   std::size_t joint_first_spring(std::size_t j) const { return std::size_t(joint_first_[j]); }
   std::size_t joint_spring_count(std::size_t j) const { return std::size_t(joint_first_[j + 1] - joint_first_[j]); }
   JointCounts counts() const;
+  // Force that joints to fixed bodies (supports) apply to the free bodies
+  // they hold, summed (N, world; from the last force evaluation; broken
+  // joints apply none). Part of the base shear (io: history.csv).
+  Vec3 force_from_fixed_bodies_N(const BodyStore& bodies) const;
   // Joints that run the lane kernel (known after the first step).
   std::size_t lane_joint_count() const;
   // Stored / dissipated energy of one spring (J).
