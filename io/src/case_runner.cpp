@@ -202,10 +202,17 @@ class OutputSizeCheck final : public StepObserver {
     std::error_code ec;
     const double frame_bytes = double(fs::file_size(frame_path(writer_->folder(), 0), ec));
     if (ec) return;
-    const double history_bytes = double(fs::file_size(history_path(writer_->folder()), ec));
+    // Per row: the file so far over the rows in it (a resumed run's
+    // history.csv already holds the rows before the checkpoint; taken as
+    // one row, it made resume announce 18 GB for a 16 MB run).
+    const double history_bytes = double(fs::file_size(history_path(writer_->folder()), ec)) /
+                                 double(std::max<std::int64_t>(1, writer_->history_rows()));
     if (ec) return;
-    const double frames = double(samples_written(total_steps_, writer_->frame_every_steps()));
-    const double rows = double(samples_written(total_steps_, writer_->history_every_steps()));
+    // What is still to come: a resumed run has written part of it.
+    const double frames = double(std::max<std::int64_t>(
+        0, samples_written(total_steps_, writer_->frame_every_steps()) - std::int64_t(writer_->frames_written())));
+    const double rows = double(std::max<std::int64_t>(
+        0, samples_written(total_steps_, writer_->history_every_steps()) - writer_->history_rows()));
     const double estimate = frames * frame_bytes + rows * history_bytes;
     const fs::space_info space = fs::space(writer_->folder(), ec);
     auto amount = [](double bytes) {
@@ -214,7 +221,7 @@ class OutputSizeCheck final : public StepObserver {
       return a.str();
     };
     std::ostringstream what;
-    what << std::setprecision(3) << "about " << amount(estimate) << " of output (" << std::llround(frames)
+    what << std::setprecision(3) << "about " << amount(estimate) << " more output (" << std::llround(frames)
          << " frames of about " << frame_bytes / 1e3 << " kB, " << std::llround(rows) << " history rows)";
     if (!ec && estimate > double(space.available)) {
       std::ostringstream w;
