@@ -53,8 +53,11 @@ void attach_joint_output(RunOutput& output, const JointSystem& joints) {
     const auto joint = frame.cell_array("joint_id", VtkArrayType::Int32, 1, -1);
     const auto broken = frame.cell_array("joint_broken", VtkArrayType::Int32, 1, -1);
     for (std::size_t s = 0; s < n; ++s) {
-      const auto a = frame.add_point(js->spring_end_a_m()[s]);
-      const auto b = frame.add_point(js->spring_end_b_m()[s]);
+      // Ends where the bodies of this frame are (the stored ends are the
+      // last force evaluation's, a step before).
+      const auto [end_a, end_b] = js->spring_ends_now_m(sim.bodies(), s);
+      const auto a = frame.add_point(end_a);
+      const auto b = frame.add_point(end_b);
       const auto cell = frame.add_cell(VtkCellType::Line, {a, b});
       const auto j = std::size_t(js->spring_joint()[s]);
       frame.set(force, cell, js->spring_force_N()[s]);

@@ -9,7 +9,8 @@
 
 namespace fq {
 
-// Springs as VTK line cells (ends on body a and body b) with arrays
+// Springs as VTK line cells (ends on body a and body b at the frame's
+// poses; the arrays are the last force evaluation's, one step before) with arrays
 // spring_force_N, strain_ratio (|delta| / ultimate, 1 = deletion),
 // spring_state (0 elastic, 1 yielded, 2 deleted), spring_role (0 normal,
 // 1 shear, 2 link), joint_id and joint_broken (0/1); history columns

@@ -49,6 +49,7 @@
 #include "io/atomic_file.h"
 #include "io/json_writer.h"
 #include "io/run_output.h"
+#include "checkpoint_case.h"
 #include "io_test_util.h"
 
 namespace fs = std::filesystem;
@@ -1072,4 +1073,68 @@ TEST(RunOutput, AnAppendedFileIsCutBackToItsLastCompleteRow) {
   fq::detail::cut_back_to_last_line_end(f);
   EXPECT_EQ(read_text(f), "no line end");
   EXPECT_EQ(fq::detail::count_line_ends(dir.path() / "missing.csv"), -1);
+}
+
+// A spring line's end on a member is where that member is drawn in the same
+// frame: a column on a four-corner support joint (points at the section's
+// corners on the column's foot plane, which is its box's end face) has, in
+// every frame, one end of each spring at a vertex of the column's box to
+// round-off. The frames drew the ends of the last force evaluation, a step
+// before the bodies (1e-7 m off a column swaying under a record; VTK probe).
+TEST(RunOutput, SpringEndsAreOnTheBodiesOfTheSameFrame) {
+  fq::test::TempDir dir;
+  std::ofstream(dir.path() / "sine.txt") << fq::test::sine_record(0.3);
+  const auto file = dir.write("column.yaml",
+                              "framequake_case: 1\n"
+                              "time: {dt_s: 1.0e-5, duration_s: 0.3}\n"
+                              "materials: [{name: wood, density_kg_per_m3: 450}]\n"
+                              "sections: [{name: col, width_m: 0.02, depth_m: 0.02}]\n"
+                              "nodes: [{id: a, xyz_m: [0, 0, 0]}, {id: b, xyz_m: [0, 0, 0.3]}]\n"
+                              "members: [{id: c, kind: column, nodes: [a, b], section: col, material: wood}]\n"
+                              "joint_types: [{name: base, layout: four_corner,\n"
+                              "               normal: {law: linear, stiffness_N_per_m: 1.0e4},\n"
+                              "               shear: {law: linear, stiffness_N_per_m: 1.0e4},\n"
+                              "               fracture: {criterion: never}}]\n"
+                              "supports: [{node: a, joint_type: base}]\n"
+                              "ground_motion: {components: [{file: sine.txt, format: two_column, axis: x}]}\n"
+                              "output: {frame_interval_s: 0.1, history_interval_s: 0.01}\n");
+  fq::CaseRunOptions options;
+  options.output_folder = dir.path() / "out";
+  ASSERT_EQ(fq::run_case(fq::load_case_file(file), options).result.status, fq::RunStatus::Completed);
+  for (const char* name : {"frame_000001.vtu", "frame_000002.vtu", "frame_000003.vtu"}) {
+    ReadFrame f = read_vtu(dir.path() / "out" / "frames" / name);
+    ASSERT_EQ(f.errors, 0) << name;
+    vtkUnstructuredGrid* g = f.grid;
+    vtkDataArray* block = g->GetCellData()->GetArray("cell_block");
+    vtkDataArray* body_id = g->GetCellData()->GetArray("body_id");
+    ASSERT_NE(block, nullptr);
+    ASSERT_NE(body_id, nullptr);
+    std::vector<fq::Vec3> column_corners;
+    std::vector<std::pair<fq::Vec3, fq::Vec3>> springs;
+    for (vtkIdType c = 0; c < g->GetNumberOfCells(); ++c) {
+      vtkIdType n = 0;
+      const vtkIdType* ids = nullptr;
+      g->GetCellPoints(c, n, ids);
+      if (block->GetTuple1(c) == 0.0 && n == 8 && hex_volume(g, c) < 0.3 * 0.02 * 0.02 * 1.01) {
+        for (int k = 0; k < 8; ++k) {
+          fq::Vec3 p;
+          g->GetPoint(ids[k], p.data());
+          column_corners.push_back(p);
+        }
+      } else if (block->GetTuple1(c) == 1.0 && n == 2) {
+        fq::Vec3 a, b;
+        g->GetPoint(ids[0], a.data());
+        g->GetPoint(ids[1], b.data());
+        springs.emplace_back(a, b);
+      }
+    }
+    ASSERT_EQ(column_corners.size(), 8u) << name;
+    ASSERT_EQ(springs.size(), 12u) << name;  // four points, a normal and two shear springs each
+    for (const auto& [a, b] : springs) {
+      double nearest = std::numeric_limits<double>::infinity();
+      for (const fq::Vec3& corner : column_corners)
+        nearest = std::min({nearest, (a - corner).norm(), (b - corner).norm()});
+      EXPECT_LT(nearest, 1e-12) << name;
+    }
+  }
 }

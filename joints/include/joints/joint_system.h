@@ -71,6 +71,7 @@
 #include <cstdint>
 #include <string>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "dem_core/bonded_pairs.h"
@@ -144,6 +145,15 @@ class JointSystem final : public ForceProvider {
   std::size_t spring_count() const { return spring_joint_.size(); }
   const std::vector<Vec3>& spring_end_a_m() const;  // world (m)
   const std::vector<Vec3>& spring_end_b_m() const;  // world (m)
+  // Ends of spring s on its two bodies at their current poses (m, world):
+  // spring_end_*_m() are those of the last force evaluation, one step
+  // before the poses an output frame draws.
+  std::pair<Vec3, Vec3> spring_ends_now_m(const BodyStore& bodies, std::size_t s) const {
+    const std::size_t j = std::size_t(spring_joint_[s]);
+    const BodyId a = joint_body_a_[j], b = joint_body_b_[j];
+    return {bodies.position_m[a] + bodies.rotation[a] * attach_a_local_m_[s],
+            bodies.position_m[b] + bodies.rotation[b] * attach_b_local_m_[s]};
+  }
   const std::vector<double>& spring_force_N() const;  // law + dashpot, + = tension (N)
   const std::vector<double>& spring_deformation_m() const { return delta_m_; }
   const std::vector<std::int32_t>& spring_joint() const { return spring_joint_; }
