@@ -663,8 +663,17 @@ void JointSystem::finish_step(const BodyStore& bodies, const StepInfo& step, Eve
     e.joint_id = std::int32_t(j);
     e.body_a = joint_body_a_[j];
     e.body_b = joint_body_b_[j];
+    // The force on a of the springs deleted in this step, at their last
+    // law force: this step's resultant (the slot) no longer has them.
+    Vec3 released_on_a_N = Vec3::Zero();
     for (std::size_t s = first; s < last; ++s) {
       if (!pending_[s]) continue;
+      if (pending_[s] & kPendingDelete) {
+        const auto p = std::size_t(spring_point_[s]);
+        const Vec3 along = spring_axis_[s] >= 0 ? Vec3(joint_frame_world_[j].col(spring_axis_[s]))
+                                                : Vec3((point_end_b_m_[p] - point_end_a_m_[p]).normalized());
+        released_on_a_N += failure_force_N_[s] * along;  // tension (+) pulls a towards b
+      }
       const auto p = std::size_t(spring_point_[s]);
       e.spring_index = std::int32_t(s - first);
       e.position_m = 0.5 * (point_end_a_m_[p] + point_end_b_m_[p]);
@@ -687,13 +696,16 @@ void JointSystem::finish_step(const BodyStore& bodies, const StepInfo& step, Eve
       joint_break_pending_[j] = 0;
       e.kind = EventKind::JointBroken;
       e.spring_index = -1;
-      // Force at failure: magnitude of the resultant the joint carried.
+      // Force at failure: magnitude of the resultant the joint carried, with
+      // the springs whose deletion broke it (the resultant without them,
+      // 11 times the carried load in a probe's cantilever, is what the
+      // survivors push with for the one step they still act).
       Vec3 where = Vec3::Zero();
       for (std::size_t s = first; s < last; ++s) {
         const auto p = std::size_t(spring_point_[s]);
         where += 0.5 * (point_end_a_m_[p] + point_end_b_m_[p]);
       }
-      e.force_N = slot_force_N_[2 * j].norm();
+      e.force_N = (slot_force_N_[2 * j] + released_on_a_N).norm();
       e.position_m = where / double(last - first);
       bool any_normal_dead = false;
       for (std::size_t s = first; s < last; ++s)

@@ -317,5 +317,40 @@ TEST(CaseJoints, HalfTurnOfABallJointKeepsTheLedgerSecondOrder) {
   EXPECT_LT(coarse / fine, 5.0) << coarse << " J at 5e-5 s, " << fine << " J at 2.5e-5 s";
 }
 
+// A rod (0.054 kg, 0.53 N) hung from a single-point joint whose normal
+// spring is perfectly plastic in tension at 0.4 N: the spring yields at
+// 0.4 N, stretches to its ultimate strain and is deleted, and the joint
+// breaks. The break's force is the load the joint carried then, the
+// spring's 0.4 N (the shear springs carry nothing in a vertical hang). It
+// was the resultant of the springs left after the deletion: 0 N here.
+TEST(CaseJoints, JointBreakReportsTheLoadItCarried) {
+  TempDir dir;
+  const std::string text =
+      "framequake_case: 1\n"
+      "time: {dt_s: 1.0e-5, duration_s: 0.01}\n"
+      "materials: [{name: wood, density_kg_per_m3: 450}]\n"
+      "sections: [{name: rod, width_m: 0.02, depth_m: 0.02}]\n"
+      "nodes: [{id: top, xyz_m: [0, 0, 1.0]}, {id: bottom, xyz_m: [0, 0, 0.7]}]\n"
+      "members: [{id: rod, kind: other, nodes: [top, bottom], section: rod, material: wood}]\n"
+      "joint_types:\n"
+      "  - name: hook\n"
+      "    layout: single_point\n"
+      "    normal: {law: trilinear, reference_length_m: 0.01, yield_strain_tension: 1.0e-3,\n"
+      "             yield_force_tension_N: 0.4, ultimate_strain_tension: 3.0e-3, ultimate_force_tension_N: 0.4,\n"
+      "             yield_strain_compression: 1.0e-3, yield_force_compression_N: 10,\n"
+      "             ultimate_strain_compression: 3.0e-3, ultimate_force_compression_N: 10}\n"
+      "    shear: {law: linear, stiffness_N_per_m: 1.0e4}\n"
+      "supports: [{node: top, joint_type: hook}]\n";
+  Scene scene = build_scene(load_case_file(dir.write("hang.yaml", text)));
+  ASSERT_EQ(scene.simulation->run().status, RunStatus::Completed);
+  int breaks = 0;
+  for (const Event& e : scene.simulation->events().all()) {
+    if (e.kind != EventKind::JointBroken) continue;
+    ++breaks;
+    EXPECT_NEAR(e.force_N, 0.4, 1e-9);
+  }
+  EXPECT_EQ(breaks, 1);
+}
+
 }  // namespace
 }  // namespace fq
