@@ -14,7 +14,7 @@
 # supports holding by their joints alone (the ground 1 mm below the feet),
 # and joint dashpots ten times stronger.
 #
-# Usage: bash validation/frames_sensitivity.sh            (21 runs)
+# Usage: bash validation/frames_sensitivity.sh            (22 runs)
 #        FQ_WINDOW="5 8" bash validation/frames_sensitivity.sh
 set -euo pipefail
 source "$(dirname "$0")/frames_study_prologue.sh" frames_sensitivity \

@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Amplitude sweep of frames A, B and C (the study behind cases/README.md,
 # "Amplitude sweep"): JMA Kobe NS at scales 0.5-2, and two other records
-# at the same scales. Long: 18 runs per record, about a minute of CPU each
-# (one core per run, all cores used).
+# at the same scales (JR Takatori and Newhall are read from
+# ../shared/data/ground_motions/, beside the repository, not from cases/).
+# 18 runs per record, 6-15 s each on the development machine (sweep.csv
+# wall_s, 2026-11-26; one core per run, all cores used).
 # Writes validation/results/frames_sweep_<record>/ (sweep.csv,
 # collapse_scales.md, sweep.png; the runs' own output folders are removed to
 # keep only the tables and figures).

@@ -633,9 +633,14 @@ void check_run_start(const CaseDef& def, const Scene& scene, const CaseRunOption
           << "; choose another integrator (or run with --force to override)";
       throw integrator_error(msg.str());
     }
+    // omega_max is the undamped frequency that would set the same limit
+    // (dem_core/linearised_network.h): dashpots included, not 2/omega of
+    // the stiffest spring alone.
     msg << "dt_s = " << dt << " s exceeds the stable time step of " << integrator_name(method) << ", "
-        << integrator_stability_factor(method) << "/omega_max = " << limit_text(scene.stable_time_step.dt_crit_s)
-        << " s, set by " << scene.stable_time_step.stiffest_element
+        << limit_text(scene.stable_time_step.dt_crit_s) << " s (" << integrator_stability_factor(method)
+        << "/omega_max, omega_max = " << scene.stable_time_step.omega_max_radps
+        << " rad/s: the scene's stiffest mode, its dashpots included), set by "
+        << scene.stable_time_step.stiffest_element
         << "; lower dt_s below it (or run with --force to override)";
     const int line = line_of(def, "time.dt_s");
     throw InputError(def.source_file.string(), line ? line : line_of(def, "time"), "time.dt_s", msg.str());
@@ -837,13 +842,16 @@ void describe_case(const CaseDef& def, std::ostream& out) {
     out << "joints      " << scene.joints->joint_count() << " (" << scene.joints->spring_count() << " springs)\n";
   if (!scene.storeys.empty()) {
     // What the run's drifts and verdicts will be taken over (io/storey_drift.h).
-    out << "storeys     " << scene.storeys.size() << ":";
+    // One line each, with the columns: a post meant as a roof strut shows
+    // up here as a storey of its own (cases/README.md, "assessment").
+    out << "storeys     " << scene.storeys.size() << "\n";
     for (std::size_t i = 0; i < scene.storeys.size(); ++i) {
       const Storey& st = scene.storeys[i];
-      out << (i ? ";" : "") << " " << i + 1 << " from z = " << st.bottom_z_m << " to " << st.top_z_m << " m ("
-          << st.columns.size() << " column" << (st.columns.size() == 1 ? "" : "s") << ")";
+      out << "            " << i + 1 << " from z = " << st.bottom_z_m << " to " << st.top_z_m << " m, "
+          << st.columns.size() << " column" << (st.columns.size() == 1 ? "" : "s") << ":";
+      for (std::size_t c = 0; c < st.column_names.size(); ++c) out << (c ? ", " : " ") << st.column_names[c];
+      out << "\n";
     }
-    out << "\n";
   }
   if (const std::string w = nodes_inside_members_warning(def); !w.empty()) out << "warning     " << w << "\n";
   for (const std::string& w : ground_motion_direction_warnings(sim.ground_motion()))

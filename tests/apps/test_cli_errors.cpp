@@ -565,7 +565,9 @@ TEST(CliErrors, InfoListsJointsAndStoreysAndWarnsOfANodeInsideAMember) {
   const auto info = run_app({"info", frame_b.string()}, dir.path());
   EXPECT_EQ(info.code, 0) << info.err;
   EXPECT_NE(info.out.find("joints      24 (288 springs)"), std::string::npos) << info.out;
-  EXPECT_NE(info.out.find("storeys     2: 1 from z = 0 to 0.29 m (4 columns); 2 from z = 0.29 to 0.58 m (4 columns)"),
+  EXPECT_NE(info.out.find("storeys     2\n"
+                          "            1 from z = 0 to 0.29 m, 4 columns: column1_se, column1_ne, column1_sw, column1_nw\n"
+                          "            2 from z = 0.29 to 0.58 m, 4 columns: column2_se, column2_ne, column2_sw, column2_nw\n"),
             std::string::npos)
       << info.out;
   EXPECT_EQ(info.out.find("warning"), std::string::npos) << info.out;

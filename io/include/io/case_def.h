@@ -197,8 +197,9 @@ struct JointOverrideDef {
 };
 
 // How joints are generated where members share a node (cases/README.md):
-// at every node the "hub" is the first column ending there (file order), or
-// the first member when no column ends there; every other member ending at
+// at every node the "hub" is the first member of kind hub_kind (column by
+// default) ending there (file order), or the first member when none of that
+// kind ends there; every other member ending at
 // the node is joined to the hub. Its type is the override for that pair, else
 // the rule for the two kinds, else default_type; a node where none applies is
 // an error. Supports join every member ending at a supported node to the
@@ -233,7 +234,7 @@ struct AssessmentDef {
   // ultimate rotation (0.075-0.15 rad for tenons, cases/README.md) and the
   // gravity (P-delta) moment keeps growing while their resistance falls; a
   // storey that reaches it is counted as collapsed (cases/README.md,
-  // "Drift and verdicts").
+  // "Frames A, B and C", "Verdicts").
   double collapse_drift_ratio_rad = 0.1;
 };
 
