@@ -398,6 +398,17 @@ double acceleration_unit_to_mps2(AccelerationUnit u) {
 
 // ---- PEER .AT2 ---------------------------------------------------------------
 
+namespace {
+// Digits of a number's exponent ("-.1790158E-02" -> 2), -1 without one.
+int exponent_digits(std::string_view tok) {
+  const std::size_t e = tok.find_first_of("eEdD");
+  if (e == std::string_view::npos) return -1;
+  std::size_t k = e + 1;
+  if (k < tok.size() && (tok[k] == '+' || tok[k] == '-')) ++k;
+  return int(tok.size() - k);
+}
+}  // namespace
+
 AccelerationRecord read_peer_at2(const std::filesystem::path& file) {
   const std::string name = file.string();
   const std::string text = load_file(file, "a PEER .AT2 accelerogram (4 header lines, then NPTS values in g)");
@@ -426,6 +437,13 @@ AccelerationRecord read_peer_at2(const std::filesystem::path& file) {
   const long long npts = size.npts;
   long long count = 0;
   int first_surplus_line = 0;
+  // PEER writes every value in one Fortran format (E15.7: two exponent
+  // digits). A download cut inside its last value can still hold NPTS
+  // values, the last one 10 or 100 times off ("-.1790158E-0" for E-02): a
+  // last exponent shorter than every other one is refused.
+  int exponent_width = -2;  // -2: not seen yet; -1: the values differ or have none
+  std::string last_value;
+  int last_value_line = 0;
   std::string_view line;
   while (cursor.next(line)) {
     const int line_no = cursor.line_no();
@@ -451,6 +469,12 @@ AccelerationRecord read_peer_at2(const std::filesystem::path& file) {
         throw InputError(name, line_no, "value",
                          "expected a finite number (value " + std::to_string(count) + " of NPTS=" +
                              std::to_string(npts) + ", in g), got " + quoted(tok));
+      if (!last_value.empty()) {  // the value before this one was not the last
+        const int digits = exponent_digits(last_value);
+        exponent_width = exponent_width == -2 || exponent_width == digits ? digits : -1;
+      }
+      last_value = std::string(tok);
+      last_value_line = line_no;
       rec.acceleration_mps2.push_back(v * kStandardGravity_mps2);
       if (const std::string why = acceleration_problem(rec.acceleration_mps2.back()); !why.empty())
         throw InputError(name, line_no, "value",
@@ -466,6 +490,11 @@ AccelerationRecord read_peer_at2(const std::filesystem::path& file) {
                      "header line 4 declares NPTS=" + std::to_string(npts) + " but the file holds " +
                          std::to_string(count) + " values; expected " + std::to_string(npts) + where);
   }
+  if (exponent_width >= 1 && exponent_digits(last_value) < exponent_width)
+    throw InputError(name, last_value_line, "value",
+                     "expected the last value's exponent to have " + std::to_string(exponent_width) +
+                         " digits like every other value's, got " + quoted(std::string_view(last_value)) +
+                         ": the file looks cut inside its last value; fetch it again");
   return rec;
 }
 

@@ -255,6 +255,10 @@ std::vector<BadInput> bad_inputs() {
       {"at2_npts_zero", F::PeerAt2, kHead + "NPTS= 0, DT= .01 SEC\n", 4, "NPTS", "positive"},
       {"at2_npts_negative", F::PeerAt2, kHead + "NPTS= -5, DT= .01 SEC\n" + five, 4, "NPTS", "'-5'"},
       {"at2_npts_not_integer", F::PeerAt2, kHead + "NPTS= 5.5, DT= .01 SEC\n" + five, 4, "NPTS", "'5.5'"},
+      // A download cut inside its last value that still holds NPTS values
+      // (records probe: "-.1790158E-0" for E-02, read 100 times too large).
+      {"at2_last_value_cut", F::PeerAt2, kHead + "NPTS= 5, DT= .01 SEC\n  .1E-02  .2E-02  .3E-02  .4E-02  .5E-0\n", 5,
+       "value", "'.5E-0'"},
       {"at2_one_sample", F::PeerAt2, kHead + "NPTS= 1, DT= .01 SEC\n  .1E-02\n", 4, "NPTS", "at least 2"},
       {"at2_dt_zero", F::PeerAt2, kHead + "NPTS= 5, DT= .0000 SEC\n" + five, 4, "DT", "positive"},
       {"at2_dt_negative", F::PeerAt2, kHead + "NPTS= 5, DT= -.01 SEC\n" + five, 4, "DT", "'-.01'"},
