@@ -179,6 +179,30 @@ constexpr double kNoteOutputBytes = 1e9;
 // A note when the run goes on after its ground motion has ended (a
 // duration_s longer than the record's window): from then on the ground is
 // still and the frame vibrates freely. "" otherwise.
+// A note per joint type in use that is a link system without shear links:
+// its stiffness against shear along t2 is 4 k_s sin^2(theta) = 0 (the seed's
+// planar system, joints/joint_layout.h). A frame loaded in its plane never
+// shears those joints that way; a load across the plane is resisted only
+// as the links turn (a probe's column swung to 0.86 rad under 0.5 g).
+std::vector<std::string> planar_link_system_notes(const CaseDef& def, const Scene& scene) {
+  std::vector<std::string> notes;
+  std::vector<std::string> seen;
+  for (const std::string& name : scene.joint_types) {
+    if (std::find(seen.begin(), seen.end(), name) != seen.end()) continue;
+    seen.push_back(name);
+    const int t = def.joint_type_index(name);
+    if (t < 0) continue;
+    const JointTypeDef& type = def.joint_types[std::size_t(t)];
+    if (type.layout != JointLayoutKind::LinkSystem || type.with_shear_links) continue;
+    notes.push_back("joint type '" + name +
+                    "' is a link_system without shear_link, the seed's planar system: it has no stiffness against "
+                    "shear along its t2 axis (the joined member's depth direction), so a load across the frame's "
+                    "plane is resisted only as its links turn; give it a shear_link spring if the frame is "
+                    "loaded out of its plane");
+  }
+  return notes;
+}
+
 std::string ground_motion_end_note(const Simulation& sim) {
   const GroundMotion& gm = sim.ground_motion();
   if (gm.empty()) return "";
@@ -551,6 +575,7 @@ Scene build_scene(const CaseDef& def) {
                          p.label + ": " + e.what());
       }
       scene.joint_labels.push_back(p.label);
+      scene.joint_types.push_back(p.type);
     }
     scene.joints = joints.get();
     sim.add_force_provider(std::move(joints));
@@ -704,6 +729,7 @@ CaseRunReport run_case(const CaseDef& case_def, const CaseRunOptions& options) {
           meta ? interval_rounding_note("--checkpoint-every", meta->checkpoint_every_s, dt) : std::string(),
           ground_motion_end_note(sim)})
       if (!note.empty()) options.on_note(note);
+    for (const std::string& note : planar_link_system_notes(def, scene)) options.on_note(note);
   }
 
   std::unique_ptr<RunOutput> writer;
@@ -901,6 +927,7 @@ void describe_case(const CaseDef& def, std::ostream& out) {
                                   interval_rounding_note("output.history_interval_s", o.history_interval_s, s.dt_s),
                                   ground_motion_end_note(sim)})
     if (!note.empty()) out << "note        " << note << "\n";
+  for (const std::string& note : planar_link_system_notes(def, scene)) out << "note        " << note << "\n";
 }
 
 }  // namespace fq

@@ -559,6 +559,42 @@ namespace {
 // (frame B: 24 four-corner joints of 12 springs, two storeys of 0.29 m on
 // four columns each, cases/frame_B.yaml), and warns of a node inside a
 // member, as run does (io/case_runner.h, nodes_inside_members_warning).
+// A link_system joint type without shear_link has no stiffness against
+// shear along its t2 axis (joints/joint_layout.h: K_t2 = 4 k_s sin^2 theta);
+// info (and run) note it for each such type in use, and not for the same
+// type with shear links or for the shipped frames (four-corner joints).
+TEST(CliErrors, InfoNotesAPlanarLinkSystem) {
+  TempDir dir;
+  auto info_of = [&](const std::string& shear_link) {
+    std::ofstream(dir.path() / "links.yaml", std::ios::binary)
+        << "framequake_case: 1\n"
+           "time: {dt_s: 1.0e-5, duration_s: 0.01}\n"
+           "materials: [{name: wood, density_kg_per_m3: 500}]\n"
+           "sections: [{name: sec, width_m: 0.02, depth_m: 0.04}]\n"
+           "nodes: [{id: base, xyz_m: [0, 0, 0]}, {id: top, xyz_m: [0, 0, 0.2]}]\n"
+           "members: [{id: col, kind: column, nodes: [base, top], section: sec, material: wood}]\n"
+           "joint_types:\n"
+           "  - name: links\n"
+           "    layout: link_system\n"
+           "    gap_m: 0.01\n"
+           "    axial: {law: linear, stiffness_N_per_m: 1.0e4}\n"
+           "    diagonal: {law: linear, stiffness_N_per_m: 2.0e4}\n"
+        << shear_link << "supports: [{node: base, joint_type: links}]\n";
+    const auto r = run_app({"info", (dir.path() / "links.yaml").string()}, dir.path());
+    EXPECT_EQ(r.code, 0) << r.err;
+    return r.out;
+  };
+  const std::string planar = info_of("");
+  EXPECT_NE(planar.find("note        joint type 'links' is a link_system without shear_link"), std::string::npos)
+      << planar;
+  const std::string spatial = info_of("    shear_link: {law: linear, stiffness_N_per_m: 1.0e4}\n");
+  EXPECT_EQ(spatial.find("without shear_link"), std::string::npos) << spatial;
+  for (const char* name : {"frame_A.yaml", "frame_B.yaml", "frame_C.yaml"}) {
+    const auto r = run_app({"info", (fs::path(FQ_SOURCE_DIR) / "cases" / name).string()}, dir.path());
+    EXPECT_EQ(r.out.find("without shear_link"), std::string::npos) << name;
+  }
+}
+
 TEST(CliErrors, InfoListsJointsAndStoreysAndWarnsOfANodeInsideAMember) {
   TempDir dir;
   const fs::path frame_b = fs::path(FQ_SOURCE_DIR) / "cases" / "frame_B.yaml";

@@ -64,6 +64,7 @@ struct Scene {
   JointSystem* joints = nullptr;      // owned by the simulation; null when the case has no joints
   ContactSystem* contacts = nullptr;  // owned by the simulation; null without a contact section
   std::vector<std::string> joint_labels;  // per joint id: where it is and its type
+  std::vector<std::string> joint_types;   // per joint id: its joint type's name
   StableTimeStep stable_time_step;
   std::vector<Storey> storeys;  // from the columns; empty without columns (io/storey_drift.h)
 };
