@@ -142,8 +142,9 @@ const char* kInfoHelp =
     "\n"
     "Loads and checks the case without running it, and prints the bodies, total\n"
     "mass, joints, storeys (over which drifts and verdicts are taken), time step\n"
-    "and its stable limit, duration, ground motion and output plan, and warns of a\n"
-    "node lying inside a member without being one of its ends.\n";
+    "and its stable limit, duration, ground motion and output plan, and warns as run\n"
+    "does of a node lying inside or on a member without being one of its ends, of a\n"
+    "record applied along the wrong kind of axis and of bodies overlapping at the start.\n";
 
 struct RunArgs {
   std::string case_file;

@@ -977,7 +977,7 @@ StiffestMode ContactSystem::later_stiffest_mode(const BodyStore& bodies) const {
                                                      surface.tangential_stiffness_N_per_m);
       if (!std::isfinite(lk)) {
         not_finite = true;
-        where = "a face contact of '" + bodies.info[i].name + "'";
+        where = "a later face contact of '" + bodies.info[i].name + "' on a fixed surface (if it lands flat on one)";
         where_sc = surface;
       }
       if (!(lk > 0.0)) continue;
@@ -994,7 +994,7 @@ StiffestMode ContactSystem::later_stiffest_mode(const BodyStore& bodies) const {
                                      2.0 / std::sqrt(box.lambda_k));
       if (dt < best_dt) {
         best_dt = dt;
-        where = "a face contact of '" + bodies.info[box.i].name + "'";
+        where = "a later face contact of '" + bodies.info[box.i].name + "' on a fixed surface (if it lands flat on one)";
         where_sc = surface;
       }
     }
@@ -1012,7 +1012,7 @@ StiffestMode ContactSystem::later_stiffest_mode(const BodyStore& bodies) const {
                                                      pair.tangential_stiffness_N_per_m);
       if (!std::isfinite(lk)) {
         not_finite = true;
-        where = "a face contact of '" + bodies.info[i].name + "' on another free box";
+        where = "a later face contact of '" + bodies.info[i].name + "' on another free box (if it lands flat on one)";
         where_sc = pair;
       }
       if (lk > top1) {
@@ -1033,7 +1033,7 @@ StiffestMode ContactSystem::later_stiffest_mode(const BodyStore& bodies) const {
           0.0, 2.0 / std::sqrt(top1 + top2));
       if (dt < best_dt) {
         best_dt = dt;
-        where = "a face contact of '" + bodies.info[top1_body].name + "' on another free box";
+        where = "a later face contact of '" + bodies.info[top1_body].name + "' on another free box (if it lands flat on one)";
         where_sc = pair;
       }
     }

@@ -882,6 +882,13 @@ void describe_case(const CaseDef& def, std::ostream& out) {
   if (const std::string w = nodes_inside_members_warning(def); !w.empty()) out << "warning     " << w << "\n";
   for (const std::string& w : ground_motion_direction_warnings(sim.ground_motion()))
     out << "warning     " << w << "\n";
+  if (scene.contacts) {
+    // Step 0's forces, as run evaluates them first: the contacts then know
+    // which pairs overlap at the start, which run warns of.
+    scene.simulation->initialize();
+    if (const std::string w = initial_overlap_warning(scene.contacts->initial_overlaps(), sim.bodies()); !w.empty())
+      out << "warning     " << w << "\n";
+  }
   out << "time step   " << s.dt_s << " s (" << integrator_name(s.integrator) << ")";
   if (scene.stable_time_step.dt_crit_s == 0.0)  // forward Euler on an undamped mode
     out << "  (no stable time step with " << integrator_name(s.integrator) << ": the stiffest mode, "
