@@ -231,7 +231,14 @@ std::size_t ContactSystem::process_item(const BodyStore& bodies, std::size_t ite
   }
   double weight_sum = 0.0;
   for (int k = 0; k < count; ++k) weight_sum += manifold.points[std::size_t(order[std::size_t(k)])].weight;
-  const double mass_per_weight = pair_mass / weight_sum;
+  // Points that all have a zero share (every turning corner of the clipped
+  // polygon lies above the reference face and the points below sit on its
+  // straight edges, as where faces only just touch) carry no stiffness: the
+  // pair makes no point this step. Dividing the pair's mass by their zero
+  // sum made the next state NaN (three cubes touching face to face under
+  // shaking; stress probe). Any other manifold keeps its bits.
+  if (!(weight_sum > 0.0)) count = 0;
+  const double mass_per_weight = count > 0 ? pair_mass / weight_sum : 0.0;
 
   // History cursor: first record of previous_ with a key not below this pair's.
   if (cursor == kNoCursor) {
