@@ -362,7 +362,8 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
       writer.add_summary_field("warnings", list.end_array().str());
     }
     if (scene.joints) add_joint_summary(writer, *scene.joints, sim.events());
-    if (!scene.storeys.empty()) add_storey_summary(writer, storeys);
+    if (!scene.storeys.empty())
+      add_storey_summary(writer, storeys, report.result.status != RunStatus::Unstable);
     char hash[19];
     std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(sim.state_hash()));
     writer.add_summary_field("state_hash", std::string("\"") + hash + "\"");

@@ -137,7 +137,7 @@ void attach_storey_output(RunOutput& output, StoreyDriftMonitor& monitor) {
   }
 }
 
-void add_storey_summary(RunOutput& output, const StoreyDriftMonitor& monitor) {
+void add_storey_summary(RunOutput& output, const StoreyDriftMonitor& monitor, bool assessed) {
   const AssessmentDef& a = monitor.limits();
   JsonWriter limits(0);
   limits.begin_object()
@@ -189,7 +189,7 @@ void add_storey_summary(RunOutput& output, const StoreyDriftMonitor& monitor) {
       w.value(r.collapse_time_s);
     else
       w.null();
-    w.key("verdict").value(storey_verdict_name(monitor.verdict(i))).end_object();
+    w.key("verdict").value(assessed ? storey_verdict_name(monitor.verdict(i)) : "not_assessed").end_object();
   }
   w.end_array();
   output.add_summary_field("storeys", w.str());

@@ -31,7 +31,10 @@ double first_joint_failure_time_s(const EventLog& events);
 void attach_storey_output(RunOutput& output, StoreyDriftMonitor& monitor);
 // Summary fields "storeys" (per storey: height, peaks, residual, collapse
 // time, verdict) and "assessment" (the limits and the criterion in words).
-void add_storey_summary(RunOutput& output, const StoreyDriftMonitor& monitor);
+// A run that became unstable is not assessed: its storeys' verdict is
+// "not_assessed" (its drifts are those of the blow-up, or of the steps
+// before it), as in compare's and sweep's tables.
+void add_storey_summary(RunOutput& output, const StoreyDriftMonitor& monitor, bool assessed = true);
 
 // Contact points as VTK vertex cells with contact_force_N (force on body b,
 // 3 components), contact_normal (unit, a to b), contact_depth_m and

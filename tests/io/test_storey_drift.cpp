@@ -312,5 +312,35 @@ TEST(StoreyDrift, ResidualIsTheMeanOfTheLastSecondNotTheLastSample) {
   EXPECT_NEAR(r.residual_window_s, 0.999, 1e-9);
 }
 
+// A run that became unstable is not assessed: summary.json gives its
+// storeys the verdict "not_assessed" (it said "standing", from the few
+// steps before the blow-up; stress probe). A support joint of 1e9 N/m on a
+// 0.054 kg column has a stable step near 1e-6 s; forced at 1e-5 s it blows
+// up within steps.
+TEST(StoreyDrift, AnUnstableRunIsNotAssessed) {
+  TempDir dir;
+  const std::string text =
+      "framequake_case: 1\n"
+      "time: {dt_s: 1.0e-5, duration_s: 0.01}\n"
+      "materials: [{name: wood, density_kg_per_m3: 450}]\n"
+      "sections: [{name: col, width_m: 0.02, depth_m: 0.02}]\n"
+      "nodes: [{id: a, xyz_m: [0, 0, 0]}, {id: b, xyz_m: [0, 0, 0.3]}]\n"
+      "members: [{id: c, kind: column, nodes: [a, b], section: col, material: wood}]\n"
+      "joint_types: [{name: stiff, layout: four_corner, normal: {law: linear, stiffness_N_per_m: 1.0e9},\n"
+      "               shear: {law: linear, stiffness_N_per_m: 1.0e9}, fracture: {criterion: never}}]\n"
+      "supports: [{node: a, joint_type: stiff}]\n"
+      "output: {folder: " + (dir.path() / "out").string() + ", frame_interval_s: 0.01, history_interval_s: 0.001}\n";
+  CaseRunOptions options;
+  options.allow_unstable_time_step = true;
+  const CaseRunReport report = run_case(load_case_file(dir.write("stiff.yaml", text)), options);
+  ASSERT_EQ(report.result.status, RunStatus::Unstable);
+  std::ifstream in(dir.path() / "out/summary.json");
+  std::stringstream text_of;
+  text_of << in.rdbuf();
+  const std::string summary = text_of.str();
+  EXPECT_NE(summary.find("\"verdict\":\"not_assessed\""), std::string::npos) << summary;
+  EXPECT_EQ(summary.find("\"verdict\":\"standing\""), std::string::npos) << summary;
+}
+
 }  // namespace
 }  // namespace fq
