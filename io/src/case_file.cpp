@@ -793,6 +793,9 @@ ContactParams parse_contact_params(const Reader& r, const Field& f, const std::s
   ContactParams p;
   p.normal_stiffness_N_per_m = r.optional_positive(f.value, "normal_stiffness_N_per_m", f.path, p.normal_stiffness_N_per_m);
   p.restitution = r.optional_positive(f.value, "restitution", f.path, p.restitution);
+  if (p.restitution > 1.0)
+    if (const auto e = r.get(f.value, "restitution", f.path))
+      r.fail(*e, "expected a restitution in (0, 1] (1: no loss at impact), got " + fmt(p.restitution));
   p.tangential_stiffness_N_per_m =
       r.optional_non_negative(f.value, "tangential_stiffness_N_per_m", f.path, p.tangential_stiffness_N_per_m);
   p.friction_coefficient = r.optional_non_negative(f.value, "friction_coefficient", f.path, p.friction_coefficient);

@@ -75,7 +75,7 @@ TEST(CaseContacts, ContactParameterErrorsNameTheField) {
     std::string phrase;
   };
   const Bad table[] = {
-      {"contact: {ground: {restitution: 1.5}}\n", "contact.ground", "restitution"},
+      {"contact: {ground: {restitution: 1.5}}\n", "contact.ground.restitution", "in (0, 1]"},
       {"contact: {ground: {normal_stiffness_N_per_m: -1}}\n", "contact.ground.normal_stiffness_N_per_m", "positive"},
       {"contact: {default: {friction: 0.3}}\n", "contact.default.friction", "unknown key"},
       {"contact: {pairs: [{materials: [wood, steel]}]}\n", "contact.pairs[0].materials[1]", "steel"},
