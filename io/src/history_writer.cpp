@@ -69,6 +69,8 @@ void HistoryWriter::open(const std::filesystem::path& file, const Simulation& si
   out_ = std::move(out);
   file_ = file;
   rows_ = 0;
+  rows_this_process_ = 0;
+  bytes_this_process_ = 0;
 }
 
 void HistoryWriter::reopen(const std::filesystem::path& file, const std::vector<Vec3>& reference_position_m,
@@ -87,6 +89,8 @@ void HistoryWriter::reopen(const std::filesystem::path& file, const std::vector<
   out_ = std::move(out);
   file_ = file;
   rows_ = rows;
+  rows_this_process_ = 0;
+  bytes_this_process_ = 0;
 }
 
 std::uint64_t HistoryWriter::bytes_written() const {
@@ -107,6 +111,8 @@ void HistoryWriter::write_row(const Simulation& sim) {
   line_.push_back('\n');
   out_->write(line_.data(), std::streamsize(line_.size()));
   ++rows_;
+  ++rows_this_process_;
+  bytes_this_process_ += line_.size();
 }
 
 void HistoryWriter::flush() {

@@ -504,5 +504,7 @@ std::int64_t RunOutput::frame_every_steps() const { return impl_->frame_every; }
 std::int64_t RunOutput::history_every_steps() const { return impl_->history_every; }
 std::size_t RunOutput::frames_written() const { return impl_->pvd.size(); }
 std::int64_t RunOutput::history_rows() const { return impl_->history.rows(); }
+std::int64_t RunOutput::history_rows_this_process() const { return impl_->history.rows_this_process(); }
+double RunOutput::history_mean_row_bytes() const { return impl_->history.mean_row_bytes(); }
 
 }  // namespace fq

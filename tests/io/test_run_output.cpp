@@ -47,6 +47,7 @@
 #include "io/case_file.h"
 #include "io/case_runner.h"
 #include "io/atomic_file.h"
+#include "io/history_writer.h"
 #include "io/json_writer.h"
 #include "io/run_output.h"
 #include "checkpoint_case.h"
@@ -1137,4 +1138,48 @@ TEST(RunOutput, SpringEndsAreOnTheBodiesOfTheSameFrame) {
       EXPECT_LT(nearest, 1e-12) << name;
     }
   }
+}
+
+// The output-size check measures a history row by the mean length of the
+// rows written (HistoryWriter::mean_row_bytes): exactly what the file grows
+// by per row, header excluded, and only the rows of this process after a
+// reopen. (The file's size over its rows counted the header in, 67 % too
+// much for a stress probe's run; a resumed run's whole file was taken as
+// one row, 18 GB announced for 16 MB.)
+TEST(RunOutput, HistoryRowSizeIsTheMeanOfTheRowsWritten) {
+  fq::test::TempDir dir;
+  const auto file = dir.write("block.yaml",
+                              "framequake_case: 1\n"
+                              "time: {dt_s: 1.0e-3, duration_s: 0.05}\n"
+                              "materials: [{name: wood, density_kg_per_m3: 450}]\n"
+                              "blocks: [{id: b, size_m: [0.1, 0.1, 0.1], center_m: [0, 0, 1], material: wood,\n"
+                              "          angular_velocity_radps: [1, 2, 3]}]\n");
+  fq::Scene scene = fq::build_scene(fq::load_case_file(file));
+  fq::Simulation& sim = *scene.simulation;
+  sim.initialize();
+  fq::HistoryWriter history;
+  const fs::path csv = dir.path() / "history.csv";
+  history.open(csv, sim);
+  history.flush();
+  const auto header_bytes = fs::file_size(csv);
+  EXPECT_EQ(history.mean_row_bytes(), 0.0);
+  for (int k = 0; k < 20; ++k) {
+    ASSERT_TRUE(sim.step());
+    history.write_row(sim);
+  }
+  history.flush();
+  EXPECT_EQ(history.rows_this_process(), 20);
+  EXPECT_DOUBLE_EQ(history.mean_row_bytes(), double(fs::file_size(csv) - header_bytes) / 20.0);
+  // Reopened as a resumed run does: the rows before count no more.
+  const auto before = fs::file_size(csv);
+  history.close();
+  history.reopen(csv, std::vector<fq::Vec3>(sim.bodies().size(), fq::Vec3::Zero()), before, 20);
+  EXPECT_EQ(history.rows_this_process(), 0);
+  for (int k = 0; k < 5; ++k) {
+    ASSERT_TRUE(sim.step());
+    history.write_row(sim);
+  }
+  history.flush();
+  EXPECT_EQ(history.rows(), 25);
+  EXPECT_DOUBLE_EQ(history.mean_row_bytes(), double(fs::file_size(csv) - before) / 5.0);
 }

@@ -75,6 +75,12 @@ class HistoryWriter {
   void abandon() noexcept;
   bool is_open() const;
   std::int64_t rows() const { return rows_; }
+  // Rows written since open() or reopen(), and their mean length (bytes,
+  // newlines included; 0 before one).
+  std::int64_t rows_this_process() const { return rows_this_process_; }
+  double mean_row_bytes() const {
+    return rows_this_process_ > 0 ? double(bytes_this_process_) / double(rows_this_process_) : 0.0;
+  }
 
  private:
   std::vector<std::string> headers_;
@@ -84,6 +90,8 @@ class HistoryWriter {
   std::filesystem::path file_;
   std::string line_;  // reused row buffer
   std::int64_t rows_ = 0;
+  std::int64_t rows_this_process_ = 0;
+  std::uint64_t bytes_this_process_ = 0;
 };
 
 }  // namespace fq

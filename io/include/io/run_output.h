@@ -134,6 +134,10 @@ class RunOutput {
   std::int64_t history_every_steps() const;  // 0 before attach()
   std::size_t frames_written() const;
   std::int64_t history_rows() const;
+  // History rows this process wrote (a resumed run: since the checkpoint)
+  // and their mean length (bytes).
+  std::int64_t history_rows_this_process() const;
+  double history_mean_row_bytes() const;
 
  private:
   struct Impl;
