@@ -1,7 +1,7 @@
 // Readers for recorded accelerograms: PEER NGA .AT2 files and plain
 // two-column "time acceleration" text. Both return an fq::AccelerationRecord
-// (dem_core/ground_motion.h): uniformly sampled, first sample at t = 0,
-// acceleration in m/s^2.
+// (dem_core/ground_motion.h): first sample at t = 0, acceleration in m/s^2,
+// uniformly sampled (a non-uniform two-column file keeps its sample times).
 //
 // Every malformed input throws fq::InputError naming the file, the 1-based
 // line (0 for the file as a whole), the field and what was expected. Fields:
