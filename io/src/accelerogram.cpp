@@ -190,13 +190,18 @@ NumberStatus parse_number(std::string_view tok, double& out) {
 // The value of one unit in the last digit of a number as printed: "0.0333"
 // -> 1e-4, "3.33e-02" -> 1e-4, "12" -> 1, "1.5E+1" -> 1. The token has
 // already been read as a number (finite_number).
+// The exponent of a number as printed, after its 'e', 'E', 'd' or 'D'
+// (sign included); empty without one.
+std::string_view exponent_text(std::string_view tok) {
+  const std::size_t at = tok.find_first_of("eEdD");
+  return at == std::string_view::npos ? std::string_view() : tok.substr(at + 1);
+}
+
 double printed_resolution(std::string_view tok) {
-  std::size_t exp_at = tok.find_first_of("eEdD");
-  const std::string_view mantissa = tok.substr(0, exp_at);
+  const std::string_view mantissa = tok.substr(0, tok.find_first_of("eEdD"));
   int exponent = 0;
-  if (exp_at != std::string_view::npos) {
-    std::string_view e = tok.substr(exp_at + 1);
-    if (!e.empty() && e.front() == '+') e.remove_prefix(1);
+  if (std::string_view e = exponent_text(tok); !e.empty()) {
+    if (e.front() == '+') e.remove_prefix(1);
     std::from_chars(e.data(), e.data() + e.size(), exponent);
   }
   const std::size_t dot = mantissa.find('.');
@@ -401,11 +406,10 @@ double acceleration_unit_to_mps2(AccelerationUnit u) {
 namespace {
 // Digits of a number's exponent ("-.1790158E-02" -> 2), -1 without one.
 int exponent_digits(std::string_view tok) {
-  const std::size_t e = tok.find_first_of("eEdD");
-  if (e == std::string_view::npos) return -1;
-  std::size_t k = e + 1;
-  if (k < tok.size() && (tok[k] == '+' || tok[k] == '-')) ++k;
-  return int(tok.size() - k);
+  if (tok.find_first_of("eEdD") == std::string_view::npos) return -1;
+  std::string_view e = exponent_text(tok);
+  if (!e.empty() && (e.front() == '+' || e.front() == '-')) e.remove_prefix(1);
+  return int(e.size());
 }
 }  // namespace
 
@@ -442,7 +446,7 @@ AccelerationRecord read_peer_at2(const std::filesystem::path& file) {
   // values, the last one 10 or 100 times off ("-.1790158E-0" for E-02): a
   // last exponent shorter than every other one is refused.
   int exponent_width = -2;  // -2: not seen yet; -1: the values differ or have none
-  std::string last_value;
+  std::string_view last_value;  // a view into `text`, which outlives the loop
   int last_value_line = 0;
   std::string_view line;
   while (cursor.next(line)) {
@@ -473,7 +477,7 @@ AccelerationRecord read_peer_at2(const std::filesystem::path& file) {
         const int digits = exponent_digits(last_value);
         exponent_width = exponent_width == -2 || exponent_width == digits ? digits : -1;
       }
-      last_value = std::string(tok);
+      last_value = tok;
       last_value_line = line_no;
       rec.acceleration_mps2.push_back(v * kStandardGravity_mps2);
       if (const std::string why = acceleration_problem(rec.acceleration_mps2.back()); !why.empty())
@@ -493,7 +497,7 @@ AccelerationRecord read_peer_at2(const std::filesystem::path& file) {
   if (exponent_width >= 1 && exponent_digits(last_value) < exponent_width)
     throw InputError(name, last_value_line, "value",
                      "expected the last value's exponent to have " + std::to_string(exponent_width) +
-                         " digits like every other value's, got " + quoted(std::string_view(last_value)) +
+                         " digits like every other value's, got " + quoted(last_value) +
                          ": the file looks cut inside its last value; fetch it again");
   return rec;
 }

@@ -167,18 +167,15 @@ class CheckpointObserver final : public StepObserver {
   std::int64_t last_step_ = -1;
 };
 
-// How much a run will write, said once its first frame and row are on disk
-// (the first sample): the first frame's size times the frames to come,
-// plus the history. A warning when that exceeds the space left on the
+// How much more a run will write, said once it has written a few history
+// rows (OutputSizeCheck): the latest frame's size times the frames to come,
+// plus the rows to come at their mean length. A warning when that exceeds the space left on the
 // output's disk (a run that fills it ends with an output error, exit 3); a
 // note above kNoteOutputBytes. Frames grow as joints break and contacts
 // appear, so it is an estimate. (A probe's duration_s of 1e5 s on the
 // falling-block demo would have written some 67 GB without a word.)
 constexpr double kNoteOutputBytes = 1e9;
 
-// A note when the run goes on after its ground motion has ended (a
-// duration_s longer than the record's window): from then on the ground is
-// still and the frame vibrates freely. "" otherwise.
 // A note per joint type in use that is a link system without shear links:
 // its stiffness against shear along t2 is 4 k_s sin^2(theta) = 0 (the seed's
 // planar system, joints/joint_layout.h). A frame loaded in its plane never
@@ -203,6 +200,9 @@ std::vector<std::string> planar_link_system_notes(const CaseDef& def, const Scen
   return notes;
 }
 
+// A note when the run goes on after its ground motion has ended (a
+// duration_s longer than the record's window): from then on the ground is
+// still and the frame vibrates freely. "" otherwise.
 std::string ground_motion_end_note(const Simulation& sim) {
   const GroundMotion& gm = sim.ground_motion();
   if (gm.empty()) return "";

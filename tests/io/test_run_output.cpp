@@ -1163,11 +1163,15 @@ TEST(RunOutput, HistoryRowSizeIsTheMeanOfTheRowsWritten) {
   history.flush();
   const auto header_bytes = fs::file_size(csv);
   EXPECT_EQ(history.mean_row_bytes(), 0.0);
-  for (int k = 0; k < 20; ++k) {
-    ASSERT_TRUE(sim.step());
-    history.write_row(sim);
-  }
-  history.flush();
+  // A step and a row, `count` times, then the rows flushed to the file.
+  auto step_and_write = [&](int count) {
+    for (int k = 0; k < count; ++k) {
+      ASSERT_TRUE(sim.step());
+      history.write_row(sim);
+    }
+    history.flush();
+  };
+  step_and_write(20);
   EXPECT_EQ(history.rows_this_process(), 20);
   EXPECT_DOUBLE_EQ(history.mean_row_bytes(), double(fs::file_size(csv) - header_bytes) / 20.0);
   // Reopened as a resumed run does: the rows before count no more.
@@ -1175,11 +1179,7 @@ TEST(RunOutput, HistoryRowSizeIsTheMeanOfTheRowsWritten) {
   history.close();
   history.reopen(csv, std::vector<fq::Vec3>(sim.bodies().size(), fq::Vec3::Zero()), before, 20);
   EXPECT_EQ(history.rows_this_process(), 0);
-  for (int k = 0; k < 5; ++k) {
-    ASSERT_TRUE(sim.step());
-    history.write_row(sim);
-  }
-  history.flush();
+  step_and_write(5);
   EXPECT_EQ(history.rows(), 25);
   EXPECT_DOUBLE_EQ(history.mean_row_bytes(), double(fs::file_size(csv) - before) / 5.0);
 }

@@ -7,9 +7,10 @@
 // top level from at or below it. Each column contributes two material
 // points on its axis, at the band's top height and at its bottom height (or
 // the column's own foot where that lies inside the band: a column on a
-// hillside step, a post on a beam), fixed in the column's body frame. The drift of the storey (m) is the mean over its
-// columns of the horizontal displacement of the top point relative to the
-// bottom point; the drift ratio (rad) is drift / height. While the joints
+// hillside step, a post on a beam), fixed in the column's body frame. The
+// drift of the storey (m) is the mean over its columns of the horizontal
+// displacement of the top point relative to the bottom point; the drift
+// ratio (rad) is drift / height. While the joints
 // hold, these points coincide with the nodes and this is the usual relative
 // displacement of two floors (displacements are relative to the ground,
 // DESIGN.md). After the joints fail the points follow the columns that
