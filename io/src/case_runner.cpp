@@ -831,12 +831,13 @@ CaseRunReport resume_case(const std::filesystem::path& folder, const CaseRunOpti
   }
   try {
     attach_provider_output(*writer, scene);
-    if (!scene.storeys.empty()) {
-      attach_storey_output(*writer, storeys);
-      // The peaks so far are in the rows kept from before the checkpoint.
-      storeys.replay_history(history_path(writer->folder()));
-    }
+    if (!scene.storeys.empty()) attach_storey_output(*writer, storeys);
     writer->attach(sim, &initial_position_m);
+    // The peaks so far are in the rows kept from before the checkpoint,
+    // read once attach has cut history.csv back to them: the killed run's
+    // rows after the checkpoint, the last one maybe cut mid-row by the kill,
+    // made resume fail ("a row has the wrong length").
+    if (!scene.storeys.empty()) storeys.replay_history(history_path(writer->folder()));
   } catch (const std::exception& e) {
     throw OutputError(e.what());
   }
