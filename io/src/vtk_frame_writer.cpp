@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <stdexcept>
 
@@ -128,7 +129,26 @@ void VtkFrameBuilder::add_field(std::string name, std::vector<std::string> value
 
 // ---- VtkFrameWriter ----------------------------------------------------------
 
-VtkFrameWriter::VtkFrameWriter() { add_cell_block("bodies", &VtkFrameWriter::add_bodies); }
+namespace {
+// VTK runs some of its array work (value ranges for the XML writer) on its
+// SMP backend, which on Debian is TBB: a pool of worker threads that spin
+// and yield between calls. A frame holds a few hundred points, so the pool
+// gains nothing, while its threads take CPU from the engine's own OpenMP
+// threads and from the other runs of `compare --jobs`. The frame writer
+// therefore asks for VTK's sequential backend through VTK's own variable,
+// which VTK reads when it first uses the backend (vtkSMPToolsAPI), unless
+// the user has set that variable. (vtkSMPTools::SetBackend would say the
+// same, but VTK 9.1's vtkSMPTools.h does not compile as C++20.)
+void select_sequential_vtk_backend_once() {
+  static const bool selected = [] { return ::setenv("VTK_SMP_BACKEND_IN_USE", "Sequential", 0) == 0; }();
+  (void)selected;
+}
+}  // namespace
+
+VtkFrameWriter::VtkFrameWriter() {
+  select_sequential_vtk_backend_once();
+  add_cell_block("bodies", &VtkFrameWriter::add_bodies);
+}
 VtkFrameWriter::~VtkFrameWriter() = default;
 VtkFrameWriter::VtkFrameWriter(VtkFrameWriter&&) noexcept = default;
 VtkFrameWriter& VtkFrameWriter::operator=(VtkFrameWriter&&) noexcept = default;

@@ -46,6 +46,7 @@
 #include "dem_core/simulation.h"
 #include "io/case_file.h"
 #include "io/case_runner.h"
+#include "io/vtk_frame_writer.h"
 #include "io/atomic_file.h"
 #include "io/history_writer.h"
 #include "io/json_writer.h"
@@ -1182,4 +1183,31 @@ TEST(RunOutput, HistoryRowSizeIsTheMeanOfTheRowsWritten) {
   step_and_write(5);
   EXPECT_EQ(history.rows(), 25);
   EXPECT_DOUBLE_EQ(history.mean_row_bytes(), double(fs::file_size(csv) - before) / 5.0);
+}
+
+namespace {
+std::size_t thread_count_of_this_process() {
+  std::size_t n = 0;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator("/proc/self/task")) ++n;
+  return n;
+}
+}  // namespace
+
+// Writing frames starts no threads: VTK's SMP backend (TBB on Debian) would
+// start a pool of spinning workers for the writer's array ranges, which take
+// CPU from the engine and from other runs of `compare --jobs` and gain
+// nothing on frames of a few hundred points (vtk_frame_writer.cpp).
+TEST(RunOutput, WritingFramesStartsNoThreads) {
+  if (std::getenv("VTK_SMP_BACKEND_IN_USE") != nullptr) GTEST_SKIP() << "VTK_SMP_BACKEND_IN_USE is set";
+  auto sim = make_simulation(0.01);
+  sim->initialize();
+  fq::VtkFrameWriter writer;
+  const fs::path folder = fresh_folder("no_threads");
+  fs::create_directories(folder);
+  const std::size_t before = thread_count_of_this_process();
+  for (int k = 0; k < 3; ++k) {
+    sim->step();
+    writer.write(*sim, folder / ("frame_" + std::to_string(k) + ".vtu"), true);
+  }
+  EXPECT_EQ(thread_count_of_this_process(), before);
 }
