@@ -39,7 +39,47 @@ CureeLaw compile_curee(const CureeParams& p) {
   law.delta0_m = p.F0_N / p.K0_Npm;
   law.force_u_N = (p.F0_N + p.r1 * p.K0_Npm * p.delta_u_m) * (1.0 - std::exp(-p.K0_Npm * p.delta_u_m / p.F0_N));
   law.delta_fail_m = p.delta_u_m - law.force_u_N / (p.r2 * p.K0_Npm);
+  // delta_p, the first deformation where the envelope reaches the pinching
+  // line (E - P is -F1 at zero): the first sign change on a grid of 256
+  // intervals over (0, delta_u], then bisection to round-off.
+  const auto above_pinching = [&](double x) { return curee_envelope(law, x) - (p.F1_N + p.r4 * p.K0_Npm * x); };
+  constexpr int kGrid = 256;
+  double lo = 0.0, hi = -1.0;
+  for (int i = 1; i <= kGrid; ++i) {
+    const double x = p.delta_u_m * i / kGrid;
+    if (above_pinching(x) >= 0.0) {
+      hi = x;
+      break;
+    }
+    lo = x;
+  }
+  require(hi > 0.0, "F1_N",
+          "small enough that the pinching line F1_N + r4 K0_Npm delta meets the envelope before delta_u_m "
+          "(it lies above the envelope up to delta_u_m)");
+  for (int i = 0; i < 200 && hi - lo > 1e-15 * hi; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (above_pinching(mid) >= 0.0 ? hi : lo) = mid;
+  }
+  law.delta_pinch_m = hi;
   return law;
+}
+
+double curee_envelope_work_J(const CureeLaw& law, double x) {
+  // Integral of (F0 + r1 K0 s)(1 - exp(-c s)), c = K0 / F0, written in
+  // y = c x with expm1 so that small x keeps its digits:
+  //   F0^2/K0 (y - 1 + e^-y) + r1 F0^2/K0 (y^2/2 - 1 + e^-y (1 + y)),
+  // plus the descending line's trapezoid beyond delta_u.
+  const CureeParams& p = law.p;
+  const double xe = std::min(x, p.delta_u_m);
+  const double y = p.K0_Npm * xe / p.F0_N;
+  const double em1 = std::expm1(-y);
+  const double scale = p.F0_N * p.F0_N / p.K0_Npm;
+  double w = scale * (y + em1) + p.r1 * scale * (0.5 * y * y + em1 + y * std::exp(-y));
+  if (x > p.delta_u_m) {
+    const double dx = std::min(x, law.delta_fail_m) - p.delta_u_m;
+    w += law.force_u_N * dx + 0.5 * p.r2 * p.K0_Npm * dx * dx;
+  }
+  return w;
 }
 
 double curee_envelope(const CureeLaw& law, double x) {
@@ -74,24 +114,38 @@ LawOutput evaluate_curee(const CureeLaw& law, CureeState& s, double delta) {
     out.force_N = 0.0;
     return out;
   }
+  if (!s.beyond_pinch && std::abs(delta) <= law.delta_pinch_m) {
+    // Never beyond delta_p: nonlinear elastic on the envelope (header).
+    const double f = delta >= 0.0 ? curee_envelope(law, delta) : -curee_envelope(law, -delta);
+    s.delta_prev_m = delta;
+    s.force_prev_N = f;
+    if (std::abs(delta) > law.delta0_m) s.yielded = true;
+    out.force_N = f;
+    out.stored_J = curee_stored_energy_J(law, s, f, delta);
+    out.inelastic = s.yielded;
+    return out;
+  }
+  s.beyond_pinch = true;
   const double k0 = p.K0_Npm;
   const double unload =
       s.has_reversal ? s.reversal_force_N + p.r3 * k0 * (delta - s.reversal_delta_m) : (dir >= 0 ? kInf : -kInf);
   double f = 0.0;
   if (dir >= 0) {
     const double env = delta > 0.0 ? curee_envelope(law, delta) : kInf;
+    const double env_on_pinch = delta >= law.delta_pinch_m ? env : kInf;  // header: not below delta_p
     const double pinch = p.F1_N + p.r4 * k0 * delta;
     const double target = p.beta * s.dmax_pos_m;
     const double reload = curee_envelope(law, target) + reload_stiffness(law, s.dmax_pos_m) * (delta - target);
-    double bound = std::min(env, std::max(pinch, reload));
+    double bound = std::max(std::min(env_on_pinch, pinch), std::min(env, reload));
     if (s.has_reversal) bound = std::max(bound, std::min(s.reversal_force_N, env));  // continuity guard
     f = std::min(unload, bound);
   } else {
     const double env = delta < 0.0 ? -curee_envelope(law, -delta) : -kInf;
+    const double env_on_pinch = delta <= -law.delta_pinch_m ? env : -kInf;
     const double pinch = -p.F1_N + p.r4 * k0 * delta;
     const double target = p.beta * s.dmax_neg_m;
     const double reload = -curee_envelope(law, target) + reload_stiffness(law, s.dmax_neg_m) * (delta + target);
-    double bound = std::max(env, std::min(pinch, reload));
+    double bound = std::min(std::max(env_on_pinch, pinch), std::max(env, reload));
     if (s.has_reversal) bound = std::min(bound, std::max(s.reversal_force_N, env));  // continuity guard
     f = std::max(unload, bound);
   }
@@ -99,7 +153,7 @@ LawOutput evaluate_curee(const CureeLaw& law, CureeState& s, double delta) {
   s.force_prev_N = f;
   if (std::abs(delta) > law.delta0_m) s.yielded = true;
   out.force_N = f;
-  out.stored_J = curee_stored_energy_J(law, f);
+  out.stored_J = curee_stored_energy_J(law, s, f, delta);
   out.inelastic = s.yielded;
   return out;
 }

@@ -254,7 +254,7 @@ double JointSystem::stored_energy_J_(std::size_t s, double law_force_N, double d
     case SpringLawKind::LinearElastic:
       return linear_elastic_stored_energy_J(linear_.law[std::size_t(linear_.law_of[k])], delta_m);
     case SpringLawKind::Curee:
-      return curee_stored_energy_J(curee_.law[std::size_t(curee_.law_of[k])], law_force_N);
+      return curee_stored_energy_J(curee_.law[std::size_t(curee_.law_of[k])], curee_.state[k], law_force_N, delta_m);
     case SpringLawKind::Count:
       break;
   }

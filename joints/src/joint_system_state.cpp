@@ -83,6 +83,7 @@ void JointSystem::save_state(StateWriter& out) const {
     out.pod(st.direction);
     out.boolean(st.has_reversal);
     out.boolean(st.yielded);
+    out.boolean(st.beyond_pinch);
   }
 }
 
@@ -158,6 +159,7 @@ void JointSystem::load_state(StateReader& in) {
     st.direction = in.pod<std::int8_t>("CUREE state");
     st.has_reversal = in.boolean("CUREE state");
     st.yielded = in.boolean("CUREE state");
+    st.beyond_pinch = in.boolean("CUREE state");
   }
   // Which points the lane kernel may take follows from the springs' state.
   for (std::size_t p = 0; p < point_plain_.size(); ++p) refresh_point_plain_(p);

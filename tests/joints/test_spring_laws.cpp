@@ -335,6 +335,86 @@ TEST(CureeLaw, PinchingDegradationAndLoopArea) {
   EXPECT_NEAR(rig.js.spring_plastic_J(0) - plastic_start, area, 1e-9 * area);
 }
 
+// delta_p of the test's own envelope: where E(x) meets the pinching line
+// F1 + r4 K0 x (bisection on the closed form above, not the library's).
+double curee_pinch_point(const CureeParams& c) {
+  double lo = 0.0, hi = c.delta_u_m;
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (curee_env(c, mid) >= c.F1_N + c.r4 * c.K0_Npm * mid ? hi : lo) = mid;
+  }
+  return hi;
+}
+
+// Folz & Filiatrault's loops cross zero deformation at -F1 on the pinching
+// line F = -F1 + r4 K0 delta and follow it until it meets the envelope at
+// -delta_p; the force never jumps between reversals (no branch is steeper
+// than the unloading slope r3 K0). Capping the pinching line by the
+// envelope near zero, where E is 0, made the force jump by about F1.
+TEST(CureeLaw, LoopCrossesZeroOnThePinchingLineWithoutAJump) {
+  const CureeParams c = timber_curee();
+  const double dp = curee_pinch_point(c);
+  ASSERT_GT(dp, 0.0);
+  ASSERT_LT(dp, c.delta_u_m);
+  Rig rig(curee_spring(c), linear_spring(1e6), BreakCriterion::Never);
+  const double dm = 0.006;
+  const int n = 6000;  // steps of 1 um
+  std::int64_t step = 0;
+  double f_prev = 0.0;
+  for (int k = 0; k <= n; ++k) f_prev = rig.force(Vec3(0, 0, dm * k / n), 2, step++);
+  int on_pinch = 0, on_envelope = 0;
+  double largest_jump = 0.0;
+  for (int k = n - 1; k >= -n; --k) {
+    const double d = dm * k / n;
+    const double f = rig.force(Vec3(0, 0, d), 2, step++);
+    largest_jump = std::max(largest_jump, std::abs(f - f_prev) / (c.r3 * c.K0_Npm * (dm / n)));
+    f_prev = f;
+    if (d < 0.0 && -d < dp * (1.0 - 1e-9)) {
+      EXPECT_NEAR(f, -c.F1_N + c.r4 * c.K0_Npm * d, 1e-9 * c.F0_N) << d;
+      ++on_pinch;
+    } else if (-d > dp * (1.0 + 1e-9)) {
+      // First excursion to -delta: beyond delta_p the envelope.
+      EXPECT_NEAR(f, -curee_env(c, -d), 1e-9 * c.F0_N) << d;
+      ++on_envelope;
+    }
+  }
+  EXPECT_GT(on_pinch, 10);
+  EXPECT_GT(on_envelope, 10);
+  EXPECT_LE(largest_jump, 1.0 + 1e-9);
+}
+
+// A spring never deformed beyond delta_p is nonlinear elastic on the
+// envelope (as SAWS, the model's own program, does): small cycles retrace
+// sign(delta) E(|delta|), dissipate nothing, and cross zero continuously.
+TEST(CureeLaw, SmallCyclesStayElasticOnTheEnvelope) {
+  const CureeParams c = timber_curee();
+  const double dp = curee_pinch_point(c);
+  Rig rig(curee_spring(c), linear_spring(1e6), BreakCriterion::Never);
+  const double a = 0.9 * dp;
+  const int n = 400;
+  std::int64_t step = 0;
+  double work = 0.0, f_prev = 0.0, d_prev = 0.0;
+  for (int cycle = 0; cycle < 3; ++cycle) {
+    for (int k = 0; k < 4 * n; ++k) {
+      // 0 -> a -> -a -> 0 as a triangle wave
+      const int m = k % (4 * n);
+      const double d = m < n ? a * m / n : (m < 3 * n ? a * (2.0 * n - m) / n : a * (m - 4.0 * n) / n);
+      const double f = rig.force(Vec3(0, 0, d), 2, step++);
+      EXPECT_NEAR(f, d >= 0.0 ? curee_env(c, d) : -curee_env(c, -d), 1e-9 * c.F0_N) << d;
+      work += 0.5 * (f + f_prev) * (d - d_prev);
+      f_prev = f;
+      d_prev = d;
+    }
+  }
+  const double f_end = rig.force(Vec3(0, 0, 0.0), 2, step++);
+  EXPECT_EQ(f_end, 0.0);
+  work += 0.5 * (f_end + f_prev) * (0.0 - d_prev);
+  // Back at zero after whole cycles: what was stored is given back, up to
+  // the trapezoid rule's error on the curved envelope (dx^2 / 12 of E'').
+  EXPECT_LT(std::abs(rig.js.spring_plastic_J(0)), 1e-6 * 0.5 * c.K0_Npm * a * a);
+  EXPECT_LT(std::abs(work), 1e-6 * 0.5 * c.K0_Npm * a * a);
+}
+
 TEST(LinearLaw, ForceAndEnergy) {
   Rig rig(linear_spring(2e5), linear_spring(1e5));
   EXPECT_NEAR(rig.force(Vec3(0, 0, 1e-3), 2), 200.0, 1e-9);

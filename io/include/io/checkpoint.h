@@ -30,7 +30,8 @@
 
 namespace fq {
 
-inline constexpr std::uint32_t kCheckpointFormatVersion = 1;
+// Version 2: a CUREE spring's state holds whether it has passed delta_p.
+inline constexpr std::uint32_t kCheckpointFormatVersion = 2;
 inline constexpr const char* kCheckpointFileName = "checkpoint.bin";
 
 // A checkpoint file that cannot be used: missing, damaged, truncated,

@@ -25,14 +25,30 @@
 // reloading line, reload to the envelope, then follow the envelope. Before
 // any excursion to a side (dmax = 0) the reloading line is K0 delta, which
 // lies above the (concave) envelope, so the first loading follows the
-// envelope and a first excursion to the other side still pinches. dmax is updated at reversals only, so the
-// force is a continuous function of delta between reversals. Continuity
-// guard: if at a reversal the new bound lies beyond the current force (rare,
-// after tiny reversals), the force stays at F_r until the bound catches up
-// (never beyond the envelope).
-// "Yielded" = first time |delta| > delta0. Stored energy = F^2 / (2 r3 K0),
-// what unloading along the unloading slope gives back; the rest of the work
-// is hysteretic dissipation.
+// envelope and a first excursion to the other side still pinches.
+//
+// Near zero the pinching line lies outside the envelope: it crosses
+// delta = 0 at -F1 (moving towards -delta), where E is 0. The loops of the
+// model cross zero deformation at +-F1, so the envelope does not bound the
+// pinching line for |delta| < delta_p, the deformation where the pinching
+// line meets the envelope, E(delta_p) = F1 + r4 K0 delta_p (SAWS's DINT2).
+// (Bounding it there made the force jump by about F1 at every crossing of
+// zero.) The envelope still bounds the unloading and reloading lines. So
+// that the first loading still starts on the envelope, a spring that has
+// never been deformed beyond delta_p follows the envelope both ways,
+// F = sign(delta) E(|delta|), as nonlinear elastic (as SAWS does below
+// 1.05 delta_p); the rules above apply once |delta| has exceeded delta_p.
+// dmax is updated at reversals only, so the force is a continuous function
+// of delta between reversals, provided the reloading line crosses delta = 0
+// within +-F1 (Kp beta dmax >= E(beta dmax) - F1, which holds for the usual
+// alpha < 1; otherwise the force steps to the pinching line at zero).
+// Continuity guard: if at a reversal the new bound lies beyond the current
+// force (rare, after tiny reversals), the force stays at F_r until the bound
+// catches up (never beyond the envelope).
+// "Yielded" = first time |delta| > delta0. Stored energy: below delta_p
+// (never exceeded) the work done on the envelope, the integral of E; after,
+// F^2 / (2 r3 K0), what unloading along the unloading slope gives back; the
+// rest of the work is hysteretic dissipation.
 #pragma once
 
 #include <cstdint>
@@ -59,6 +75,7 @@ struct CureeLaw {
   double delta0_m = 0.0;      // F0 / K0
   double force_u_N = 0.0;     // E(delta_u)
   double delta_fail_m = 0.0;  // delta_f
+  double delta_pinch_m = 0.0; // delta_p: E(delta_p) = F1 + r4 K0 delta_p, 0 < delta_p < delta_u
 };
 
 struct CureeState {
@@ -71,6 +88,7 @@ struct CureeState {
   std::int8_t direction = 0;  // +1 / -1 direction of the current branch, 0 before any motion
   bool has_reversal = false;
   bool yielded = false;
+  bool beyond_pinch = false;  // |delta| has exceeded delta_p: the hysteretic rules apply
 };
 
 // Throws std::invalid_argument naming the field when a parameter is out of range.
@@ -78,8 +96,13 @@ CureeLaw compile_curee(const CureeParams& p);
 // Envelope E(x) for x >= 0 (N); 0 beyond delta_f.
 double curee_envelope(const CureeLaw& law, double x_m);
 LawOutput evaluate_curee(const CureeLaw& law, CureeState& io_state, double delta_m);
-// Stored energy at law force f (J): what unloading at r3 K0 gives back.
-inline double curee_stored_energy_J(const CureeLaw& law, double f_N) {
+// Integral of E from 0 to x (J), x >= 0 within delta_u.
+double curee_envelope_work_J(const CureeLaw& law, double x_m);
+// Stored energy (J) at law force f and deformation delta in `state`: the
+// envelope's work while the spring has not passed delta_p (elastic there),
+// else what unloading at r3 K0 gives back.
+inline double curee_stored_energy_J(const CureeLaw& law, const CureeState& state, double f_N, double delta_m) {
+  if (!state.beyond_pinch) return curee_envelope_work_J(law, delta_m < 0.0 ? -delta_m : delta_m);
   return 0.5 * f_N * f_N / (law.p.r3 * law.p.K0_Npm);
 }
 
