@@ -9,6 +9,7 @@
 #include <iomanip>
 #include <limits>
 #include <map>
+#include <set>
 #include <sstream>
 #include <unordered_map>
 #include <unordered_set>
@@ -327,6 +328,8 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
     warn(w.str());
   }
   if (const std::string w = nodes_inside_members_warning(def); !w.empty()) warn(w);
+  if (const std::string w = near_nodes_warning(def); !w.empty()) warn(w);
+  if (const std::string w = unjoined_members_warning(def, scene); !w.empty()) warn(w);
   for (const std::string& w : ground_motion_direction_warnings(sim.ground_motion())) warn(w);
   // Step 0's forces (run() would do it first): the contacts then know which
   // pairs overlap at the start.
@@ -464,6 +467,94 @@ std::string nodes_inside_members_warning(const CaseDef& def) {
   if (count > found.size()) w << "; ...";
   w << "): joints join members only where they end, so the members ending at such a node are not held to the "
        "member it lies in; split that member at the node if they should be joined";
+  return w.str();
+}
+
+std::string near_nodes_warning(const CaseDef& def) {
+  std::unordered_map<std::string, const SectionDef*> sections;
+  for (const SectionDef& s : def.sections) sections.emplace(s.name, &s);
+  std::unordered_map<std::string, const NodeDef*> nodes;
+  for (const NodeDef& n : def.nodes) nodes.emplace(n.id, &n);
+  // Per end node: the thinnest section size of the members ending there (m).
+  std::unordered_map<std::string, double> thinnest;
+  std::set<std::pair<std::string, std::string>> member_ends;  // the two ends of one member
+  for (const MemberDef& m : def.members) {
+    const auto sec = sections.find(m.section);
+    if (sec == sections.end() || !nodes.count(m.node_a) || !nodes.count(m.node_b)) continue;  // build_model refuses
+    const double size = std::min(sec->second->width_m, sec->second->depth_m);
+    for (const std::string* id : {&m.node_a, &m.node_b}) {
+      auto [it, inserted] = thinnest.emplace(*id, size);
+      if (!inserted) it->second = std::min(it->second, size);
+    }
+    member_ends.emplace(std::min(m.node_a, m.node_b), std::max(m.node_a, m.node_b));
+  }
+  // Sweep along x: only pairs within the largest tolerance can be near.
+  std::vector<const NodeDef*> ends;
+  double reach_m = 0.0;
+  for (const auto& [id, size] : thinnest) {
+    ends.push_back(nodes.at(id));
+    reach_m = std::max(reach_m, 0.5 * size);
+  }
+  std::sort(ends.begin(), ends.end(), [](const NodeDef* a, const NodeDef* b) {
+    return a->xyz_m.x() < b->xyz_m.x() || (a->xyz_m.x() == b->xyz_m.x() && a->line < b->line);
+  });
+  std::vector<std::string> found;
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < ends.size(); ++i) {
+    for (std::size_t j = i + 1; j < ends.size() && ends[j]->xyz_m.x() - ends[i]->xyz_m.x() <= reach_m; ++j) {
+      const NodeDef& a = *ends[i];
+      const NodeDef& b = *ends[j];
+      const double gap_m = (a.xyz_m - b.xyz_m).norm();
+      if (gap_m >= 0.5 * std::min(thinnest.at(a.id), thinnest.at(b.id))) continue;
+      if (member_ends.count({std::min(a.id, b.id), std::max(a.id, b.id)})) continue;
+      ++count;
+      if (found.size() < 3) {
+        const NodeDef& first = a.line <= b.line ? a : b;
+        const NodeDef& second = a.line <= b.line ? b : a;
+        std::ostringstream f;
+        f << "nodes '" << first.id << "' (line " << first.line << ") and '" << second.id << "' (line " << second.line
+          << ") " << std::setprecision(3) << gap_m * 1e3 << " mm apart";
+        found.push_back(f.str());
+      }
+    }
+  }
+  if (count == 0) return {};
+  std::ostringstream w;
+  w << def.source_file.string() << ": " << count << (count == 1 ? " pair" : " pairs")
+    << " of member end nodes lie closer than half the thinnest section of their members (";
+  for (std::size_t k = 0; k < found.size(); ++k) w << (k ? "; " : "") << found[k];
+  if (count > found.size()) w << "; ...";
+  w << "): joints form only where members share a node, so the members ending at them are not joined; use one "
+       "node if they should meet";
+  return w.str();
+}
+
+std::string unjoined_members_warning(const CaseDef& def, const Scene& scene) {
+  if (scene.joints == nullptr || scene.joints->joint_count() == 0) return {};
+  const BodyStore& bodies = scene.simulation->bodies();
+  std::vector<char> joined(bodies.size(), 0);
+  for (std::size_t j = 0; j < scene.joints->joint_count(); ++j) {
+    joined[std::size_t(scene.joints->joint_body_a(j))] = 1;
+    joined[std::size_t(scene.joints->joint_body_b(j))] = 1;
+  }
+  std::unordered_map<std::string, int> member_line;
+  for (const MemberDef& m : def.members) member_line.emplace(m.id, m.line);
+  std::vector<std::string> found;
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const auto line = member_line.find(bodies.info[i].name);
+    if (joined[i] || bodies.is_fixed[i] || line == member_line.end()) continue;  // blocks are meant to be free
+    ++count;
+    if (found.size() < 3) found.push_back("'" + bodies.info[i].name + "' (line " + std::to_string(line->second) + ")");
+  }
+  if (count == 0) return {};
+  std::ostringstream w;
+  w << def.source_file.string() << ": " << count << (count == 1 ? " member is" : " members are")
+    << " held by no joint or support (";
+  for (std::size_t k = 0; k < found.size(); ++k) w << (k ? ", " : "") << found[k];
+  if (count > found.size()) w << ", ...";
+  w << "): such a member stands only on its contacts, or falls where it has none; if it should be joined, end it "
+       "at the nodes of the members it meets";
   return w.str();
 }
 
@@ -884,6 +975,8 @@ void describe_case(const CaseDef& def, std::ostream& out) {
     }
   }
   if (const std::string w = nodes_inside_members_warning(def); !w.empty()) out << "warning     " << w << "\n";
+  if (const std::string w = near_nodes_warning(def); !w.empty()) out << "warning     " << w << "\n";
+  if (const std::string w = unjoined_members_warning(def, scene); !w.empty()) out << "warning     " << w << "\n";
   for (const std::string& w : ground_motion_direction_warnings(sim.ground_motion()))
     out << "warning     " << w << "\n";
   if (scene.contacts) {

@@ -348,6 +348,72 @@ TEST(RunWarnings, ANodeInsideAMemberIsNamedAndTheShippedFramesHaveNone) {
   }
 }
 
+// A portal: two columns on support joints, a beam between their tops. The
+// beam's end nodes are moved to show the two mistakes a probe made by hand:
+// a beam drawn 10 mm above the column tops (joined to nothing) and one end
+// typed 2 mm off the column's node (joined at one end only).
+std::string portal_case(double beam_a_z_m, double beam_b_z_m) {
+  std::ostringstream text;
+  text << "framequake_case: 1\n"
+          "time: {dt_s: 1.0e-5, duration_s: 0.001}\n"
+          "materials: [{name: wood, density_kg_per_m3: 450}]\n"
+          "sections: [{name: s, width_m: 0.010, depth_m: 0.020}]\n"
+          "nodes:\n"
+          "  - {id: a0, xyz_m: [0, 0, 0]}\n"
+          "  - {id: b0, xyz_m: [0.5, 0, 0]}\n"
+          "  - {id: a1, xyz_m: [0, 0, 0.3]}\n"
+          "  - {id: b1, xyz_m: [0.5, 0, 0.3]}\n"
+          "  - {id: a2, xyz_m: [0, 0, "
+       << beam_a_z_m << "]}\n  - {id: b2, xyz_m: [0.5, 0, " << beam_b_z_m
+       << "]}\n"
+          "members:\n"
+          "  - {id: col_a, kind: column, nodes: [a0, a1], section: s, material: wood}\n"
+          "  - {id: col_b, kind: column, nodes: [b0, b1], section: s, material: wood}\n"
+          "  - {id: beam, kind: beam, nodes: ["
+       << (beam_a_z_m == 0.3 ? "a1" : "a2") << ", " << (beam_b_z_m == 0.3 ? "b1" : "b2")
+       << "], section: s, material: wood}\n"
+          "joint_types: [{name: j, layout: four_corner,\n"
+          "               normal: {law: linear, stiffness_N_per_m: 1.0e5},\n"
+          "               shear: {law: linear, stiffness_N_per_m: 1.0e5}}]\n"
+          "joints: {default_type: j, support_type: j}\n"
+          "supports: [{node: a0}, {node: b0}]\n";
+  return text.str();
+}
+
+TEST(RunWarnings, NearlyCoincidentEndNodesAreNamed) {
+  test::TempDir dir;
+  // Beam end b 2 mm above the column top: closer than half the thinner
+  // section size (5 mm), so not meant as a separate node.
+  const CaseDef typo = load_case_file(dir.write("typo.yaml", portal_case(0.3, 0.302)));
+  const std::string w = near_nodes_warning(typo);
+  EXPECT_NE(w.find("1 pair of member end nodes"), std::string::npos) << w;
+  EXPECT_NE(w.find("nodes 'b1' (line 9) and 'b2' (line 11) 2 mm apart"), std::string::npos) << w;
+  EXPECT_NE(w.find("typo.yaml"), std::string::npos) << w;
+  // 6 mm apart, beyond half the thinner section: a separate node on purpose.
+  EXPECT_EQ(near_nodes_warning(load_case_file(dir.write("apart.yaml", portal_case(0.3, 0.306)))), "");
+  EXPECT_EQ(near_nodes_warning(load_case_file(dir.write("joined.yaml", portal_case(0.3, 0.3)))), "");
+  for (const char* name : {"frame_A.yaml", "frame_B.yaml", "frame_C.yaml"}) {
+    const CaseDef shipped = load_case_file(std::filesystem::path(FQ_SOURCE_DIR) / "cases" / name);
+    EXPECT_EQ(near_nodes_warning(shipped), "") << name;
+  }
+}
+
+TEST(RunWarnings, AMemberNoJointHoldsIsNamed) {
+  test::TempDir dir;
+  const CaseDef floating = load_case_file(dir.write("floating.yaml", portal_case(0.31, 0.31)));
+  const std::string w = unjoined_members_warning(floating, build_scene(floating));
+  EXPECT_NE(w.find("1 member is held by no joint or support ('beam' (line 15))"), std::string::npos) << w;
+  // Joined at one end only: held.
+  const CaseDef one_end = load_case_file(dir.write("one_end.yaml", portal_case(0.3, 0.31)));
+  EXPECT_EQ(unjoined_members_warning(one_end, build_scene(one_end)), "");
+  const CaseDef joined = load_case_file(dir.write("joined.yaml", portal_case(0.3, 0.3)));
+  EXPECT_EQ(unjoined_members_warning(joined, build_scene(joined)), "");
+  for (const char* name : {"frame_A.yaml", "frame_B.yaml", "frame_C.yaml"}) {
+    const CaseDef shipped = load_case_file(std::filesystem::path(FQ_SOURCE_DIR) / "cases" / name);
+    EXPECT_EQ(unjoined_members_warning(shipped, build_scene(shipped)), "") << name;
+  }
+}
+
 TEST(RunWarnings, AVerticalRecordAppliedHorizontallyAndTheReverseAreNamed) {
   // Two PEER records whose headers name their components, "UP" and "090",
   // applied along x and along z: the vertical one along x and the

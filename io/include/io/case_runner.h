@@ -101,6 +101,10 @@ struct CaseRunReport {
 //  - the time step exceeds the stable estimate (a run forced with --force);
 //  - a node lies inside a member without being one of its ends
 //    (nodes_inside_members_warning);
+//  - two members' end nodes lie closer than half the thinner section of
+//    their members without being one node (near_nodes_warning);
+//  - a member is held by no joint in a case that has joints
+//    (unjoined_members_warning);
 //  - a record whose header names a vertical component is applied along a
 //    horizontal direction, or a horizontal one vertically
 //    (ground_motion_direction_warnings);
@@ -161,6 +165,20 @@ std::string initial_overlap_warning(const std::vector<InitialOverlap>& overlaps,
 // its thinner section size of its axis. Names the first three, with their
 // lines; empty when there are none.
 std::string nodes_inside_members_warning(const CaseDef& def);
+
+// The warning for end nodes of members that lie closer together than half
+// the thinnest section of the members ending at them without being one node
+// (a coordinate typed 2 mm off): joints form only where members share a
+// node, so the members ending at them are not joined. Pairs that are the two
+// ends of one member are left out. Names the first three pairs with their
+// lines and distance; empty when there are none.
+std::string near_nodes_warning(const CaseDef& def);
+
+// The warning for members that no joint holds, in a case that has joints (a
+// beam drawn 10 mm above the columns it should sit on): they stand only on
+// their contacts, or fall through where there are none. Blocks are meant to
+// be free and are left out. Names the first three; empty when there are none.
+std::string unjoined_members_warning(const CaseDef& def, const Scene& scene);
 
 // Warnings for ground-motion components whose record's header names a
 // component at odds with the direction it is applied in: a vertical one
