@@ -253,10 +253,31 @@ TEST(StudyCommands, AStudyRemovesTheEarlierStudysTablesBeforeItRuns) {
   EXPECT_EQ(std::distance(fs::directory_iterator(blocked), fs::directory_iterator()), 1) << "a run started";
 }
 
+// The text of a PNG's tEXt chunk `key` ("" when there is none).
+std::string png_text(const fs::path& file, const std::string& key) {
+  const std::string bytes = read_text(file);
+  std::size_t at = 8;  // after the signature
+  while (at + 12 <= bytes.size()) {
+    const auto byte = [&](std::size_t i) { return std::uint32_t(static_cast<unsigned char>(bytes[i])); };
+    const std::uint32_t length = byte(at) << 24 | byte(at + 1) << 16 | byte(at + 2) << 8 | byte(at + 3);
+    const std::string type = bytes.substr(at + 4, 4);
+    if (at + 12 + length > bytes.size()) break;
+    if (type == "tEXt") {
+      const std::string data = bytes.substr(at + 8, length);
+      const std::size_t nul = data.find('\0');
+      if (nul != std::string::npos && data.substr(0, nul) == key) return data.substr(nul + 1);
+    }
+    at += 12 + length;
+  }
+  return "";
+}
+
 // The comparison gives the peak drift along y as well as x, and the figure
-// draws the direction the runs drifted most in: the demo portal shaken
-// along y (out of its plane) drifts along y only, which an x-only table
-// and figure showed as no drift at all (geometry probe).
+// draws each case along the direction it drifted most in: the demo portal
+// shaken along y (out of its plane) drifts along y only, which an x-only
+// table and figure showed as no drift at all (geometry probe); compared
+// with the same portal shaken along x, one figure drew both along one axis,
+// so one of them lay flat on zero (a user probe).
 TEST(StudyCommands, CompareReportsDriftAlongYForAMotionAlongY) {
   TempDir dir;
   std::string portal = read_text(kSource / "cases/demo_portal_frame.yaml");
@@ -266,19 +287,29 @@ TEST(StudyCommands, CompareReportsDriftAlongYForAMotionAlongY) {
   ASSERT_NE(portal.find(axis), std::string::npos);
   portal.replace(portal.find(axis), axis.size(), "axis: y");
   std::ofstream(dir.path() / "portal_y.yaml", std::ios::binary) << portal;
+  std::string portal_x = portal;
+  portal_x.replace(portal_x.find("axis: y"), 7, "axis: x");
+  const std::string name = "name: ";
+  ASSERT_NE(portal_x.find(name), std::string::npos);
+  portal_x.insert(portal_x.find('\n', portal_x.find(name)), "_along_x");
+  std::ofstream(dir.path() / "portal_x.yaml", std::ios::binary) << portal_x;
   const fs::path cmp = dir.path() / "cmp";
-  const auto r = run_app({"compare", (dir.path() / "portal_y.yaml").string(), "--window-length", "0.3", "--out",
-                          cmp.string()},
+  const auto r = run_app({"compare", (dir.path() / "portal_y.yaml").string(), (dir.path() / "portal_x.yaml").string(),
+                          "--window-length", "0.3", "--out", cmp.string()},
                          dir.path());
   ASSERT_EQ(r.code, 0) << r.err;
   const Table rows = read_csv(cmp / "comparison.csv");
-  ASSERT_EQ(rows.size(), 1u);
+  ASSERT_EQ(rows.size(), 2u);
   const double peak = std::stod(rows[0].at("storey1_peak_drift_ratio_rad"));
   EXPECT_GT(peak, 1e-4);
   // A motion along y of a symmetric portal: the drift is along y alone.
   EXPECT_EQ(std::stod(rows[0].at("storey1_peak_drift_ratio_y_rad")), peak);
   EXPECT_LT(std::stod(rows[0].at("storey1_peak_drift_ratio_x_rad")), 1e-9 * peak);
   EXPECT_TRUE(is_png(cmp / "first_storey_drift.png"));
+  const std::string x_case = rows[1].at("case");
+  EXPECT_EQ(x_case.substr(x_case.size() - 8), "_along_x");
+  EXPECT_EQ(png_text(cmp / "first_storey_drift.png", "Description"),
+            rows[0].at("case") + " along y; " + x_case + " along x");
 }
 
 // Every run's folder is checked before the first run starts: a folder a
