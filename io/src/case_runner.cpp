@@ -320,8 +320,9 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
     if (scene.stable_time_step.dt_crit_s > 0.0)
       w << "is " << dt / scene.stable_time_step.dt_crit_s << " times the stable time step of "
         << integrator_name(sim.settings().integrator) << ", " << scene.stable_time_step.dt_crit_s << " s,";
-    else  // forward Euler: no stable step on an undamped mode
-      w << "has no stable limit with " << integrator_name(sim.settings().integrator) << " on the mode";
+    else  // forward Euler: no stable step estimated (see check_run_start)
+      w << "has no estimated stable limit with " << integrator_name(sim.settings().integrator)
+        << " (stable only while dt < 2 zeta / omega on each mode, never on an undamped one) on the mode";
     w << " set by " << scene.stable_time_step.stiffest_element << "; the run was forced: "
       << (scene.stable_time_step.dt_crit_s > 0.0 ? "compare its results with a run below the limit"
                                                  : "check its results with another integrator");
@@ -634,7 +635,8 @@ std::vector<std::string> energy_warnings(const EnergyLedger& l, bool has_dashpot
     w << std::setprecision(3) << "the energy balance does not close: error " << error
       << " of the largest energy in play (warned above " << kWarnBalanceErrorRelative << "); ";
     if (method == Integrator::ForwardEuler)
-      w << "forward_euler gains energy at every dt_s on an undamped mode: run again with another integrator";
+      w << "forward_euler gains energy at every dt_s on an undamped mode, and on a damped one once dt_s passes 2 "
+           "zeta / omega: run again with another integrator";
     else
       w << "the time step does not resolve the motion: run again with a smaller dt_s";
     warnings.push_back(w.str());
@@ -745,9 +747,13 @@ void check_run_start(const CaseDef& def, const Scene& scene, const CaseRunOption
   if (dt > scene.stable_time_step.dt_crit_s && !options.allow_unstable_time_step) {
     std::ostringstream msg;
     if (method == Integrator::ForwardEuler) {
-      // No dt helps: the integrator is the cause.
-      msg << "forward_euler is unstable at every dt_s on an undamped mode (|1 + i omega dt| > 1), and the "
-             "stiffest mode here, "
+      // Forward Euler is stable on a mode of damping ratio zeta only while
+      // omega dt < 2 zeta (|1 + lambda dt| <= 1), on an undamped one never.
+      // The engine estimates no such limit: its network estimate is the
+      // leapfrog's, which a damped mode raises instead of lowering.
+      msg << "forward_euler is stable only while dt_s < 2 zeta / omega on every mode (zeta: the mode's damping "
+             "ratio) and never on an undamped mode (|1 + i omega dt| > 1); framequake estimates no such limit, so "
+             "it refuses forward_euler for a scene with a stiff mode: the stiffest here, "
           << scene.stable_time_step.omega_max_radps << " rad/s, is " << scene.stable_time_step.stiffest_element
           << "; choose another integrator (or run with --force to override)";
       throw integrator_error(msg.str());
@@ -988,8 +994,10 @@ void describe_case(const CaseDef& def, std::ostream& out) {
   }
   out << "time step   " << s.dt_s << " s (" << integrator_name(s.integrator) << ")";
   if (scene.stable_time_step.dt_crit_s == 0.0)  // forward Euler on an undamped mode
-    out << "  (no stable time step with " << integrator_name(s.integrator) << ": the stiffest mode, "
-        << scene.stable_time_step.stiffest_element << ", grows at every dt)";
+    out << "  (no stable time step with " << integrator_name(s.integrator)
+        << ": it is stable only while dt < 2 zeta / omega on every mode, never on an undamped one, and no such "
+           "limit is estimated; the stiffest mode is "
+        << scene.stable_time_step.stiffest_element << ")";
   else if (std::isfinite(scene.stable_time_step.dt_crit_s))
     out << "  (stable limit " << limit_text(scene.stable_time_step.dt_crit_s) << " s, set by "
         << scene.stable_time_step.stiffest_element << ")";
@@ -998,7 +1006,7 @@ void describe_case(const CaseDef& def, std::ostream& out) {
     out << "\n            NO STABLE LIMIT CAN BE ESTIMATED (a mode's frequency is not a finite number): run refuses "
            "this case";
   else if (scene.stable_time_step.dt_crit_s == 0.0)
-    out << "\n            UNSTABLE AT EVERY STEP: run refuses this integrator here unless --force is given";
+    out << "\n            NO ESTIMATED STABLE STEP: run refuses this integrator here unless --force is given";
   else if (s.dt_s > scene.stable_time_step.dt_crit_s)
     out << "\n            ABOVE THE STABLE LIMIT: run refuses this time step unless --force is given";
   out << "\nduration    " << s.duration_s << " s = " << sim.total_steps() << " steps\n";

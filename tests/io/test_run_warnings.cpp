@@ -129,11 +129,11 @@ TEST(RunWarnings, ForcedStepNamesItsFactorAndTheStiffestElementAndASoundRunHasNo
   EXPECT_NE(w.find("is 1.25 times the stable time step of central_difference"), std::string::npos) << w;
   EXPECT_NE(w.find(sound.report.stable_time_step.stiffest_element), std::string::npos) << w;
 
-  // Forward Euler has no stable step on an undamped mode (estimate 0 s):
-  // the warning says so instead of a factor.
+  // Forward Euler has no estimated stable step (estimate 0 s): the warning
+  // says so instead of a factor.
   const Outcome euler = run_cube(dir, 1e-5, "euler", Integrator::ForwardEuler);
   ASSERT_FALSE(euler.report.warnings.empty());
-  EXPECT_NE(euler.report.warnings.front().find("has no stable limit with forward_euler"), std::string::npos)
+  EXPECT_NE(euler.report.warnings.front().find("has no estimated stable limit with forward_euler"), std::string::npos)
       << euler.report.warnings.front();
 }
 
