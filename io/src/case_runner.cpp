@@ -330,6 +330,7 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
   }
   if (const std::string w = nodes_inside_members_warning(def); !w.empty()) warn(w);
   if (const std::string w = near_nodes_warning(def); !w.empty()) warn(w);
+  if (const std::string w = slender_members_warning(def); !w.empty()) warn(w);
   if (const std::string w = unjoined_members_warning(def, scene); !w.empty()) warn(w);
   for (const std::string& w : ground_motion_direction_warnings(sim.ground_motion())) warn(w);
   // Step 0's forces (run() would do it first): the contacts then know which
@@ -527,6 +528,42 @@ std::string near_nodes_warning(const CaseDef& def) {
   if (count > found.size()) w << "; ...";
   w << "): joints form only where members share a node, so the members ending at them are not joined; use one "
        "node if they should meet";
+  return w.str();
+}
+
+std::string slender_members_warning(const CaseDef& def) {
+  std::unordered_map<std::string, const SectionDef*> sections;
+  for (const SectionDef& s : def.sections) sections.emplace(s.name, &s);
+  std::unordered_map<std::string, const NodeDef*> nodes;
+  for (const NodeDef& n : def.nodes) nodes.emplace(n.id, &n);
+  std::size_t count = 0;
+  const MemberDef* worst = nullptr;
+  double worst_ratio = 0.0, worst_length_m = 0.0, worst_thickness_m = 0.0;
+  for (const MemberDef& m : def.members) {
+    const auto a = nodes.find(m.node_a), b = nodes.find(m.node_b);
+    const auto sec = sections.find(m.section);
+    if (a == nodes.end() || b == nodes.end() || sec == sections.end()) continue;  // build_model refuses these
+    const double length_m = (b->second->xyz_m - a->second->xyz_m).norm();
+    const double thickness_m = std::min(sec->second->width_m, sec->second->depth_m);
+    if (!(thickness_m > 0.0)) continue;
+    const double ratio = length_m / thickness_m;
+    if (!(ratio > kSlenderMemberRatio)) continue;
+    ++count;
+    if (ratio > worst_ratio) {
+      worst_ratio = ratio;
+      worst = &m;
+      worst_length_m = length_m;
+      worst_thickness_m = thickness_m;
+    }
+  }
+  if (count == 0) return {};
+  std::ostringstream w;
+  w << std::setprecision(3) << def.source_file.string() << ": " << count
+    << (count == 1 ? " member is" : " members are") << " more than " << static_cast<long>(kSlenderMemberRatio)
+    << " times longer than the thinner side of " << (count == 1 ? "its section" : "their sections")
+    << " (the most slender, '" << worst->id << "' (line "
+    << worst->line << "), is " << worst_length_m << " m long and " << worst_thickness_m
+    << " m thin, " << worst_ratio << " times): node coordinates are in metres (xyz_m); were they typed in millimetres?";
   return w.str();
 }
 
@@ -982,6 +1019,7 @@ void describe_case(const CaseDef& def, std::ostream& out) {
   }
   if (const std::string w = nodes_inside_members_warning(def); !w.empty()) out << "warning     " << w << "\n";
   if (const std::string w = near_nodes_warning(def); !w.empty()) out << "warning     " << w << "\n";
+  if (const std::string w = slender_members_warning(def); !w.empty()) out << "warning     " << w << "\n";
   if (const std::string w = unjoined_members_warning(def, scene); !w.empty()) out << "warning     " << w << "\n";
   for (const std::string& w : ground_motion_direction_warnings(sim.ground_motion()))
     out << "warning     " << w << "\n";

@@ -398,6 +398,30 @@ TEST(RunWarnings, NearlyCoincidentEndNodesAreNamed) {
   }
 }
 
+// Coordinates typed in millimetres against sections in metres (a probe's
+// slip: a 290 m column of 10 mm) make members 1000 times too slender; the
+// portal in metres, the shipped cases and the demos give no warning.
+TEST(RunWarnings, MembersAThousandTimesLongerThanThickAreNamed) {
+  test::TempDir dir;
+  std::string in_mm = portal_case(0.3, 0.3);
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{"[0.5, 0, 0]", "[500, 0, 0]"},
+                                 {"[0, 0, 0.3]", "[0, 0, 300]"},
+                                 {"[0.5, 0, 0.3]", "[500, 0, 300]"}}) {
+    for (std::size_t at = in_mm.find(from); at != std::string::npos; at = in_mm.find(from, at + to.size()))
+      in_mm.replace(at, from.size(), to);
+  }
+  const std::string w = slender_members_warning(load_case_file(dir.write("in_mm.yaml", in_mm)));
+  // Columns 300 m / 0.01 m = 30 000, the beam 500 m / 0.01 m = 50 000.
+  EXPECT_NE(w.find("3 members are more than 1000 times longer"), std::string::npos) << w;
+  EXPECT_NE(w.find("'beam' (line 15), is 500 m long and 0.01 m thin, 5e+04 times"), std::string::npos) << w;
+  EXPECT_NE(w.find("typed in millimetres"), std::string::npos) << w;
+  EXPECT_EQ(slender_members_warning(load_case_file(dir.write("in_m.yaml", portal_case(0.3, 0.3)))), "");
+  for (const auto& e : std::filesystem::directory_iterator(std::filesystem::path(FQ_SOURCE_DIR) / "cases")) {
+    if (e.path().extension() != ".yaml") continue;
+    EXPECT_EQ(slender_members_warning(load_case_file(e.path())), "") << e.path();
+  }
+}
+
 TEST(RunWarnings, AMemberNoJointHoldsIsNamed) {
   test::TempDir dir;
   const CaseDef floating = load_case_file(dir.write("floating.yaml", portal_case(0.31, 0.31)));
