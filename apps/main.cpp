@@ -143,8 +143,10 @@ const char* kInfoHelp =
     "Loads and checks the case without running it, and prints the bodies, total\n"
     "mass, joints, storeys (over which drifts and verdicts are taken), time step\n"
     "and its stable limit, duration, ground motion and output plan, and warns as run\n"
-    "does of a node lying inside or on a member without being one of its ends, of a\n"
-    "record applied along the wrong kind of axis and of bodies overlapping at the start.\n";
+    "does of a node lying inside or on a member without being one of its ends, of end\n"
+    "nodes a few mm apart that are not one node, of members no joint holds, of members\n"
+    "1000 times longer than thick (coordinates in mm?), of a record applied along the\n"
+    "wrong kind of axis and of bodies overlapping at the start.\n";
 
 struct RunArgs {
   std::string case_file;

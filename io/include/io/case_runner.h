@@ -52,7 +52,9 @@ struct CaseRunOptions {
 struct StableTimeStep {
   // factor / omega_max with the integrator's stability factor (integrator.h:
   // 2 for central difference, velocity Verlet, symplectic Euler; 2 sqrt 2 for
-  // RK4; 0 for forward Euler, unstable at any dt; infinite for gsl_rk8pd).
+  // RK4; 0 for forward Euler, for which no limit is estimated (stable only
+  // while dt < 2 zeta / omega on each mode, never on an undamped one);
+  // infinite for gsl_rk8pd).
   double dt_crit_s = std::numeric_limits<double>::infinity();
   double omega_max_radps = 0.0;  // stiffest mode over all providers (rad/s)
   std::string stiffest_element;  // where omega_max was found ("" when nothing is stiff)
@@ -146,8 +148,8 @@ constexpr double kWarnViscousGainRelative = 1e-3;
 // with restitution below 1 that can happen: the ground's, or a material
 // pair's where two bodies of those materials exist) the viscous book holds only the discretisation
 // error of the contact springs, and its sign is not warned about; the
-// advice of the balance warning names the integrator when dt cannot help
-// (forward Euler).
+// advice of the balance warning names the integrator for forward Euler
+// (no dt helps on an undamped mode; on a damped one only dt < 2 zeta / omega).
 std::vector<std::string> energy_warnings(const EnergyLedger& ledger, bool has_dashpots = true,
                                          Integrator method = Integrator::CentralDifference);
 

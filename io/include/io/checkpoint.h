@@ -1,7 +1,7 @@
 // Checkpoint files: DIR/checkpoint.bin, the full state of a run, from which
 // `framequake resume DIR` continues bitwise as the run would have.
 //
-// File layout (version 1; all integers in the writing machine's byte order,
+// File layout (version 2; all integers in the writing machine's byte order,
 // which the marker field pins down):
 //   offset 0   8 bytes  magic "FQCKPT\r\n" (the CR LF catches text-mode copies)
 //   offset 8   u32      format version (kCheckpointFormatVersion)

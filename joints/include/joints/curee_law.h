@@ -20,7 +20,9 @@
 //              excursion dmax on this side (beta > 1 degrades the strength
 //              reached at dmax), with degraded stiffness
 //              Kp = K0 (delta0 / dmax)^alpha, delta0 = F0 / K0, Kp <= K0.
-//   F = min( U, E(delta) if delta > 0, max(P, R) )
+//   F = min( U, max( min(P, E(delta) if delta >= delta_p), min(R, E(delta) if delta > 0) ) )
+//   (and F = sign(delta) E(|delta|) until |delta| first exceeds delta_p;
+//   both explained below)
 // i.e. unload along r3 K0 until the pinching line, follow it until the
 // reloading line, reload to the envelope, then follow the envelope. Before
 // any excursion to a side (dmax = 0) the reloading line is K0 delta, which

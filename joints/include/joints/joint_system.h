@@ -36,7 +36,8 @@
 // first and the torques formed once per point.
 //
 // Energy: elastic = sum of stored energy, a function of the law force (or,
-// for a linear spring, of the deformation) formed when someone asks;
+// for a linear spring, of the deformation; for a CUREE spring below its
+// delta_p, of the deformation and its state) formed when someone asks;
 // plastic = work done minus stored (work by the trapezoid rule on each
 // step's deformation increment, kept only once a spring has left its initial
 // linear branch -- until then work equals stored exactly) plus energy
@@ -206,7 +207,8 @@ class JointSystem final : public ForceProvider {
   bool evaluate_spring_(std::size_t s, double delta, double rate, double& law_force_N, double& dashpot_force_N,
                         bool& any_event);
   // Stored energy of live spring s at its last law force (deformation for
-  // linear springs) (J): the same expression the law evaluates.
+  // linear springs; deformation and state for a CUREE spring below its
+  // delta_p) (J): the same expression the law evaluates.
   double stored_energy_J_(std::size_t s, double law_force_N, double delta_m) const;
   void kill_spring_(std::size_t s);
   // Per-spring ends and directions from the per-point ones (output, checkpoints).
