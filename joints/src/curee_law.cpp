@@ -54,7 +54,7 @@ CureeLaw compile_curee(const CureeParams& p) {
     lo = x;
   }
   require(hi > 0.0, "F1_N",
-          "small enough that the pinching line F1_N + r4 K0_Npm delta meets the envelope before delta_u_m "
+          "small enough that the pinching line F1 + r4 K0 delta meets the envelope before delta_u_m "
           "(it lies above the envelope up to delta_u_m)");
   for (int i = 0; i < 200 && hi - lo > 1e-15 * hi; ++i) {
     const double mid = 0.5 * (lo + hi);

@@ -45,8 +45,9 @@
 // within +-F1 (Kp beta dmax >= E(beta dmax) - F1, which holds for the usual
 // alpha < 1; otherwise the force steps to the pinching line at zero).
 // Continuity guard: if at a reversal the new bound lies beyond the current
-// force (rare, after tiny reversals), the force stays at F_r until the bound
-// catches up (never beyond the envelope).
+// force (after tiny reversals, e.g. a small vibration riding on cyclic
+// loading), the force stays at F_r until the bound catches up (never beyond
+// the envelope).
 // "Yielded" = first time |delta| > delta0. Stored energy: below delta_p
 // (never exceeded) the work done on the envelope, the integral of E; after,
 // F^2 / (2 r3 K0), what unloading along the unloading slope gives back; the
