@@ -415,6 +415,28 @@ TEST(CureeLaw, SmallCyclesStayElasticOnTheEnvelope) {
   EXPECT_LT(std::abs(work), 1e-6 * 0.5 * c.K0_Npm * a * a);
 }
 
+// Parameters whose pinching line F1 + r4 K0 x lies above the envelope all
+// the way to delta_u have no delta_p and are refused naming F1_N: with
+// F1 = 0.99 F0 and r4 = 0.06 the line is 1470 N at x = 8 mm where E is
+// 1400 N, and 1590 N against 1500 N at delta_u = 10 mm (test's own closed
+// form above); r4 = 0.02 meets the envelope and is accepted.
+TEST(CureeLaw, APinchingLineAboveTheWholeEnvelopeIsRefused) {
+  CureeParams c = timber_curee();
+  c.F1_N = 0.99 * c.F0_N;
+  c.r4 = 0.06;
+  for (double x = c.delta_u_m / 64; x <= c.delta_u_m; x += c.delta_u_m / 64)
+    ASSERT_LT(curee_env(c, x), c.F1_N + c.r4 * c.K0_Npm * x) << x;
+  try {
+    compile_curee(c);
+    ADD_FAILURE() << "accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("F1_N must be small enough that the pinching line"), std::string::npos)
+        << e.what();
+  }
+  c.r4 = 0.02;
+  EXPECT_NO_THROW(compile_curee(c));
+}
+
 TEST(LinearLaw, ForceAndEnergy) {
   Rig rig(linear_spring(2e5), linear_spring(1e5));
   EXPECT_NEAR(rig.force(Vec3(0, 0, 1e-3), 2), 200.0, 1e-9);
