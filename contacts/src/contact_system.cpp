@@ -387,6 +387,14 @@ std::size_t ContactSystem::process_item(const BodyStore& bodies, std::size_t ite
       ContactPoint& c = out[unmatched[std::size_t(cand.point)]];
       take_history(c, h);
       if (h.stiffness_scale > 0.0) c.shear_spring_N *= c.stiffness_scale / h.stiffness_scale;
+      // The record's reference depth belonged to its own share: a point of
+      // a small share beside a face's corners may have kept a far smaller
+      // one, and a renamed corner taking it met its overlap in full (frame
+      // A's collapse: two corners of a released beam end went from 0.4 N to
+      // 288 N in one step, 0.08 J that no load put in; collapse probe,
+      // 2026-11-26). A renamed point of a released pair takes what a new
+      // point takes, the pair's allowance.
+      if (soft_start_pair) c.reference_depth_m = std::min(c.depth_m, pair_allowance_m);
       took[std::size_t(cand.point)] = true;
     }
     if (soft_start_pair) {
