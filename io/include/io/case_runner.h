@@ -121,9 +121,9 @@ struct CaseRunReport {
 //    dt, 1.9e-10 to 1.0e-3 in the frame cases, the demos and the amplitude
 //    sweeps at dt = 1e-5 s (validation/results/frames_sweep_*, 54 runs to
 //    twice the recorded amplitude, collapses with impacts included), and
-//    up to 1.6e-3 in the frames forced to 2.5 times the estimate; at three
-//    times frame A's reaches 3.6e-2 and is warned, though its verdict is
-//    still right (validation/results/frames_time_step.md);
+//    up to 1.5e-3 in the frames forced to twice the estimate; at 2.5 and
+//    three times frame A's reaches 1.7e-2 and 3.6e-2 and is warned, though
+//    its verdict is still right (validation/results/frames_time_step.md);
 //  - the dashpots gained energy, more than kWarnViscousGainRelative of the
 //    largest energy in play. A dashpot only dissipates; its discrete force,
 //    read from v(n-1/2) and booked with the leapfrog mean velocity, does
