@@ -88,7 +88,8 @@ bool holds_framequake_run(const fs::path& folder) {
   const std::string pvd = file_head(folder / kPvdName);
   if (pvd.find("<VTKFile type=\"Collection\"") == std::string::npos) return false;
   const std::size_t file_attr = pvd.find("file=\"");
-  return file_attr == std::string::npos || pvd.compare(file_attr, 20, "file=\"frames/frame_") == 0;
+  constexpr std::string_view ours = "file=\"frames/frame_";
+  return file_attr == std::string::npos || pvd.compare(file_attr, ours.size(), ours) == 0;
 }
 }  // namespace
 

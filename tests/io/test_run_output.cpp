@@ -676,6 +676,33 @@ TEST(RunOutput, AcceptsAnEmptyFolderOrOneWithAnEmptyFramesFolder) {
   }
 }
 
+// A run killed before its summary (SIGKILL, a crash, a full disk) leaves
+// case.pvd listing its frames and no summary.json: that folder is still
+// recognised as a framequake run and replaced by the next run (a CLI probe
+// found it refused as "holds no previous framequake run": the check
+// compared 20 characters of a 19-character prefix).
+TEST(RunOutput, ReplacesARunKilledBeforeItsSummary) {
+  const fs::path folder = fresh_folder("killed");
+  fq::OutputDef def;
+  def.folder = folder;
+  def.frame_interval_s = 0.01;
+  {
+    auto sim = make_simulation(0.05);
+    fq::RunOutput out(def, "killed");
+    out.attach(*sim);
+    out.finish(*sim, sim->run());
+  }
+  fs::remove(folder / "summary.json");  // as a kill before the end leaves it
+  bool ok = false;
+  ASSERT_EQ(parse_pvd(folder / "case.pvd", &ok).size(), 6u);
+  auto sim = make_simulation(0.015);
+  fq::RunOutput out(def, "again");
+  EXPECT_NO_THROW(out.attach(*sim));
+  out.finish(*sim, sim->run());
+  EXPECT_EQ(parse_pvd(folder / "case.pvd", &ok).size(), 3u);
+  EXPECT_NE(read_text(folder / "summary.json").find("\"case\": \"again\""), std::string::npos);
+}
+
 TEST(RunOutput, ReplacesThePreviousRunButNothingElse) {
   const fs::path folder = fresh_folder("rerun");
   fq::OutputDef def;
