@@ -295,7 +295,7 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
   if (checkpoints) {
     checkpoint.emplace(writer.folder() / kCheckpointFileName, *checkpoints, &writer);
     sim.add_observer(&*checkpoint,
-                     std::max<std::int64_t>(1, std::llround(checkpoints->checkpoint_every_s / sim.settings().dt_s)));
+                     steps_per_interval(checkpoints->checkpoint_every_s, sim.settings().dt_s));
   }
   {
     std::ostringstream v;
@@ -1070,9 +1070,17 @@ void describe_case(const CaseDef& def, std::ostream& out) {
   auto samples = [steps](std::int64_t every) { return samples_written(steps, every); };
   const std::int64_t frame_every = steps_per_interval(o.frame_interval_s, s.dt_s);
   const std::int64_t history_every = steps_per_interval(o.history_interval_s, s.dt_s);
-  out << "output      " << o.folder.string() << ": " << samples(frame_every) << " frames every "
-      << double(frame_every) * s.dt_s << " s, " << samples(history_every) << " history rows every "
-      << double(history_every) * s.dt_s << " s\n";
+  // An interval longer than the run: the start and the end only.
+  auto spacing = [&](std::int64_t every) {
+    std::ostringstream t;
+    if (every >= steps)
+      t << "(the start and the end)";
+    else
+      t << "every " << double(every) * s.dt_s << " s";
+    return t.str();
+  };
+  out << "output      " << o.folder.string() << ": " << samples(frame_every) << " frames " << spacing(frame_every)
+      << ", " << samples(history_every) << " history rows " << spacing(history_every) << "\n";
   for (const std::string& note : {interval_rounding_note("output.frame_interval_s", o.frame_interval_s, s.dt_s),
                                   interval_rounding_note("output.history_interval_s", o.history_interval_s, s.dt_s),
                                   ground_motion_end_note(sim)})

@@ -147,7 +147,12 @@ void prepare_folder(const fs::path& folder) {
 }  // namespace
 
 std::int64_t steps_per_interval(double interval_s, double dt_s) {
-  return std::max<std::int64_t>(1, std::llround(interval_s / dt_s));
+  // An interval longer than any run (1e300 s, or 1e15 s at dt = 1e-5 s)
+  // means the start and the end only; llround of a quotient past 2^63 is
+  // undefined (it gave "every step": 20 001 frames for 1e300 s, CLI probe).
+  const double steps = interval_s / dt_s;
+  if (!(steps < double(kEveryStepCap))) return kEveryStepCap;
+  return std::max<std::int64_t>(1, std::llround(steps));
 }
 
 std::int64_t samples_written(std::int64_t total_steps, std::int64_t every) {
@@ -156,6 +161,7 @@ std::int64_t samples_written(std::int64_t total_steps, std::int64_t every) {
 
 std::string interval_rounding_note(const char* field, double interval_s, double dt_s) {
   const std::int64_t every = steps_per_interval(interval_s, dt_s);
+  if (every == kEveryStepCap) return "";  // the start and the end only
   const double used_s = double(every) * dt_s;
   if (std::fabs(used_s - interval_s) <= 1e-9 * interval_s) return "";
   std::ostringstream note;

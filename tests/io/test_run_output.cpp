@@ -339,6 +339,32 @@ const MainRun& main_run() {
 
 }  // namespace
 
+// An interval longer than any run means the start and the end only. The
+// quotient used to be rounded with llround, undefined past 2^63: 1e300 s
+// gave "every step", 20 001 frames for a 0.2 s run (CLI probe).
+TEST(RunOutput, AnIntervalLongerThanTheRunSamplesTheStartAndTheEnd) {
+  EXPECT_EQ(fq::steps_per_interval(1e300, 1e-5), fq::kEveryStepCap);
+  EXPECT_EQ(fq::steps_per_interval(std::numeric_limits<double>::infinity(), 1e-5), fq::kEveryStepCap);
+  EXPECT_EQ(fq::steps_per_interval(1e15, 1e-5), fq::kEveryStepCap);  // 1e20 steps
+  EXPECT_EQ(fq::steps_per_interval(1e10, 1e-5), std::int64_t(1e15));  // within range: rounded as before
+  EXPECT_EQ(fq::samples_written(20000, fq::kEveryStepCap), 2);
+  EXPECT_EQ(fq::steps_per_interval(0.01, 1e-3), 10);  // ordinary intervals as before
+  const fs::path folder = fresh_folder("long_interval");
+  fq::OutputDef def;
+  def.folder = folder;
+  def.frame_interval_s = 1e300;
+  def.history_interval_s = 1e300;
+  auto sim = make_simulation(0.05);
+  fq::RunOutput out(def, "long interval");
+  out.attach(*sim);
+  out.finish(*sim, sim->run());
+  bool ok = false;
+  EXPECT_EQ(parse_pvd(folder / "case.pvd", &ok).size(), 2u);
+  std::size_t lines = 0;
+  for (const char c : read_text(folder / "history.csv")) lines += c == '\n';
+  EXPECT_EQ(lines, 3u);  // header, start, end
+}
+
 TEST(RunOutput, IntervalsAreRoundedToWholeSteps) {
   auto sim = make_simulation(0.01);
   fq::OutputDef def;

@@ -23,6 +23,7 @@
 // safe: the observers sit behind a stable pointer).
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <stdexcept>
@@ -47,7 +48,10 @@ class OutputError : public std::runtime_error {
 };
 
 // Steps between frames or rows for an interval: round(interval / dt), at
-// least 1 (the interval actually used is that many steps).
+// least 1 (the interval actually used is that many steps), and at most
+// kEveryStepCap, which no run reaches: an interval longer than the run
+// samples its start and its end only.
+inline constexpr std::int64_t kEveryStepCap = std::int64_t(1) << 62;
 std::int64_t steps_per_interval(double interval_s, double dt_s);
 // Frames or rows a run of `total_steps` writes sampling every `every` steps
 // (>= 1): steps 0, every, 2 every, ..., and the last state once more when
