@@ -13,6 +13,10 @@
 #include <utility>
 #include <vector>
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
 #include "io/atomic_file.h"
 #include "dem_core/lane_isa.h"
 #include "dem_core/state_io.h"
@@ -122,6 +126,54 @@ bool check_output_folder(const fs::path& folder) {
 
 namespace {
 
+// An exclusive advisory lock (flock) on the output folder itself, held for
+// the life of a RunOutput: a second run, resume or study writing into the
+// same folder at the same time is refused instead of interleaving its
+// files with the first (a CLI probe's two runs into one folder left a
+// summary saying "completed" over a history.csv of a fifth of its rows).
+// The kernel drops the lock when the process ends, however it ends, so a
+// killed run leaves no stale lock; nothing is written into the folder.
+class FolderLock {
+ public:
+  FolderLock() = default;
+  explicit FolderLock(const fs::path& folder) {
+    fd_ = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (fd_ < 0)
+      throw std::runtime_error("cannot open output folder '" + folder.string() + "': " +
+                               std::generic_category().message(errno));
+    if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+      const int err = errno;
+      ::close(fd_);
+      fd_ = -1;
+      if (err == EWOULDBLOCK)
+        throw std::runtime_error("output folder '" + folder.string() +
+                                 "' is in use by another framequake process (a run, resume, compare or sweep writing "
+                                 "there now); wait for it to end or choose another folder");
+      throw std::runtime_error("cannot lock output folder '" + folder.string() + "': " +
+                               std::generic_category().message(err));
+    }
+  }
+  FolderLock(FolderLock&& o) noexcept : fd_(o.fd_) { o.fd_ = -1; }
+  FolderLock& operator=(FolderLock&& o) noexcept {
+    if (this != &o) {
+      release();
+      fd_ = o.fd_;
+      o.fd_ = -1;
+    }
+    return *this;
+  }
+  FolderLock(const FolderLock&) = delete;
+  FolderLock& operator=(const FolderLock&) = delete;
+  ~FolderLock() { release(); }
+
+ private:
+  void release() {
+    if (fd_ >= 0) ::close(fd_);  // closing the last descriptor drops the lock
+    fd_ = -1;
+  }
+  int fd_ = -1;
+};
+
 // See the constructor's contract in run_output.h. Only files this class
 // writes are ever removed.
 void prepare_folder(const fs::path& folder) {
@@ -221,6 +273,7 @@ struct RunOutput::Impl {
   // `status_override`, when given, replaces the run status's name (abandon()).
   void write_summary(const Simulation& sim, const RunResult& result, const char* status_override = nullptr) const;
 
+  FolderLock lock;  // first, so released last: held while this output exists (FolderLock)
   OutputDef def;
   std::string case_name;
   VtkFrameWriter frames;
@@ -257,8 +310,20 @@ RunOutput::RunOutput(const OutputDef& def, std::string case_name) {
     throw std::invalid_argument("frame_interval_s must be a positive number of seconds");
   if (!(def.history_interval_s > 0.0) || !std::isfinite(def.history_interval_s))
     throw std::invalid_argument("history_interval_s must be a positive number of seconds");
+  // The folder, then its lock, then its contents: a second process waits
+  // for nothing and changes nothing while the first holds it.
+  std::error_code ec;
+  if (!fs::exists(def.folder, ec)) {
+    fs::create_directories(def.folder, ec);
+    if (ec && !fs::is_directory(def.folder))
+      throw std::runtime_error("cannot create output folder '" + def.folder.string() + "': " + ec.message());
+  }
+  if (!fs::is_directory(def.folder, ec))
+    throw std::runtime_error("output folder '" + def.folder.string() + "' exists and is not a folder");
+  FolderLock lock(def.folder);
   prepare_folder(def.folder);
   impl_ = std::make_unique<Impl>(def, std::move(case_name));
+  impl_->lock = std::move(lock);
   // From now on the folder is recognisably a framequake run, and case.pvd
   // is valid at every instant.
   impl_->pvd.write();
@@ -330,7 +395,9 @@ void RunOutput::save_state(const Simulation& sim, StateWriter& out) {
 }
 
 RunOutput RunOutput::resume(const OutputDef& def, std::string case_name, StateReader& in) {
+  FolderLock lock(def.folder);  // before anything of the folder is read or cut
   auto impl = std::make_unique<Impl>(def, std::move(case_name));
+  impl->lock = std::move(lock);
   Impl::Resume r;
   in.section("output");
   r.pvd_entries = in.str("case.pvd entries");

@@ -729,6 +729,26 @@ TEST(RunOutput, ReplacesARunKilledBeforeItsSummary) {
   EXPECT_NE(read_text(folder / "summary.json").find("\"case\": \"again\""), std::string::npos);
 }
 
+// Two outputs into one folder at the same time: the second is refused
+// while the first exists (its files would interleave with the first's: a
+// CLI probe's concurrent runs left a summary saying "completed" over a
+// fifth of its history rows), and may go ahead once the first is gone.
+TEST(RunOutput, AFolderInUseByAnotherOutputIsRefused) {
+  const fs::path folder = fresh_folder("in_use");
+  fq::OutputDef def;
+  def.folder = folder;
+  auto first = std::make_unique<fq::RunOutput>(def, "first");
+  try {
+    fq::RunOutput second(def, "second");
+    ADD_FAILURE() << "the second output was allowed into a folder in use";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("is in use by another framequake process"), std::string::npos) << e.what();
+  }
+  EXPECT_NE(read_text(folder / "case.pvd").find("<VTKFile"), std::string::npos);  // the first's files untouched
+  first.reset();
+  EXPECT_NO_THROW(fq::RunOutput third(def, "third"));
+}
+
 TEST(RunOutput, ReplacesThePreviousRunButNothingElse) {
   const fs::path folder = fresh_folder("rerun");
   fq::OutputDef def;
