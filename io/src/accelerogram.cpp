@@ -66,6 +66,11 @@ std::string load_file(const std::filesystem::path& file, const char* expected_co
     throw InputError(name, 0, "file", std::string("file not found; expected ") + expected_content);
   if (std::filesystem::is_directory(status))
     throw InputError(name, 0, "file", std::string("is a directory; expected ") + expected_content);
+  // A pipe would block the open until a writer came (Ctrl-C cannot stop
+  // that; a CLI probe's sweep --record on a FIFO hung), a device never ends.
+  if (!std::filesystem::is_regular_file(status))
+    throw InputError(name, 0, "file",
+                     std::string("is not a regular file (a pipe, device or socket); expected ") + expected_content);
   std::ifstream in(file, std::ios::binary);
   if (!in) throw InputError(name, 0, "file", std::string("cannot open for reading; expected ") + expected_content);
   std::string text;

@@ -39,6 +39,8 @@ T read_pod(const std::string& bytes, std::size_t offset) {
 }
 
 bool read_whole_file(const fs::path& file, std::string& out) {
+  std::error_code ec;
+  if (!fs::is_regular_file(file, ec)) return false;  // a pipe would block the open (see accelerogram.cpp)
   std::ifstream in(file, std::ios::binary);
   if (!in) return false;
   std::ostringstream s;
@@ -67,7 +69,14 @@ std::string read_checkpoint_file(const fs::path& file) {
   std::error_code ec;
   if (!fs::exists(file, ec)) throw CheckpointError(name + " does not exist (was the run started with --checkpoint-every?)");
   std::string bytes;
-  if (!read_whole_file(file, bytes)) throw CheckpointError(name + " cannot be read");
+  if (!read_whole_file(file, bytes)) {
+    const auto status = fs::status(file, ec);
+    if (!ec && fs::exists(status) && !fs::is_regular_file(status))
+      throw CheckpointError(name +
+                            (fs::is_directory(status) ? " is a folder" : " is not a regular file (a pipe, device or socket)") +
+                            ", not a checkpoint");
+    throw CheckpointError(name + " cannot be read");
+  }
   if (bytes.size() < sizeof kMagic || std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0)
     throw CheckpointError(name + " is not a framequake checkpoint (wrong magic bytes)");
   if (bytes.size() < kHeaderBytes + kTrailerBytes)

@@ -76,6 +76,8 @@ void remove_file_if_present(const fs::path& p) {
 namespace {
 // The first 4 KiB of `file` ("" when it cannot be read).
 std::string file_head(const fs::path& file) {
+  std::error_code ec;
+  if (!fs::is_regular_file(file, ec)) return "";  // a pipe would block the open
   std::ifstream in(file, std::ios::binary);
   std::string head(4096, '\0');
   in.read(head.data(), std::streamsize(head.size()));

@@ -2,6 +2,7 @@
 // ../shared/data/ground_motions, line-end independence, every malformed-input
 // error, and the two-column reader's uniform / non-uniform / unit paths.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <chrono>
 #include <cmath>
@@ -195,6 +196,22 @@ TEST(PeerAt2, CrlfAndLfGiveIdenticalRecords) {
   ASSERT_NE(crlf.find("\r\n"), std::string::npos) << "README says NWH360 is CRLF";
   expect_same_record(fq::read_peer_at2(kGroundMotions / "RSN1044_NORTHR_NWH360.AT2"),
                      fq::read_peer_at2(dir.write("nwh360_lf.AT2", strip_cr(crlf))));
+}
+
+// A record that is a pipe is refused at once, not opened: opening a FIFO
+// blocks until a writer comes, which Ctrl-C cannot stop (a CLI probe's
+// `sweep --record` on a FIFO hung until SIGKILL).
+TEST(PeerAt2, APipeIsRefusedNotOpened) {
+  TempDir dir;
+  const fs::path fifo = dir.path() / "record.AT2";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  try {
+    (void)fq::read_peer_at2(fifo);
+    ADD_FAILURE() << "accepted a pipe";
+  } catch (const fq::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("is not a regular file"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(fifo.string()), std::string::npos) << e.what();
+  }
 }
 
 TEST(TwoColumn, CrlfAndLfGiveIdenticalRecords) {

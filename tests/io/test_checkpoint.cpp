@@ -16,6 +16,7 @@
 // A second check: saving the loaded state again gives the very same bytes,
 // so nothing the simulation carries is left out of the round trip.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <cstring>
 #include <memory>
@@ -275,6 +276,15 @@ TEST(Checkpoint, FileFramingDetectsDamage) {
     ADD_FAILURE() << "accepted a missing file";
   } catch (const CheckpointError& e) {
     EXPECT_NE(std::string(e.what()).find("does not exist"), std::string::npos) << e.what();
+  }
+  // A pipe in its place is refused, not opened: opening a FIFO blocks until
+  // a writer comes, which Ctrl-C cannot stop (CLI probe).
+  ASSERT_EQ(::mkfifo(file.c_str(), 0600), 0);
+  try {
+    read_checkpoint_file(file);
+    ADD_FAILURE() << "accepted a pipe";
+  } catch (const CheckpointError& e) {
+    EXPECT_NE(std::string(e.what()).find("is not a regular file"), std::string::npos) << e.what();
   }
 }
 
