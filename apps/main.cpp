@@ -12,7 +12,7 @@
 // Exit codes: 0 run completed; 1 the run became unstable (output kept up to
 // the last good frame); 2 bad input or usage (nothing written); 3 output
 // could not be written (summary.json, where the disk allows it, says
-// output_failed); 130 interrupted by SIGINT, 143 by SIGTERM (final frame
+// output_failed); 130 interrupted by SIGINT, 143 by SIGTERM, 129 by SIGHUP (final frame
 // and summary written).
 #include <unistd.h>
 
@@ -52,7 +52,7 @@ constexpr int kExitOutputFailed = 3;
 constexpr int kExitInterrupted = 130;  // 128 + SIGINT; a SIGTERM ends with 143
 
 std::atomic<bool> g_stop_requested{false};
-// The first stop signal received (SIGINT or SIGTERM), for the exit code.
+// The first stop signal received (SIGINT, SIGTERM or SIGHUP), for the exit code.
 std::atomic<int> g_stop_signal{0};
 
 extern "C" void on_stop_signal(int signal_number) {
@@ -61,16 +61,19 @@ extern "C" void on_stop_signal(int signal_number) {
   g_stop_requested.store(true);
 }
 
-// Ctrl-C (SIGINT) and a polite kill (SIGTERM: `kill`, `timeout`, a batch
-// scheduler at its time limit) both stop a run at the end of its step, with
-// its final frame and summary written.
+// Ctrl-C (SIGINT), a polite kill (SIGTERM: `kill`, `timeout`, a batch
+// scheduler at its time limit) and a closed terminal or SSH session
+// (SIGHUP, whose default action ended a run with no summary and no final
+// frame: CLI probe) all stop a run at the end of its step, with its final
+// frame and summary written.
 void install_stop_handlers() {
   std::signal(SIGINT, on_stop_signal);
   std::signal(SIGTERM, on_stop_signal);
+  std::signal(SIGHUP, on_stop_signal);
 }
 
 // The exit code of an interrupted run: 128 + the signal's number, as a
-// shell reports a process the signal ended (130 Ctrl-C, 143 SIGTERM).
+// shell reports a process the signal ended (130 Ctrl-C, 143 SIGTERM, 129 SIGHUP).
 int interrupted_exit_code() {
   const int s = g_stop_signal.load();
   return s > 0 ? 128 + s : kExitInterrupted;
@@ -115,7 +118,7 @@ const char* kRunHelp =
     "Every option also takes the form --option=value.\n"
     "\n"
     "Exit codes: 0 completed, 1 unstable, 2 bad input, 3 output failed, 130 interrupted\n"
-    "(Ctrl-C), 143 stopped by SIGTERM.\n";
+    "(Ctrl-C), 143 stopped by SIGTERM, 129 by SIGHUP (terminal closed).\n";
 
 const char* kResumeHelp =
     "Usage: framequake resume DIR [options]\n"

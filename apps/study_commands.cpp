@@ -59,7 +59,7 @@ const char* kCompareHelp =
     "  --help               this text\n"
     "\n"
     "Exit codes: 0 all runs completed and everything was written; 1 a run became\n"
-    "unstable; 2 bad input (nothing run); 3 output failed; 130 interrupted (143 by SIGTERM).\n";
+    "unstable; 2 bad input (nothing run); 3 output failed; 130 interrupted (143 by SIGTERM, 129 by SIGHUP).\n";
 
 const char* kSweepHelp =
     "Usage: framequake sweep CASE... [options]\n"
@@ -89,7 +89,7 @@ const char* kSweepHelp =
     "  --help               this text\n"
     "\n"
     "Exit codes: 0 all runs completed and everything was written; 1 a run became\n"
-    "unstable; 2 bad input (nothing run); 3 output failed; 130 interrupted (143 by SIGTERM).\n";
+    "unstable; 2 bad input (nothing run); 3 output failed; 130 interrupted (143 by SIGTERM, 129 by SIGHUP).\n";
 
 [[noreturn]] void usage_error(const std::string& message, const char* help) {
   std::cerr << "framequake: " << message << "\n\n" << help;

@@ -236,4 +236,10 @@ TEST(CrashSafety, SigtermStopsCleanlyWithSummaryAndFinalFrame) {
   ASSERT_NO_FATAL_FAILURE(stop_with_signal_and_check(SIGTERM));
 }
 
+// A closed terminal or SSH session (SIGHUP) stops the run the same way; it
+// used to end it with no summary and no final frame (CLI probe).
+TEST(CrashSafety, SighupStopsCleanlyWithSummaryAndFinalFrame) {
+  ASSERT_NO_FATAL_FAILURE(stop_with_signal_and_check(SIGHUP));
+}
+
 }  // namespace
