@@ -367,7 +367,7 @@ int command_render(int argc, char** argv) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+static int dispatch(int argc, char** argv) {
   if (argc < 2) usage_error("missing command", kMainHelp);
   // Every command reads `--option=value` as `--option value` (the two forms
   // users type); a value may itself contain '='.
@@ -427,4 +427,18 @@ int main(int argc, char** argv) {
     return 4;
   }
   usage_error("unknown command '" + command + "'", kMainHelp);
+}
+
+int main(int argc, char** argv) {
+  const int code = dispatch(argc, argv);
+  // What a command printed (info's description, compare's table, a help
+  // text) must have reached its reader: `framequake info case > /dev/full`
+  // ended with exit 0 and nothing written (CLI probe).
+  std::cout.flush();
+  if (!std::cout) {
+    std::cerr << "framequake: error: cannot write to standard output (a full disk, or a pipe whose reader "
+                 "has gone)\n";
+    return code == kExitOk ? kExitOutputFailed : code;
+  }
+  return code;
 }

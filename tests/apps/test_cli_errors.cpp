@@ -9,6 +9,7 @@
 // fields come from where each row puts its fault, the message words from the
 // contracts in io/case_file.h and io/accelerogram.h, not from the program.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -553,6 +554,27 @@ TEST(CliUsage, UsageErrorsExitTwoWithUsageOnStderr) {
     EXPECT_NE(r.err.find("Usage"), std::string::npos) << r.err;
     EXPECT_TRUE(r.out.empty()) << r.out;
   }
+}
+
+// What a command prints must reach its reader: with standard output on a
+// full device, `info` and `--help` end with exit 3 and say so (they ended
+// with 0 and nothing written; CLI probe). Run through the shell for the
+// redirection.
+TEST(CliErrors, AFullStandardOutputIsAnOutputFailure) {
+  TempDir dir;
+  const std::string app = FQ_APP_PATH;
+  const std::string err = (dir.path() / "err.txt").string();
+  const std::string case_file = (fs::path(FQ_SOURCE_DIR) / "cases/demo_falling_block.yaml").string();
+  for (const std::string& args : {"info '" + case_file + "'", std::string("--help")}) {
+    SCOPED_TRACE(args);
+    const int status = std::system(("'" + app + "' " + args + " > /dev/full 2> '" + err + "'").c_str());
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 3);
+    EXPECT_NE(fq_test::read_text(err).find("cannot write to standard output"), std::string::npos)
+        << fq_test::read_text(err);
+  }
+  const int ok = std::system(("'" + app + "' info '" + case_file + "' > /dev/null 2> '" + err + "'").c_str());
+  EXPECT_EQ(WEXITSTATUS(ok), 0);
 }
 
 }  // namespace
