@@ -119,9 +119,17 @@ struct StudyArgs {
 StudyArgs parse_study_args(int argc, char** argv, const char* help, bool sweep) {
   StudyArgs a;
   a.out = sweep ? "out/sweep" : "out/compare";
+  std::vector<std::string> seen;  // options that take one value, given once each (as run)
   for (int i = 2; i < argc; ++i) {
     const std::string arg = argv[i];
     auto value = [&](const char* name) -> std::string {
+      // "--out A --out B": which was meant is not for us to guess (the last
+      // one won silently; CLI probe). --record may be given once per record.
+      if (std::string(name) != "--record") {
+        if (std::find(seen.begin(), seen.end(), name) != seen.end())
+          usage_error(std::string(name) + " is given twice; give it once", help);
+        seen.push_back(name);
+      }
       if (i + 1 >= argc) usage_error(std::string(name) + " needs a value", help);
       if (argv[i + 1][0] == '\0') usage_error(std::string(name) + " needs a value, got an empty one", help);
       return argv[++i];

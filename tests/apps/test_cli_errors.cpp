@@ -543,6 +543,11 @@ TEST(CliUsage, UsageErrorsExitTwoWithUsageOnStderr) {
       // Which of two values was meant is not guessed (the last won silently).
       {{"run", c, "--integrator", "rk4", "--integrator", "velocity_verlet"}, "--integrator is given twice"},
       {{"run", c, "--out", "a", "--out", "b"}, "--out is given twice"},
+      // compare and sweep as run (they kept the last value; CLI probe).
+      {{"compare", c, "--out", "a", "--out", "b"}, "--out is given twice"},
+      {{"compare", c, "--jobs", "1", "--jobs", "2"}, "--jobs is given twice"},
+      {{"sweep", c, "--scales", "1", "--scales", "2"}, "--scales is given twice"},
+      {{"sweep", c, "--window-length", "1", "--window-length", "0.5"}, "--window-length is given twice"},
   };
   for (const UsageRow& row : rows) {
     std::string shown;
