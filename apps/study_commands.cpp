@@ -47,7 +47,8 @@ const char* kCompareHelp =
     "                              failure, broken joints, energy balance error, wall time\n"
     "  DIR/first_storey_drift.png  first-storey drift ratio against time, each case along\n"
     "                              its main direction (x, or y where it drifted more along y)\n"
-    "An earlier study's tables and figure in DIR are removed before the runs start.\n"
+    "An earlier study's tables and figure in DIR are removed before the runs start;\n"
+    "a file of the same name that no study of ours wrote stops the study.\n"
     "A run that did not reach its end is standing or damaged only \"so far\".\n"
     "\n"
     "Options:\n"
@@ -73,7 +74,8 @@ const char* kSweepHelp =
     "  DIR/collapse_scales.csv, .md    per case and record: the smallest scale at which a\n"
     "                                  storey collapsed (from the runs that completed)\n"
     "  DIR/sweep.png                   peak first-storey drift ratio against PGA\n"
-    "An earlier study's tables and figure in DIR are removed before the runs start.\n"
+    "An earlier study's tables and figure in DIR are removed before the runs start;\n"
+    "a file of the same name that no study of ours wrote stops the study.\n"
     "\n"
     "Options:\n"
     "  --scales LIST        comma-separated amplitude scales (default 0.5,0.75,1,1.25,1.5,2);\n"
@@ -364,9 +366,34 @@ bool prepare_folder(const fs::path& out) {
 // table of the earlier results beside its own runs' folders (a probe's
 // failed compare left comparison.md saying "completed"). False, with the
 // message printed, when one of them cannot be removed.
+// Whether `file` is a table or figure a study of ours wrote, by its start:
+// our CSV tables begin with a "case," header, our Markdown tables with
+// "| case |", our figures are PNGs made by matplotlib. Only those are
+// removed: a user's own notes named comparison.md were deleted by name (CLI
+// probe).
+bool is_earlier_study_file(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::string head(4096, '\0');
+  in.read(head.data(), std::streamsize(head.size()));
+  head.resize(std::size_t(std::max<std::streamsize>(0, in.gcount())));
+  const std::string ext = file.extension().string();
+  if (ext == ".csv") return head.rfind("case,", 0) == 0;
+  if (ext == ".md") return head.rfind("| case |", 0) == 0;
+  if (ext == ".png") return head.rfind("\x89PNG", 0) == 0 && head.find("Matplotlib") != std::string::npos;
+  return false;
+}
+
 bool remove_earlier_tables(const fs::path& out, const std::vector<const char*>& names) {
   for (const char* name : names) {
     std::error_code ec;
+    const fs::file_status st = fs::symlink_status(out / name, ec);
+    if (!fs::exists(st)) continue;
+    if (!fs::is_regular_file(st) || !is_earlier_study_file(out / name)) {
+      std::cerr << "framequake: error: " << (out / name).string()
+                << " is not a table or figure of an earlier framequake study; refusing to replace it: move it or "
+                   "choose another --out (nothing was run)\n";
+      return false;
+    }
     fs::remove(out / name, ec);
     if (ec) {
       std::cerr << "framequake: error: cannot remove the earlier study's " << (out / name).string() << ": "

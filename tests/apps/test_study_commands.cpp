@@ -235,8 +235,9 @@ TEST(StudyCommands, AStudyRemovesTheEarlierStudysTablesBeforeItRuns) {
   const std::string portal = (kSource / "cases/demo_portal_frame.yaml").string();
   const fs::path cmp = dir.path() / "cmp";
   fs::create_directories(cmp);
-  std::ofstream(cmp / "comparison.md") << "stale: an earlier study\n";
-  std::ofstream(cmp / "first_storey_drift.png") << "stale figure";
+  // An earlier study's table and figure, as it wrote them (by their start).
+  std::ofstream(cmp / "comparison.md") << "| case | status |\n|---|---|\n| stale | completed |\n";
+  std::ofstream(cmp / "first_storey_drift.png", std::ios::binary) << "\x89PNG\r\n\x1a\n....tEXtSoftware Matplotlib";
   const auto r = run_app({"compare", portal, "--window-length", "0.05", "--no-figure", "--out", cmp.string()},
                          dir.path());
   ASSERT_EQ(r.code, 0) << r.err;
@@ -249,8 +250,21 @@ TEST(StudyCommands, AStudyRemovesTheEarlierStudysTablesBeforeItRuns) {
                           blocked.string()},
                          dir.path());
   EXPECT_EQ(b.code, 3) << b.err;
-  EXPECT_NE(b.err.find("cannot remove the earlier study's"), std::string::npos) << b.err;
+  EXPECT_NE(b.err.find("is not a table or figure of an earlier framequake study"), std::string::npos) << b.err;
   EXPECT_EQ(std::distance(fs::directory_iterator(blocked), fs::directory_iterator()), 1) << "a run started";
+
+  // A user's own file under a table's name is neither removed nor
+  // replaced, and nothing runs (it was deleted by name; CLI probe).
+  const fs::path notes = dir.path() / "notes";
+  fs::create_directories(notes);
+  std::ofstream(notes / "comparison.md") << "my notes on the frames\n";
+  const auto n = run_app({"compare", portal, "--window-length", "0.05", "--no-figure", "--out", notes.string()},
+                         dir.path());
+  EXPECT_EQ(n.code, 3) << n.err;
+  EXPECT_NE(n.err.find("comparison.md is not a table or figure of an earlier framequake study"), std::string::npos)
+      << n.err;
+  EXPECT_EQ(read_text(notes / "comparison.md"), "my notes on the frames\n");
+  EXPECT_EQ(std::distance(fs::directory_iterator(notes), fs::directory_iterator()), 1) << "a run started";
 }
 
 // The text of a PNG's tEXt chunk `key` ("" when there is none).
