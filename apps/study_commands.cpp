@@ -4,6 +4,7 @@
 #include "study_commands.h"
 
 #include <algorithm>
+#include <csignal>
 #include <charconv>
 #include <cerrno>
 #include <cmath>
@@ -37,6 +38,7 @@ namespace {
 constexpr int kExitOk = 0;
 constexpr int kExitBadInput = 2;
 constexpr int kExitOutputFailed = 3;
+constexpr int kExitInterrupted = 130;  // main.cpp turns it into 128 + the signal received
 
 const char* kCompareHelp =
     "Usage: framequake compare CASE... [options]\n"
@@ -270,6 +272,15 @@ int run_figure(const std::string& kind, const fs::path& folder) {
   const std::string command =
       quoted(python) + " " + quoted(script.string()) + " " + kind + " " + quoted(folder.string());
   const int status = std::system(command.c_str());
+  // Ctrl-C or SIGTERM while the figure is drawn reaches the plotting
+  // process (system() lets the child take them): a stop on request, not a
+  // missing matplotlib (CLI probe: a traceback, then exit 3).
+  const bool stopped = (WIFSIGNALED(status) && (WTERMSIG(status) == SIGINT || WTERMSIG(status) == SIGTERM)) ||
+                       (WIFEXITED(status) && (WEXITSTATUS(status) == 130 || WEXITSTATUS(status) == 143));
+  if (stopped) {
+    std::cerr << "framequake: the figure was not drawn: stopped on request. The tables are written.\n";
+    return kExitInterrupted;
+  }
   if (status != 0) {
     std::cerr << "framequake: error: the figure could not be drawn: " << command << " exited with status "
               << (WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status))

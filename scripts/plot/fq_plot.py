@@ -275,4 +275,8 @@ def main(argv):
 
 
 if __name__ == "__main__":
-    main(sys.argv)
+    try:
+        main(sys.argv)
+    except KeyboardInterrupt:
+        # Ctrl-C while drawing: framequake reports the stop; no traceback.
+        sys.exit(130)

@@ -267,6 +267,27 @@ TEST(StudyCommands, AStudyRemovesTheEarlierStudysTablesBeforeItRuns) {
   EXPECT_EQ(std::distance(fs::directory_iterator(notes), fs::directory_iterator()), 1) << "a run started";
 }
 
+// Ctrl-C while the figure is drawn stops the plotting process: the study
+// says it was stopped on request and exits 130, with its tables written,
+// instead of blaming a missing matplotlib with exit 3 (CLI probe). The
+// plotting interpreter here (FQ_PYTHON) interrupts itself with SIGINT.
+TEST(StudyCommands, CtrlCWhileTheFigureIsDrawnIsAStopNotAFailure) {
+  TempDir dir;
+  const fs::path fake = dir.path() / "python_interrupted.sh";
+  std::ofstream(fake) << "#!/bin/sh\nkill -INT $$\nsleep 5\n";
+  fs::permissions(fake, fs::perms::owner_all);
+  ::setenv("FQ_PYTHON", fake.c_str(), 1);
+  const fs::path cmp = dir.path() / "cmp";
+  const auto r = run_app({"compare", (kSource / "cases/demo_falling_block.yaml").string(), "--window-length", "0.05",
+                          "--out", cmp.string()},
+                         dir.path());
+  ::unsetenv("FQ_PYTHON");
+  EXPECT_EQ(r.code, 130) << r.err;
+  EXPECT_NE(r.err.find("the figure was not drawn: stopped on request"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("python3-matplotlib"), std::string::npos) << r.err;
+  EXPECT_TRUE(fs::exists(cmp / "comparison.md"));
+}
+
 // The text of a PNG's tEXt chunk `key` ("" when there is none).
 std::string png_text(const fs::path& file, const std::string& key) {
   const std::string bytes = read_text(file);
