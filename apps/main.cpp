@@ -21,12 +21,14 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <exception>
 #include <filesystem>
 #include <iostream>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "dem_core/lane_isa.h"
@@ -410,6 +412,25 @@ static int dispatch(int argc, char** argv) {
     } catch (const std::invalid_argument& e) {
       std::cerr << "framequake: error: " << e.what() << "\n";
       return kExitBadInput;
+    }
+    // OMP_NUM_THREADS: libgomp only warns of a value it cannot read and
+    // goes on with its default; too many threads for the cores slow every
+    // parallel region down (a CLI probe's 5000-block run: 17.7 s with 1000
+    // threads, 3.1 s with the default). Results are the same for any count.
+    if (const char* threads = std::getenv("OMP_NUM_THREADS"); threads != nullptr && *threads != '\0') {
+      const std::string text = threads;
+      const std::string first = text.substr(0, text.find(','));  // a nesting list "4,2" is valid
+      char* end = nullptr;
+      const long n = std::strtol(first.c_str(), &end, 10);
+      if (end == first.c_str() || *end != '\0' || n < 1) {
+        std::cerr << "framequake: error: OMP_NUM_THREADS='" << text
+                  << "' is not a positive whole number of threads; unset it or give e.g. OMP_NUM_THREADS=2\n";
+        return kExitBadInput;
+      }
+      const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+      if (n > 4 * long(cores))
+        std::cerr << "framequake: warning: OMP_NUM_THREADS=" << n << " is far more than the " << cores
+                  << " logical cores: the parallel stages will run slower, not faster (results do not depend on it)\n";
     }
     if (command == "run") return command_run(argc, argv);
     if (command == "info") return command_info(argc, argv);

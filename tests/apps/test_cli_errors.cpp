@@ -9,6 +9,7 @@
 // fields come from where each row puts its fault, the message words from the
 // contracts in io/case_file.h and io/accelerogram.h, not from the program.
 #include <gtest/gtest.h>
+#include <thread>
 #include <sys/wait.h>
 
 #include <cstdlib>
@@ -488,6 +489,29 @@ TEST(CliErrors, BadSimdFormIsRefusedNamingTheVariable) {
   EXPECT_NE(bad.app.err.find("expected auto, sse2, avx2 or avx512vl"), std::string::npos) << bad.app.err;
   EXPECT_EQ(baseline.app.code, 0) << baseline.app.err;
   EXPECT_TRUE(baseline.out_folder_exists);
+}
+
+// OMP_NUM_THREADS that is not a positive whole number is bad input (libgomp
+// only warns and goes on with its default); far more threads than cores is
+// warned about, and runs (CLI probe: 1000 threads made a run 6x slower).
+TEST(CliErrors, BadOmpNumThreadsIsRefusedAndTooManyWarned) {
+  ::setenv("OMP_NUM_THREADS", "abc", 1);
+  const Outcome bad = run_case(kBaseCase, kBaseRecord);
+  const std::string too_many = std::to_string(8 * std::max(1u, std::thread::hardware_concurrency()));
+  ::setenv("OMP_NUM_THREADS", too_many.c_str(), 1);
+  const Outcome many = run_case(kBaseCase, kBaseRecord);
+  ::setenv("OMP_NUM_THREADS", "1", 1);
+  const Outcome one = run_case(kBaseCase, kBaseRecord);
+  ::unsetenv("OMP_NUM_THREADS");
+  EXPECT_EQ(bad.app.code, 2) << bad.app.err;
+  EXPECT_FALSE(bad.out_folder_exists);
+  EXPECT_NE(bad.app.err.find("OMP_NUM_THREADS='abc' is not a positive whole number"), std::string::npos)
+      << bad.app.err;
+  EXPECT_EQ(many.app.code, 0) << many.app.err;
+  EXPECT_NE(many.app.err.find("OMP_NUM_THREADS=" + too_many + " is far more than the"), std::string::npos)
+      << many.app.err;
+  EXPECT_EQ(one.app.code, 0) << one.app.err;
+  EXPECT_EQ(one.app.err.find("OMP_NUM_THREADS"), std::string::npos) << one.app.err;
 }
 
 // ---- usage -------------------------------------------------------------------
