@@ -106,7 +106,14 @@ fs::path frame_path(const fs::path& folder, std::size_t index) { return folder /
 bool check_output_folder(const fs::path& folder) {
   std::error_code ec;
   const fs::file_status st = fs::status(folder, ec);
-  if (!fs::exists(st)) return false;
+  if (!fs::exists(st)) {
+    // A symbolic link whose target is missing: creating the folder would
+    // fail with a bare "File exists" (CLI probe).
+    if (fs::is_symlink(fs::symlink_status(folder, ec)))
+      throw std::runtime_error("output folder '" + folder.string() + "' is a symbolic link to '" +
+                               fs::read_symlink(folder, ec).string() + "', which does not exist");
+    return false;
+  }
   if (!fs::is_directory(st))
     throw std::runtime_error("output folder '" + folder.string() + "' exists and is not a folder");
   // Empty, or holding only an empty frames/ (a run stopped between making
@@ -315,6 +322,7 @@ RunOutput::RunOutput(const OutputDef& def, std::string case_name) {
   // The folder, then its lock, then its contents: a second process waits
   // for nothing and changes nothing while the first holds it.
   std::error_code ec;
+  (void)check_output_folder(def.folder);  // a file, or a broken link, in its place: refused with its reason
   if (!fs::exists(def.folder, ec)) {
     fs::create_directories(def.folder, ec);
     if (ec && !fs::is_directory(def.folder))

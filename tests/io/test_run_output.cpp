@@ -749,6 +749,25 @@ TEST(RunOutput, AFolderInUseByAnotherOutputIsRefused) {
   EXPECT_NO_THROW(fq::RunOutput third(def, "third"));
 }
 
+// A broken symbolic link as the output folder is named as one (creating
+// the folder failed with a bare "File exists"; CLI probe).
+TEST(RunOutput, ABrokenSymlinkAsTheFolderIsNamed) {
+  const fs::path base = fresh_folder("dangling");
+  fs::create_directories(base);
+  const fs::path link = base / "out";
+  fs::create_symlink(base / "missing_target", link);
+  fq::OutputDef def;
+  def.folder = link;
+  try {
+    fq::RunOutput out(def, "x");
+    ADD_FAILURE() << "accepted a broken link";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("is a symbolic link to"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("which does not exist"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(fs::exists(base / "missing_target"));
+}
+
 TEST(RunOutput, ReplacesThePreviousRunButNothingElse) {
   const fs::path folder = fresh_folder("rerun");
   fq::OutputDef def;
