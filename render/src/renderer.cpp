@@ -391,7 +391,8 @@ RenderReport render_runs(const std::vector<RunData>& runs, const RenderOptions& 
     }
     const fs::path parent = options.animation.parent_path();
     if (!parent.empty() && !fs::is_directory(parent))
-      throw RenderInputError("'" + parent.string() + "' (folder of the animation file) does not exist");
+      throw RenderInputError("'" + parent.string() + "' (folder of the animation file) " +
+                             (fs::exists(parent) ? "is a file, not a folder" : "does not exist"));
   }
 
   RenderReport report;

@@ -8,6 +8,7 @@
 // and roughly when). The test does not rely on those estimates: it reads the
 // yield and break times from the run's events.csv.
 #include <gtest/gtest.h>
+#include <fstream>
 #include <vtkImageData.h>
 #include <vtkNew.h>
 #include <vtkPNGReader.h>
@@ -355,6 +356,13 @@ TEST(RenderRun, BadUsageEndsWithAClearMessageAndWritesNothing) {
   EXPECT_NE(err.find(".gif or .mp4"), std::string::npos) << err;
   EXPECT_FALSE(fs::exists(dir.path() / "a.avi"));
   EXPECT_FALSE(fs::exists(run / "animation.gif"));
+  // A file where the animation's folder should be is named as a file (it
+  // was said not to exist; CLI probe).
+  std::ofstream(dir.path() / "afile") << "x";
+  EXPECT_EQ(run_app({"render", run.string(), "--to", (dir.path() / "afile" / "r.gif").string()}, dir.path(), &out,
+                    &err),
+            2);
+  EXPECT_NE(err.find("(folder of the animation file) is a file, not a folder"), std::string::npos) << err;
 }
 
 // Ctrl-C (or SIGTERM) during a render stops it between frames: exit 130
