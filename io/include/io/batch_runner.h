@@ -37,6 +37,12 @@ struct BatchOptions {
   // Called (from the worker thread, serialised by a mutex) when a job ends.
   std::function<void(std::size_t job, const BatchJob&, const BatchOutcome&, std::size_t done, std::size_t total)>
       on_done;
+  // While runs go, every `progress_interval_s` of wall time (0: never):
+  // one line naming the runs in progress with their percent of simulated
+  // time, and how many are done ("frame_A 45 %, frame_B 40 %; 1 of 3
+  // done"). Called from a thread of its own, never after run_batch returns.
+  double progress_interval_s = 0.0;
+  std::function<void(const std::string& line)> on_progress;
 };
 
 // Runs every job; outcomes in job order. Never throws for a job's own
