@@ -415,11 +415,20 @@ std::string initial_overlap_warning(const std::vector<InitialOverlap>& overlaps,
   return w.str();
 }
 
-std::string nodes_inside_members_warning(const CaseDef& def) {
+namespace {
+// The case's nodes by id and sections by name (the geometry warnings below).
+std::pair<std::unordered_map<std::string, const NodeDef*>, std::unordered_map<std::string, const SectionDef*>>
+nodes_and_sections_by_name(const CaseDef& def) {
   std::unordered_map<std::string, const NodeDef*> nodes;
   for (const NodeDef& n : def.nodes) nodes.emplace(n.id, &n);
   std::unordered_map<std::string, const SectionDef*> sections;
   for (const SectionDef& s : def.sections) sections.emplace(s.name, &s);
+  return {std::move(nodes), std::move(sections)};
+}
+}  // namespace
+
+std::string nodes_inside_members_warning(const CaseDef& def) {
+  const auto [nodes, sections] = nodes_and_sections_by_name(def);
   // Nodes where some member ends: only there do members meet at a joint.
   std::vector<const NodeDef*> ends;
   {
@@ -473,10 +482,7 @@ std::string nodes_inside_members_warning(const CaseDef& def) {
 }
 
 std::string near_nodes_warning(const CaseDef& def) {
-  std::unordered_map<std::string, const SectionDef*> sections;
-  for (const SectionDef& s : def.sections) sections.emplace(s.name, &s);
-  std::unordered_map<std::string, const NodeDef*> nodes;
-  for (const NodeDef& n : def.nodes) nodes.emplace(n.id, &n);
+  const auto [nodes, sections] = nodes_and_sections_by_name(def);
   // Per end node: the thinnest section size of the members ending there (m).
   std::unordered_map<std::string, double> thinnest;
   std::set<std::pair<std::string, std::string>> member_ends;  // the two ends of one member
@@ -532,10 +538,7 @@ std::string near_nodes_warning(const CaseDef& def) {
 }
 
 std::string slender_members_warning(const CaseDef& def) {
-  std::unordered_map<std::string, const SectionDef*> sections;
-  for (const SectionDef& s : def.sections) sections.emplace(s.name, &s);
-  std::unordered_map<std::string, const NodeDef*> nodes;
-  for (const NodeDef& n : def.nodes) nodes.emplace(n.id, &n);
+  const auto [nodes, sections] = nodes_and_sections_by_name(def);
   std::size_t count = 0;
   const MemberDef* worst = nullptr;
   double worst_ratio = 0.0, worst_length_m = 0.0, worst_thickness_m = 0.0;

@@ -114,9 +114,8 @@ LawOutput evaluate_curee(const CureeLaw& law, CureeState& s, double delta) {
     out.force_N = 0.0;
     return out;
   }
-  if (!s.beyond_pinch && std::abs(delta) <= law.delta_pinch_m) {
-    // Never beyond delta_p: nonlinear elastic on the envelope (header).
-    const double f = delta >= 0.0 ? curee_envelope(law, delta) : -curee_envelope(law, -delta);
+  // The state and output at force f, on either path below.
+  auto settle = [&](double f) {
     s.delta_prev_m = delta;
     s.force_prev_N = f;
     if (std::abs(delta) > law.delta0_m) s.yielded = true;
@@ -124,7 +123,9 @@ LawOutput evaluate_curee(const CureeLaw& law, CureeState& s, double delta) {
     out.stored_J = curee_stored_energy_J(law, s, f, delta);
     out.inelastic = s.yielded;
     return out;
-  }
+  };
+  if (!s.beyond_pinch && std::abs(delta) <= law.delta_pinch_m)  // never beyond delta_p: elastic on the envelope (header)
+    return settle(delta >= 0.0 ? curee_envelope(law, delta) : -curee_envelope(law, -delta));
   s.beyond_pinch = true;
   const double k0 = p.K0_Npm;
   const double unload =
@@ -149,13 +150,7 @@ LawOutput evaluate_curee(const CureeLaw& law, CureeState& s, double delta) {
     if (s.has_reversal) bound = std::min(bound, std::max(s.reversal_force_N, env));  // continuity guard
     f = std::max(unload, bound);
   }
-  s.delta_prev_m = delta;
-  s.force_prev_N = f;
-  if (std::abs(delta) > law.delta0_m) s.yielded = true;
-  out.force_N = f;
-  out.stored_J = curee_stored_energy_J(law, s, f, delta);
-  out.inelastic = s.yielded;
-  return out;
+  return settle(f);
 }
 
 }  // namespace fq
