@@ -252,8 +252,8 @@ int command_run(int argc, char** argv) {
   options.on_warning = print_warning;
   options.on_note = print_note;
   std::optional<fq::ProgressDisplay> progress;
-  if (!args.quiet && isatty(fileno(stderr))) {
-    progress.emplace(def.name, stderr);
+  if (!args.quiet) {
+    progress.emplace(def.name, stderr, isatty(fileno(stderr)) != 0);
     options.progress = &*progress;
   }
   fq::CaseRunReport report;
@@ -318,8 +318,8 @@ int command_resume(int argc, char** argv) {
   options.on_warning = print_warning;
   options.on_note = print_note;
   std::optional<fq::ProgressDisplay> progress;
-  if (!quiet && isatty(fileno(stderr))) {
-    progress.emplace(std::filesystem::path(folder).filename().string(), stderr);
+  if (!quiet) {
+    progress.emplace(std::filesystem::path(folder).filename().string(), stderr, isatty(fileno(stderr)) != 0);
     options.progress = &*progress;
   }
   fq::CaseRunReport report;

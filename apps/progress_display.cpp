@@ -18,7 +18,8 @@ std::string format_duration(double seconds) {
 }
 }  // namespace
 
-ProgressDisplay::ProgressDisplay(std::string label, std::FILE* stream) : label_(std::move(label)), stream_(stream) {}
+ProgressDisplay::ProgressDisplay(std::string label, std::FILE* stream, bool in_place, double log_interval_s)
+    : label_(std::move(label)), stream_(stream), in_place_(in_place), log_interval_s_(log_interval_s) {}
 
 void ProgressDisplay::on_start(const Simulation& sim) {
   start_ = std::chrono::steady_clock::now();
@@ -28,12 +29,14 @@ void ProgressDisplay::on_start(const Simulation& sim) {
 
 void ProgressDisplay::on_sample(const Simulation& sim) {
   const auto now = std::chrono::steady_clock::now();
-  if (std::chrono::duration<double>(now - last_draw_).count() < 0.25) return;
+  if (std::chrono::duration<double>(now - last_draw_).count() < (in_place_ ? 0.25 : log_interval_s_)) return;
   last_draw_ = now;
   draw(sim, false);
 }
 
-void ProgressDisplay::on_finish(const Simulation& sim) { draw(sim, true); }
+void ProgressDisplay::on_finish(const Simulation& sim) {
+  if (in_place_) draw(sim, true);  // a log gets the run's own closing line instead
+}
 
 void ProgressDisplay::draw(const Simulation& sim, bool final_line) {
   const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
@@ -41,10 +44,11 @@ void ProgressDisplay::draw(const Simulation& sim, bool final_line) {
   const std::int64_t done = sim.steps_done();
   const double rate = elapsed > 0 ? double(done - start_step_) / elapsed : 0.0;
   const double left = rate > 0 ? double(total - done) / rate : -1.0;
-  std::fprintf(stream_, "\r%s  t = %.4f / %.4f s  %5.1f%%  %.3g steps/s  %s left   ", label_.c_str(), sim.time_s(),
-               sim.settings().duration_s, 100.0 * double(done) / double(total), rate,
+  std::fprintf(stream_, in_place_ ? "\r%s  t = %.4f / %.4f s  %5.1f%%  %.3g steps/s  %s left   "
+                                  : "%s  t = %.4f / %.4f s  %5.1f%%  %.3g steps/s  %s left\n",
+               label_.c_str(), sim.time_s(), sim.settings().duration_s, 100.0 * double(done) / double(total), rate,
                final_line ? "0:00" : format_duration(left).c_str());
-  if (final_line) std::fputc('\n', stream_);
+  if (final_line && in_place_) std::fputc('\n', stream_);
   std::fflush(stream_);
 }
 
