@@ -331,7 +331,8 @@ void print_done(std::size_t, const fq::BatchJob& job, const fq::BatchOutcome& ou
   std::ostringstream line;
   line << "[" << done << "/" << total << "] " << job.label << ": ";
   if (!out.ok) {
-    line << "FAILED: " << out.error;
+    // A run Ctrl-C kept from starting did not fail (CLI probe: "FAILED: not run").
+    line << (out.exit_code == 130 ? "" : "FAILED: ") << out.error;
   } else {
     const fq::CaseRunReport& r = out.report;
     line << fq::run_status_name(r.result.status) << ", t = " << fixed(r.result.simulated_s, 2) << " s in "
