@@ -1,5 +1,6 @@
 #include "io/case_file.h"
 
+#include <yaml-cpp/depthguard.h>
 #include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
 
@@ -1224,6 +1225,11 @@ CaseDef load_case_file(const std::filesystem::path& file) {
                            " (remove the '---' separators)");
     }
     if (!scan.docs.empty()) root = YAML::Load(text);
+  } catch (const YAML::DeepRecursion& e) {
+    // yaml-cpp's depth guard says only "bad file" (CLI probe).
+    throw InputError(name, e.mark.line >= 0 ? e.mark.line + 1 : 0, "",
+                     "YAML syntax error: brackets or indentation nested " + std::to_string(e.depth()) +
+                         " levels deep, past what the YAML reader accepts; a case file needs a handful");
   } catch (const YAML::Exception& e) {
     // yaml-cpp reports an unclosed '{' or '[' where it gave up, often a line
     // or more after the bracket: name the bracket's own line.

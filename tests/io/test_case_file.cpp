@@ -343,6 +343,9 @@ std::vector<BadCase> bad_cases() {
   const std::string gm_head = "ground_motion:\n";
   return {
       {"YamlSyntax", kHead + kBlock + "ground: level_m: 0\n", 5, "", {"YAML syntax error"}},
+      // yaml-cpp's depth guard said only "bad file" (CLI probe).
+      {"NestedTooDeep", "framequake_case: 1\ndescription: " + std::string(1000, '[') + std::string(1000, ']') + "\n",
+       2, "", {"YAML syntax error", "levels deep, past what the YAML reader accepts"}},
       // An unclosed '{' or '[' is named on its own line (yaml-cpp gives up a
       // line or more later), skipping brackets inside quotes and comments.
       {"UnclosedMap", "framequake_case: 1\ntime: {dt_s: 1.0e-5, duration_s: 1.0\n" + kBlock, 2, "",
