@@ -295,7 +295,7 @@ int run_figure(const std::string& kind, const fs::path& folder) {
 // before it started, or "failed" when it ended in an error.
 std::string outcome_status(const fq::BatchOutcome& o) {
   if (o.ok) return fq::run_status_name(o.report.result.status);
-  return o.exit_code == 130 ? "not run" : "failed";
+  return o.exit_code == kExitInterrupted ? "not run" : "failed";
 }
 
 // A storey's verdict as the tables print it. A run stopped before its end
@@ -332,7 +332,7 @@ void print_done(std::size_t, const fq::BatchJob& job, const fq::BatchOutcome& ou
   line << "[" << done << "/" << total << "] " << job.label << ": ";
   if (!out.ok) {
     // A run Ctrl-C kept from starting did not fail (CLI probe: "FAILED: not run").
-    line << (out.exit_code == 130 ? "" : "FAILED: ") << out.error;
+    line << (out.exit_code == kExitInterrupted ? "" : "FAILED: ") << out.error;
   } else {
     const fq::CaseRunReport& r = out.report;
     line << fq::run_status_name(r.result.status) << ", t = " << fixed(r.result.simulated_s, 2) << " s in "
@@ -373,11 +373,6 @@ bool prepare_folder(const fs::path& out) {
   return true;
 }
 
-// Removes the tables and figure an earlier study wrote into `out`, before
-// any run starts: a study that then fails or is stopped must not leave a
-// table of the earlier results beside its own runs' folders (a probe's
-// failed compare left comparison.md saying "completed"). False, with the
-// message printed, when one of them cannot be removed.
 // Whether `file` is a table or figure a study of ours wrote, by its start:
 // our CSV tables begin with a "case," header, our Markdown tables with
 // "| case |", our figures are PNGs made by matplotlib. Only those are
@@ -395,6 +390,12 @@ bool is_earlier_study_file(const fs::path& file) {
   return false;
 }
 
+// Removes the tables and figure an earlier study wrote into `out`, before
+// any run starts: a study that then fails or is stopped must not leave a
+// table of the earlier results beside its own runs' folders (a probe's
+// failed compare left comparison.md saying "completed"). False, with the
+// message printed, when one of them cannot be removed or is not ours
+// (is_earlier_study_file).
 bool remove_earlier_tables(const fs::path& out, const std::vector<const char*>& names) {
   for (const char* name : names) {
     std::error_code ec;
