@@ -6,7 +6,7 @@
 // unstable when its mechanical energy exceeds 1e6 times the initial one or
 // the state stops being finite). For each integrator the largest stable dt
 // is found by bisection. Theory: dt = factor / omega_max, omega_max from
-// JointSystem::stiffest_mode (power iteration on M^-1/2 K M^-1/2), factor
+// JointSystem::stiffest_mode (Lanczos on M^-1/2 K M^-1/2), factor
 // 2 for central difference, velocity Verlet and symplectic Euler, 2 sqrt 2
 // for RK4 (integrator.h); forward Euler is checked to grow at every dt.
 // A second table shows RK4 above its limit: steps to the energy threshold

@@ -796,6 +796,19 @@ void ContactSystem::linearised_springs(const BodyStore& bodies, std::vector<Line
     box.half_extents_m = bodies.half_extents_m[i] + Vec3::Constant(inflate_m);
     return box;
   };
+  // coefficients_of solves for the damping ratio of the restitution asked
+  // for by bisection (some 200 evaluations of the impact's closed form): at
+  // 10 000 touching boxes, doing that per pair took a fifth of `info`. The
+  // coefficients depend only on the pair's materials (or the ground), so
+  // each distinct pair of materials is solved once here.
+  std::map<std::pair<int, int>, ContactCoefficients> coefficient_cache;
+  auto cached_coefficients_of = [&](BodyId a, BodyId b) -> const ContactCoefficients& {
+    const int ma = a == kNoBody ? -1 : material_of(std::size_t(a)), mb = material_of(std::size_t(b));
+    const std::pair<int, int> key{std::min(ma, mb), std::max(ma, mb)};
+    auto it = coefficient_cache.find(key);
+    if (it == coefficient_cache.end()) it = coefficient_cache.emplace(key, coefficients_of(a, b)).first;
+    return it->second;
+  };
   auto add_manifold = [&](BodyId a, BodyId b, const ContactManifold& manifold) {
     double weight_sum = 0.0;
     for (int k = 0; k < manifold.count; ++k) weight_sum += manifold.points[std::size_t(k)].weight;
@@ -805,7 +818,7 @@ void ContactSystem::linearised_springs(const BodyStore& bodies, std::vector<Line
                              : bodies.is_fixed[std::size_t(b)]                ? ma
                                                                               : ma * mb / (ma + mb);
     const std::int64_t element = (std::int64_t(a + 1) << 32) | std::int64_t(b);
-    const ContactCoefficients co = coefficients_of(a, b);
+    const ContactCoefficients& co = cached_coefficients_of(a, b);
     for (int k = 0; k < manifold.count; ++k) {
       const ContactPointGeometry& p = manifold.points[std::size_t(k)];
       const Vec3 n = p.normal;

@@ -28,6 +28,7 @@
 #include <cmath>
 #include <iostream>
 #include <random>
+#include <vector>
 
 #include "scene_helpers.h"
 
@@ -181,6 +182,40 @@ TEST(ContactStableStep, LaterContactsUseOnlyCoefficientsTheirBodiesCanHave) {
   const StiffestMode soft = estimate(0.1 * kKn), stiff = estimate(100.0 * kKn);
   EXPECT_GT(soft.omega_radps, 0.0);
   EXPECT_EQ(soft.omega_radps, stiff.omega_radps) << soft.where << "\n" << stiff.where;
+}
+
+// The linearised terms of the contacts present now carry each pair's own
+// coefficients (linearised_springs solves each pair of materials once and
+// reuses it). A box on a box on the ground, the box-box pair 3 times as
+// stiff as the ground (normal and tangential, both given): the two
+// contacts are face on face over the same 0.05 m square, so their points
+// share the same weights, and the summed stiffness of the pair's terms
+// must be 3 times that of the ground's. A point's dashpot is 2 zeta
+// sqrt(k m), with m its share of the pair's mass (the lower box's m on the
+// ground, m / 2 between two equal boxes), so the summed dashpots must stand
+// in the ratio (zeta_pair / zeta_ground) sqrt(3 / 2), the damping ratios
+// solved from the pair's restitution 0.2 and the ground's 0.5.
+TEST(ContactStableStep, EachContactsTermsCarryItsOwnPairsCoefficients) {
+  SimulationSettings s;
+  s.dt_s = 1e-5;
+  s.duration_s = 1e-5;
+  test::ContactScene scene = test::make_scene(scene_bodies(2, false), s, [](ContactSystem& c) {
+    c.set_pair_params(0, 0, test::params(3.0 * kKn, 0.2, 10.0, 3.0 * 0.8 * kKn));
+    c.set_ground(0.0, test::params(kKn, 0.5, 10.0, 0.8 * kKn));
+  });
+  std::vector<LinearisedSpring> rows;
+  scene.contacts->linearised_springs(scene.sim->bodies(), rows);
+  double k_ground = 0.0, k_pair = 0.0, c_ground = 0.0, c_pair = 0.0;
+  for (const LinearisedSpring& r : rows) {
+    (r.a == kNoBody ? k_ground : k_pair) += r.k_Npm;
+    (r.a == kNoBody ? c_ground : c_pair) += r.c_Nspm;
+  }
+  ASSERT_GT(k_ground, 0.0);
+  EXPECT_NEAR(k_pair / k_ground, 3.0, 1e-12);
+  ASSERT_GT(c_ground, 0.0);
+  const double zeta_pair = damping_ratio_for_clamped_restitution(0.2);
+  const double zeta_ground = damping_ratio_for_clamped_restitution(0.5);
+  EXPECT_NEAR(c_pair / c_ground, zeta_pair / zeta_ground * std::sqrt(1.5), 1e-12);
 }
 
 }  // namespace

@@ -8,7 +8,9 @@
 
 #include <cmath>
 #include <memory>
+#include <numbers>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "dem_core/linearised_network.h"
@@ -137,8 +139,9 @@ TEST(StableTimeStep, DampedLimitIsTheSmallestModeLimitNotTheStiffestModeWithTheS
   two_oscillators_limit(1e-5, 1, &mode);
   const double estimate = 2.0 / mode.omega_radps;
   EXPECT_NE(mode.where.find("'stiff'"), std::string::npos) << mode.where;
-  // Power iteration from below: the estimate may exceed the closed form by
-  // its convergence error, well under 1e-3 for modes this far apart.
+  // The eigenvalue search converges from below: the estimate may exceed the
+  // closed form by its convergence error, well under 1e-3 for modes this
+  // far apart.
   EXPECT_NEAR(estimate / stiff, 1.0, 1e-3) << "estimate " << estimate << " s, closed form " << stiff << " s";
   // And the engine's own runs agree: bounded just below, unbounded just above.
   StiffestMode unused;
@@ -169,6 +172,60 @@ TEST(StableTimeStep, OneSpringGivesItsClosedFormAndAnOverflowGivesNaNNotNoLimit)
   const NetworkStableStep overflow = network_stable_step(spring(1.0e308), bodies.size());
   EXPECT_TRUE(std::isnan(overflow.omega_radps)) << overflow.omega_radps;
   EXPECT_TRUE(std::isnan(overflow.dt_crit_s)) << overflow.dt_crit_s;
+}
+
+// Long chains whose top modes crowd together, against their closed form. n
+// bodies of m = 1 kg in a row along x, each tied to its neighbours, and the
+// two ends to the ground, by springs of stiffness k with dashpots c (a
+// fixed-fixed chain): the modes are omega_j^2 = (4 k / m) sin^2(j pi /
+// (2 (n + 1))), j = 1..n, so the top two differ by a fraction of about
+// (pi / n)^2 / 4 (2.7e-5 at n = 300, 2.7e-7 at n = 3000). The dashpot
+// matrix is c/k times the stiffness matrix, so every mode keeps its shape,
+// with damping ratio zeta_j = c omega_j / (2 k); the central-difference
+// limit of a mode, (2 / omega)(sqrt(1 + zeta^2) - zeta), falls as omega
+// grows, so the top mode sets it. An estimate above the true limit lets a
+// run start at an unstable step, so it must be close: 300 bodies within
+// 1e-6, which the Lanczos search reaches before its cap of 300 products;
+// 3000 bodies within 1e-5, where the cap leaves about 3e-6. The power
+// iteration it replaced (400 products from a smooth start) stopped 9e-4
+// short of omega_max on both chains.
+TEST(StableTimeStep, LongChainsWithCrowdedTopModesMeetTheirClosedForm) {
+  for (const auto& [n, tolerance] : {std::pair{300, 1e-6}, std::pair{3000, 1e-5}}) {
+    SCOPED_TRACE("chain of " + std::to_string(n) + " bodies");
+    const double k = 1.0e6, m = 1.0;
+    BodyStore bodies;
+    BoxBodyDef box;
+    box.size_m = Vec3(0.1, 0.1, 0.1);
+    box.density_kg_per_m3 = 1000.0;  // m = 1 kg
+    for (int i = 0; i < n; ++i) {
+      box.position_m = Vec3(0.2 * i, 0.0, 1.0);
+      bodies.add_box(box);
+    }
+    auto chain = [&](double c_Nspm) {
+      std::vector<LinearisedSpring> rows;
+      for (int i = 0; i <= n; ++i) {  // spring i: body i - 1 (or the ground) to body i (or the ground)
+        LinearisedSpring r;
+        r.a = i == 0 ? kNoBody : BodyId(i - 1);
+        r.b = i == n ? kNoBody : BodyId(i);
+        r.k_Npm = k;
+        r.c_Nspm = c_Nspm;
+        if (r.a != kNoBody) r.ga = -mass_scaled_gradient(bodies, r.a, Vec3::Zero(), Vec3::UnitX());
+        if (r.b != kNoBody) r.gb = mass_scaled_gradient(bodies, r.b, Vec3::Zero(), Vec3::UnitX());
+        rows.push_back(r);
+      }
+      return rows;
+    };
+    const double omega_max = std::sqrt(4.0 * k / m) * std::sin(n * std::numbers::pi / (2.0 * (n + 1)));
+    const NetworkStableStep undamped = network_stable_step(chain(0.0), bodies.size());
+    EXPECT_NEAR(undamped.omega_radps / omega_max, 1.0, tolerance);
+    EXPECT_NEAR(undamped.dt_crit_s * omega_max / 2.0, 1.0, tolerance);
+
+    const double c = 20.0;  // N s/m: zeta of the top mode = c omega_max / (2 k) = 0.02
+    const double zeta = c * omega_max / (2.0 * k);
+    const double dt_damped = (2.0 / omega_max) * (std::sqrt(1.0 + zeta * zeta) - zeta);
+    const NetworkStableStep damped = network_stable_step(chain(c), bodies.size());
+    EXPECT_NEAR(damped.dt_crit_s / dt_damped, 1.0, tolerance);
+  }
 }
 
 }  // namespace

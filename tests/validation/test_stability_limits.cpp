@@ -14,7 +14,7 @@
 //     the bisected RK4 limit within 1e-3 of 2 sqrt 2 / omega_max. The 1e-3:
 //     the criterion errs on the stable side by at most 4.9e-4 (a top mode
 //     holding 1e-6 of E_0, stability_limits_core.h), the bisection stops at
-//     1e-4, and omega_max (power iteration) is good to 1e-4 on this chain
+//     1e-4, and omega_max (the Lanczos search) is good to 1e-4 on this chain
 //     (central difference bisects to 2 within that).
 #include <gtest/gtest.h>
 
