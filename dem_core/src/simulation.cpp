@@ -159,6 +159,8 @@ void Simulation::add_observer(StepObserver* observer, std::int64_t every_steps) 
   observers_.push_back({observer, std::max<std::int64_t>(1, every_steps)});
 }
 
+void Simulation::add_step_monitor(StepObserver* monitor) { step_monitors_.push_back(monitor); }
+
 std::int64_t Simulation::total_steps() const {
   return static_cast<std::int64_t>(std::llround(settings_.duration_s / settings_.dt_s));
 }
@@ -418,6 +420,7 @@ void Simulation::gather_provider_energy() {
 }
 
 void Simulation::observe(bool force_all) {
+  for (StepObserver* m : step_monitors_) m->on_sample(*this);
   bool any_due = force_all;
   for (const ObserverSlot& o : observers_) any_due = any_due || (step_ % o.every_steps) == 0;
   if (!any_due) return;

@@ -158,8 +158,8 @@ void add_storey_summary(RunOutput& output, const StoreyDriftMonitor& monitor, bo
       .key("criterion")
       .value(
           "storey drift = mean horizontal displacement of its columns' top points relative to their bottom points; "
-          "verdict collapsed if the peak drift ratio (x-y magnitude) reached collapse_drift_ratio_rad, damaged if it "
-          "exceeded safety_drift_ratio_rad, else standing")
+          "verdict collapsed if the peak drift ratio (x-y magnitude, taken at every step) reached "
+          "collapse_drift_ratio_rad, damaged if it exceeded safety_drift_ratio_rad, else standing")
       .end_object();
   output.add_summary_field("assessment", limits.str());
   JsonWriter w(0);

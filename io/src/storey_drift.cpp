@@ -110,6 +110,37 @@ void StoreyDriftMonitor::sample(const BodyStore& bodies, std::int64_t step, doub
   for (std::size_t i = 0; i < storeys_.size(); ++i) record(i, storey_drift_m(storeys_[i], bodies), time_s);
 }
 
+void StoreyDriftMonitor::track(const BodyStore& bodies, double time_s) {
+  for (std::size_t i = 0; i < storeys_.size(); ++i)
+    record_peaks(i, storey_drift_m(storeys_[i], bodies) / storeys_[i].height_m(), time_s);
+}
+
+void StoreyDriftMonitor::save_peaks(StateWriter& out) const {
+  out.section("storeys");
+  out.u64(records_.size());
+  for (const StoreyDriftRecord& r : records_) {
+    out.f64(r.peak_ratio_x_rad);
+    out.f64(r.peak_ratio_y_rad);
+    out.f64(r.peak_ratio_rad);
+    out.f64(r.peak_time_s);
+    out.f64(r.collapse_time_s);
+  }
+}
+
+void StoreyDriftMonitor::load_peaks(StateReader& in) {
+  in.section("storeys");
+  const std::uint64_t n = in.u64("storey count");
+  if (n != records_.size())
+    in.fail("the checkpoint has " + std::to_string(n) + " storeys, the case " + std::to_string(records_.size()));
+  for (StoreyDriftRecord& r : records_) {
+    r.peak_ratio_x_rad = in.f64("peak drift ratio x");
+    r.peak_ratio_y_rad = in.f64("peak drift ratio y");
+    r.peak_ratio_rad = in.f64("peak drift ratio");
+    r.peak_time_s = in.f64("peak time");
+    r.collapse_time_s = in.f64("collapse time");
+  }
+}
+
 void StoreyDriftMonitor::replay_history(const std::filesystem::path& history_csv) {
   std::ifstream in(history_csv, std::ios::binary);
   if (!in) throw std::runtime_error("cannot read " + history_csv.string());
@@ -151,9 +182,7 @@ void StoreyDriftMonitor::replay_history(const std::filesystem::path& history_csv
   }
 }
 
-void StoreyDriftMonitor::record(std::size_t i, const Eigen::Vector2d& drift_m, double time_s) {
-  drift_m_[i] = drift_m;
-  const Eigen::Vector2d ratio = drift_ratio_rad(i);
+void StoreyDriftMonitor::record_peaks(std::size_t i, const Eigen::Vector2d& ratio, double time_s) {
   StoreyDriftRecord& r = records_[i];
   r.peak_ratio_x_rad = std::max(r.peak_ratio_x_rad, std::abs(ratio.x()));
   r.peak_ratio_y_rad = std::max(r.peak_ratio_y_rad, std::abs(ratio.y()));
@@ -163,6 +192,13 @@ void StoreyDriftMonitor::record(std::size_t i, const Eigen::Vector2d& drift_m, d
     r.peak_time_s = time_s;
   }
   if (r.collapse_time_s < 0.0 && magnitude >= limits_.collapse_drift_ratio_rad) r.collapse_time_s = time_s;
+}
+
+void StoreyDriftMonitor::record(std::size_t i, const Eigen::Vector2d& drift_m, double time_s) {
+  drift_m_[i] = drift_m;
+  const Eigen::Vector2d ratio = drift_ratio_rad(i);
+  record_peaks(i, ratio, time_s);
+  StoreyDriftRecord& r = records_[i];
   r.final_ratio_x_rad = ratio.x();
   r.final_ratio_y_rad = ratio.y();
   // Residual: the mean of the samples within the trailing window, from a

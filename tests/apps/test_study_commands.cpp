@@ -99,10 +99,16 @@ TEST(StudyCommands, CompareWritesEachRunTheTableAndTheFigure) {
   EXPECT_EQ(rows[0].at("case"), "demo_portal_frame");
   EXPECT_EQ(rows[1].at("case"), "demo_falling_block");
   EXPECT_EQ(rows[0].at("status"), "completed");
-  // The table's peak is the largest drift ratio of the run's own history.
+  // The table's peak is the run's, taken at every step: at least the
+  // largest drift ratio of its 1 ms history rows, and above it by no more
+  // than a sway of period T sampled every 1 ms can miss its crest by,
+  // 1 - cos(pi 0.001 / T): 5e-4 of the peak for T >= 0.1 s (this frame's
+  // upward zero crossings of the drift lie 0.13-0.32 s apart).
   const double peak = std::stod(rows[0].at("storey1_peak_drift_ratio_rad"));
   EXPECT_GT(peak, 0.0);
-  EXPECT_NEAR(peak, peak_storey1_ratio_from_history(out / "demo_portal_frame/history.csv"), 1e-9 + 1e-6 * peak);
+  const double rows_peak = peak_storey1_ratio_from_history(out / "demo_portal_frame/history.csv");
+  EXPECT_GE(peak, rows_peak * (1.0 - 1e-9));
+  EXPECT_LE(peak, rows_peak * (1.0 + 5e-4));
   EXPECT_EQ(rows[1].at("storey1_peak_drift_ratio_rad"), "");  // blocks have no storeys
   // --window-length is a quick look also for a case that runs on after its
   // motion: the falling-block demo's duration_s of 1 s stops with the

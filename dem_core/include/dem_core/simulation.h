@@ -103,6 +103,12 @@ class Simulation {
   void add_force_provider(std::unique_ptr<ForceProvider> provider);
   // Observer called every `every_steps` steps (and at the start and end).
   void add_observer(StepObserver* observer, std::int64_t every_steps);
+  // Monitor called after every step of run() (and at its start), before
+  // the observers: for cheap reads of the poses that must not miss a step
+  // (a storey's peak drift). Unlike an observer due at that step it does
+  // not make the providers gather their energies, and its time is not
+  // profiled; on_sample is the only call it gets.
+  void add_step_monitor(StepObserver* monitor);
 
   // Prepares providers, evaluates forces at t = 0 and shifts velocities back
   // half a step. Called by run() and step() if not done yet.
@@ -201,6 +207,7 @@ class Simulation {
     std::int64_t every_steps;
   };
   std::vector<ObserverSlot> observers_;
+  std::vector<StepObserver*> step_monitors_;
   EnergyLedger ledger_;
   EventLog events_;
   BondedPairs bonded_pairs_;

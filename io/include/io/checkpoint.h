@@ -1,7 +1,7 @@
 // Checkpoint files: DIR/checkpoint.bin, the full state of a run, from which
 // `framequake resume DIR` continues bitwise as the run would have.
 //
-// File layout (version 2; all integers in the writing machine's byte order,
+// File layout (version 3; all integers in the writing machine's byte order,
 // which the marker field pins down):
 //   offset 0   8 bytes  magic "FQCKPT\r\n" (the CR LF catches text-mode copies)
 //   offset 8   u32      format version (kCheckpointFormatVersion)
@@ -15,6 +15,8 @@
 //   "output"   what the output folder held at the checkpoint (RunOutput::save_state:
 //              frames listed in case.pvd, byte lengths and row counts of
 //              history.csv and events.csv)
+//   "storeys"  each storey's peak drift ratios (x, y, magnitude), the time
+//              of the peak and the collapse time (StoreyDriftMonitor::save_peaks)
 //   simulation state (Simulation::save_state: bodies, ledger, events,
 //              bonded pairs, then each force provider's own state)
 // The file is written under a temporary name and renamed (atomic_file.h), so
@@ -31,7 +33,9 @@
 namespace fq {
 
 // Version 2: a CUREE spring's state holds whether it has passed delta_p.
-inline constexpr std::uint32_t kCheckpointFormatVersion = 2;
+// Version 3: the storeys' peaks, taken at every step, follow the output
+// section.
+inline constexpr std::uint32_t kCheckpointFormatVersion = 3;
 inline constexpr const char* kCheckpointFileName = "checkpoint.bin";
 
 // A checkpoint file that cannot be used: missing, damaged, truncated,

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "dem_core/body_store.h"
+#include "dem_core/state_io.h"
 #include "io/case_def.h"
 #include "io/model.h"
 
@@ -56,7 +57,10 @@ Eigen::Vector2d storey_drift_m(const Storey& storey, const BodyStore& bodies);
 enum class StoreyVerdict { Standing, Damaged, Collapsed };
 const char* storey_verdict_name(StoreyVerdict v);
 
-// Running peaks of one storey's drift ratio.
+// Running peaks of one storey's drift ratio. The peaks and the collapse
+// time are taken at every step (StoreyDriftMonitor::track), so that they
+// do not depend on how often history rows are written; the final and the
+// residual drift come from the history rows (sample).
 struct StoreyDriftRecord {
   double peak_ratio_x_rad = 0.0;  // max |drift ratio x|
   double peak_ratio_y_rad = 0.0;  // max |drift ratio y|
@@ -71,7 +75,7 @@ struct StoreyDriftRecord {
   double residual_ratio_x_rad = 0.0;
   double residual_ratio_y_rad = 0.0;
   double residual_window_s = 0.0;
-  double collapse_time_s = -1.0;  // first sample at or beyond the collapse limit; < 0: never
+  double collapse_time_s = -1.0;  // first step at or beyond the collapse limit; < 0: never
 };
 
 // Trailing window (simulated s) over which the residual drift is averaged.
@@ -82,18 +86,30 @@ struct StoreyDriftRecord {
 // at most 6 % and 9 % of the amplitude still swaying at the end.
 inline constexpr double kResidualDriftWindow_s = 1.0;
 
-// Follows every storey of a model through a run. sample() is called once per
-// history row (it ignores a repeated call at the same step).
+// Follows every storey of a model through a run. track() is called after
+// every step (Simulation::add_step_monitor) and keeps the peaks; sample()
+// is called once per history row (it ignores a repeated call at the same
+// step) and keeps the latest drift, the final and the residual drift, and
+// the peaks as well (a caller that only samples gets the peaks of its
+// samples).
 class StoreyDriftMonitor {
  public:
   StoreyDriftMonitor(std::vector<Storey> storeys, AssessmentDef limits);
 
   void sample(const BodyStore& bodies, std::int64_t step, double time_s);
+  // The peaks and collapse time only, from the current poses.
+  void track(const BodyStore& bodies, double time_s);
   // Replays the drift columns of an existing history.csv (a resumed run's
-  // rows from before its checkpoint), so the peaks match the run that was
-  // never interrupted: the file holds every sample bit for bit. Throws
-  // std::runtime_error naming the file when a column is missing.
+  // rows from before its checkpoint), so the final and residual drift
+  // match the run that was never interrupted: the file holds every sample
+  // bit for bit. The peaks come from the checkpoint (load_peaks), which saw
+  // every step. Throws std::runtime_error naming the file when a column is
+  // missing.
   void replay_history(const std::filesystem::path& history_csv);
+  // The peaks and collapse times, for a checkpoint (section "storeys").
+  void save_peaks(StateWriter& out) const;
+  // Throws StateFormatError when the section does not fit these storeys.
+  void load_peaks(StateReader& in);
 
   const std::vector<Storey>& storeys() const { return storeys_; }
   const std::vector<StoreyDriftRecord>& records() const { return records_; }
@@ -105,6 +121,7 @@ class StoreyDriftMonitor {
 
  private:
   void record(std::size_t i, const Eigen::Vector2d& drift_m, double time_s);
+  void record_peaks(std::size_t i, const Eigen::Vector2d& ratio, double time_s);
 
   std::vector<Storey> storeys_;
   AssessmentDef limits_;
