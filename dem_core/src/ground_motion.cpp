@@ -94,28 +94,34 @@ double GroundMotion::end_time_s() const {
 }
 
 template <class Visit>
-void GroundMotion::for_each_sample_(Visit&& visit) const {
+void GroundMotion::for_each_sample_(double until_s, Visit&& visit) const {
   // Components may share a world axis (oblique directions), so peaks are
-  // those of the summed a_g(t), evaluated at every component's sample times.
+  // those of the summed a_g(t), evaluated at every component's sample times
+  // and at the ends of the span (a window may start or a run end between
+  // two samples).
+  visit(acceleration(0.0));
+  if (std::isfinite(until_s)) visit(acceleration(until_s));
   for (const GroundMotionComponent& c : components_) {
     const std::size_t n = c.record.acceleration_mps2.size();
     for (std::size_t k = 0; k < n; ++k) {
       const double t_rec = c.record.time_of(k);
       if (t_rec < c.window_start_s || t_rec > c.window_start_s + c.window_length_s) continue;
-      visit(acceleration((t_rec - c.window_start_s) * c.time_scale));
+      const double t_s = (t_rec - c.window_start_s) * c.time_scale;
+      if (t_s > until_s) break;  // sample times increase
+      visit(acceleration(t_s));
     }
   }
 }
 
-Vec3 GroundMotion::peak_abs_mps2() const {
+Vec3 GroundMotion::peak_abs_mps2(double until_s) const {
   Vec3 peak = Vec3::Zero();
-  for_each_sample_([&](const Vec3& a) { peak = peak.cwiseMax(a.cwiseAbs()); });
+  for_each_sample_(until_s, [&](const Vec3& a) { peak = peak.cwiseMax(a.cwiseAbs()); });
   return peak;
 }
 
-double GroundMotion::peak_horizontal_mps2() const {
+double GroundMotion::peak_horizontal_mps2(double until_s) const {
   double peak = 0.0;
-  for_each_sample_([&](const Vec3& a) { peak = std::max(peak, std::hypot(a.x(), a.y())); });
+  for_each_sample_(until_s, [&](const Vec3& a) { peak = std::max(peak, std::hypot(a.x(), a.y())); });
   return peak;
 }
 

@@ -408,7 +408,8 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
   }
   report.first_joint_failure_time_s = first_joint_failure_time_s(sim.events());
   report.energy_balance_error_relative = sim.ledger().balance_error_relative();
-  report.peak_ground_acceleration_mps2 = sim.ground_motion().peak_horizontal_mps2();
+  // What the run felt: up to its duration, not the whole window.
+  report.peak_ground_acceleration_mps2 = sim.ground_motion().peak_horizontal_mps2(sim.settings().duration_s);
   report.wall_s = report.result.wall_s;
   return report;
 }
@@ -1075,10 +1076,16 @@ void describe_case(const CaseDef& def, std::ostream& out) {
   if (gm.empty()) {
     out << "ground      no ground motion\n";
   } else {
-    const Vec3 peak = gm.peak_abs_mps2();
+    // The peaks the run feels: up to its end, which may come before the
+    // window's (a record's strongest part beyond it is never applied).
+    const Vec3 peak = gm.peak_abs_mps2(s.duration_s);
     out << "ground      " << gm.components().size() << " component(s), peak |a_g| x/y/z = " << peak.x() << " / "
-        << peak.y() << " / " << peak.z() << " m/s^2, horizontal |(a_x, a_y)| " << gm.peak_horizontal_mps2()
-        << " m/s^2\n";
+        << peak.y() << " / " << peak.z() << " m/s^2, horizontal |(a_x, a_y)| " << gm.peak_horizontal_mps2(s.duration_s)
+        << " m/s^2";
+    if (s.duration_s < gm.end_time_s())
+      out << " over the run's " << s.duration_s << " s (the windows end at " << gm.end_time_s()
+          << " s; the whole windows peak at " << gm.peak_horizontal_mps2() << " m/s^2 horizontal)";
+    out << "\n";
     for (const GroundMotionComponent& c : gm.components())
       // + 0.0 prints a negative zero component of `-z` as 0.
       out << "            " << c.record.source << "  along (" << (c.direction.array() + 0.0).transpose() << ") x "

@@ -169,6 +169,40 @@ TEST(StudyCommands, SweepPgaDoesNotDependOnTheRecordsHorizontalDirection) {
   }
 }
 
+// The sweep's PGA is what the run felt: a run shorter than its window
+// never feels the rest of it. A ramp record a(t) = 10 t m/s^2 (samples every
+// 0.1 s over 10 s, two_column), whole window, run of 0.25 s: the record is
+// linear between its samples, so the run's peak is a(0.25 s) = 2.5 m/s^2,
+// not the window's 100 (probe: a 1 s run of Kobe NS reported the record's
+// 8.18 m/s^2 where it had felt 0.0015).
+TEST(StudyCommands, SweepPgaIsThatOfThePartOfTheWindowTheRunFelt) {
+  TempDir dir;
+  {
+    std::ofstream record(dir.path() / "ramp.txt");
+    for (int k = 0; k <= 100; ++k) record << 0.1 * k << " " << 1.0 * k << "\n";
+  }
+  std::ofstream(dir.path() / "short.yaml")
+      << "framequake_case: 1\n"
+         "time: {dt_s: 1.0e-4, duration_s: 0.25}\n"
+         "materials: [{name: spruce, density_kg_per_m3: 450}]\n"
+         "blocks: [{id: cube, size_m: [0.1, 0.1, 0.1], center_m: [0, 0, 0.05], material: spruce}]\n"
+         "contact:\n"
+         "  ground: {normal_stiffness_N_per_m: 1.0e6, restitution: 0.5, friction_coefficient: 0.4}\n"
+         "ground_motion:\n"
+         "  components: [{file: ramp.txt, format: two_column, axis: x}]\n";
+  const fs::path out = dir.path() / "sweep";
+  const auto r = run_app({"sweep", (dir.path() / "short.yaml").string(), "--scales", "1", "--out", out.string(),
+                          "--no-figure"},
+                         dir.path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Table rows = read_csv(out / "sweep.csv");
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_NEAR(std::stod(rows[0].at("pga_mps2")), 2.5, 1e-6);
+  const auto info = run_app({"info", (dir.path() / "short.yaml").string()}, dir.path());
+  ASSERT_EQ(info.code, 0) << info.err;
+  EXPECT_NE(info.out.find("horizontal |(a_x, a_y)| 2.5 m/s^2 over the run's 0.25 s"), std::string::npos) << info.out;
+}
+
 TEST(StudyCommands, SweepScalesTheMotionAndFindsNoCollapseInTheDemoPortal) {
   TempDir dir;
   const fs::path out = dir.path() / "sweep";

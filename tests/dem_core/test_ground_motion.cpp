@@ -306,6 +306,36 @@ TEST(GroundMotion, PeakAbsIsPerWorldAxisOverTheWindows) {
   EXPECT_TRUE(gm_late.peak_abs_mps2().isApprox(Vec3(0.0, 0.0, 4.0), 1e-15));
 }
 
+// A run shorter than its window feels the motion only up to its end: the
+// peaks up to until_s (the run's duration) are those of the part applied.
+// A ramp a(t) = t m/s^2 sampled every 1 s over 10 s, along x, time scale 2
+// (record second r is applied at 2 r): up to 5 s of the run the record
+// has reached r = 2.5 s, between its samples 2 and 3, where it is linear:
+// peak 2.5 m/s^2, not the 10 of the whole window (nor the 2 of the last
+// sample before the end). A window starting at record 3.5 s (between two
+// samples, time scale 1) is felt from a(3.5) = 3.5 on: its peak up to
+// 0.25 s of the run, record 3.5 to 3.75 s, is 3.75.
+TEST(GroundMotion, PeaksUpToTheRunsEndAreThoseOfThePartApplied) {
+  AccelerationRecord ramp;
+  ramp.dt_s = 1.0;
+  for (int k = 0; k <= 10; ++k) ramp.acceleration_mps2.push_back(double(k));
+  GroundMotionComponent c = component(ramp, Vec3::UnitX());
+  c.time_scale = 2.0;
+  GroundMotion gm;
+  gm.add_component(c);
+  EXPECT_NEAR(gm.peak_abs_mps2().x(), 10.0, 1e-15);
+  EXPECT_NEAR(gm.peak_abs_mps2(5.0).x(), 2.5, 1e-15);
+  EXPECT_NEAR(gm.peak_horizontal_mps2(5.0), 2.5, 1e-15);
+  EXPECT_NEAR(gm.peak_horizontal_mps2(100.0), 10.0, 1e-15);
+
+  GroundMotionComponent late = component(ramp, Vec3::UnitY());
+  late.window_start_s = 3.5;
+  GroundMotion gm_late;
+  gm_late.add_component(late);
+  EXPECT_NEAR(gm_late.peak_horizontal_mps2(0.25), 3.75, 1e-15);
+  EXPECT_NEAR(gm_late.peak_abs_mps2(0.25).y(), 3.75, 1e-15);
+}
+
 TEST(GroundMotion, HorizontalPeakIsTheSameWhateverTheHorizontalDirection) {
   // Record R (peak |4| at 0.75 s) along x, along y, and along directions
   // turned 30 and 45 degrees about z: the horizontal PGA is 4 every time

@@ -63,17 +63,21 @@ class GroundMotion {
   // Simulation time (s) at which the last component's window ends.
   double end_time_s() const;
   // Peak magnitude of each world component of the summed a_g(t) over the
-  // windows (m/s^2), sampled at every record's own sample times.
-  Vec3 peak_abs_mps2() const;
+  // windows up to simulation time until_s (m/s^2): a run of duration_s
+  // feels the motion only up to its end (a window longer than the run used
+  // to report a peak the run never felt). a_g is linear between a record's
+  // samples, so its peaks lie at every record's own sample times within
+  // [0, until_s] or at the two ends of that span, where it is evaluated too.
+  Vec3 peak_abs_mps2(double until_s = std::numeric_limits<double>::infinity()) const;
   // Peak of the horizontal ground acceleration's magnitude |(a_x, a_y)|
-  // over the windows (m/s^2), sampled as peak_abs_mps2: the horizontal PGA
+  // over the same span (m/s^2), sampled as peak_abs_mps2: the horizontal PGA
   // whatever the record's direction (RotD100), unchanged when the scene and
   // its ground motion are turned about the vertical together.
-  double peak_horizontal_mps2() const;
+  double peak_horizontal_mps2(double until_s = std::numeric_limits<double>::infinity()) const;
 
  private:
   template <class Visit>
-  void for_each_sample_(Visit&& visit) const;
+  void for_each_sample_(double until_s, Visit&& visit) const;
   std::vector<GroundMotionComponent> components_;
 };
 
