@@ -985,6 +985,13 @@ CaseRunReport resume_case(const std::filesystem::path& folder, const CaseRunOpti
     throw CheckpointError(damaged + e.what());
   } catch (const std::logic_error& e) {
     throw CheckpointError(damaged + e.what());
+  } catch (const CheckpointError&) {
+    throw;
+  } catch (const std::runtime_error& e) {
+    // The folder itself: locked by another process, or not to be opened.
+    // An output error, as run reports it (it was an "internal error",
+    // exit 4; failure-mode probe).
+    throw OutputError(e.what());
   }
   try {
     attach_provider_output(*writer, scene);

@@ -8,7 +8,10 @@
 // A damaged, truncated or foreign checkpoint, or a case changed since,
 // ends in exit code 2 with a message naming checkpoint.bin and the fault,
 // and leaves the folder as it was.
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/file.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <csignal>
@@ -218,6 +221,27 @@ TEST(CheckpointCli, BadCheckpointOrChangedCaseIsRefusedWithExitCode2) {
   const auto e = run_app({"resume", early.string(), "--quiet"}, f.dir.path());
   EXPECT_EQ(e.code, 2) << e.err;
   EXPECT_NE(e.err.find("was stopped before its first step, so it left no checkpoint"), std::string::npos) << e.err;
+}
+
+// A folder another process holds (its lock, as a running run or resume
+// holds it) is an output error for resume, exit 3 and "error:", as it is
+// for run; it was an "internal error" with the undocumented exit 4
+// (failure-mode probe). The folder is left as the killed run left it.
+TEST(CheckpointCli, ResumeIntoAFolderInUseIsAnOutputError) {
+  Fixture f;
+  const fs::path out = f.dir.path() / "out";
+  ASSERT_EQ(f.run_and_kill(out), 128 + SIGKILL);
+  const std::string history = read_text(out / "history.csv");
+  const int fd = ::open(out.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  ASSERT_GE(fd, 0);
+  ASSERT_EQ(::flock(fd, LOCK_EX | LOCK_NB), 0);
+  const auto r = run_app({"resume", out.string(), "--quiet"}, f.dir.path());
+  ::close(fd);
+  EXPECT_EQ(r.code, 3) << r.err;
+  EXPECT_NE(r.err.find("is in use by another framequake process"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out / "summary.json"));
+  EXPECT_TRUE(read_text(out / "history.csv") == history);
 }
 
 TEST(CheckpointCli, BadIntervalOrMissingFolderIsAUsageError) {
