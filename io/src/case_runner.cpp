@@ -298,6 +298,58 @@ void attach_provider_output(RunOutput& writer, const Scene& scene) {
   if (scene.joints || scene.contacts) attach_base_force_output(writer, scene.joints, scene.contacts);
 }
 
+// The ground motion a run applied, for summary.json: each component's
+// record, direction and scales and the part of the record used, and the
+// peaks the run felt (up to its end), so that a results folder can be
+// checked against its input on its own (geometry probe: only info and
+// sweep.csv said which record a run had felt). null without ground motion.
+std::string ground_motion_summary(const Simulation& sim) {
+  const GroundMotion& gm = sim.ground_motion();
+  if (gm.empty()) return "null";
+  const double duration_s = sim.settings().duration_s;
+  JsonWriter w(0);
+  w.begin_object().key("components").begin_array();
+  for (const GroundMotionComponent& c : gm.components()) {
+    const double used_s = std::max(0.0, std::min(c.window_length_s, c.record.duration_s() - c.window_start_s));
+    std::error_code ec;
+    const std::filesystem::path record = c.record.source.empty()
+                                             ? std::filesystem::path()
+                                             : std::filesystem::absolute(c.record.source, ec).lexically_normal();
+    w.begin_object()
+        .key("record")
+        .value(ec ? c.record.source : record.string())
+        .key("direction")
+        .begin_array()
+        .value(c.direction.x() + 0.0)
+        .value(c.direction.y() + 0.0)
+        .value(c.direction.z() + 0.0)
+        .end_array()
+        .key("amplitude_scale")
+        .value(c.amplitude_scale)
+        .key("time_scale")
+        .value(c.time_scale)
+        .key("window_start_s")
+        .value(c.window_start_s)
+        .key("window_length_s")
+        .value(used_s)
+        .end_object();
+  }
+  const Vec3 peak = gm.peak_abs_mps2(duration_s);
+  w.end_array()
+      .key("end_time_s")
+      .value(gm.end_time_s())
+      .key("peak_horizontal_mps2")
+      .value(gm.peak_horizontal_mps2(duration_s))
+      .key("peak_abs_mps2")
+      .begin_array()
+      .value(peak.x())
+      .value(peak.y())
+      .value(peak.z())
+      .end_array()
+      .end_object();
+  return w.str();
+}
+
 // The part of a run shared by run_case and resume_case: observers, the
 // step loop and the summary.
 CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& options, const RunMeta* checkpoints,
@@ -320,6 +372,7 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
     v << std::setprecision(17) << scene.stable_time_step.dt_crit_s;
     writer.add_summary_field("stable_dt_s", std::isfinite(scene.stable_time_step.dt_crit_s) ? v.str() : "null");
     writer.add_summary_field("integrator", std::string("\"") + integrator_name(sim.settings().integrator) + "\"");
+    writer.add_summary_field("ground_motion", ground_motion_summary(sim));
   }
 
   CaseRunReport report;

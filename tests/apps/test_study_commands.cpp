@@ -198,6 +198,13 @@ TEST(StudyCommands, SweepPgaIsThatOfThePartOfTheWindowTheRunFelt) {
   const Table rows = read_csv(out / "sweep.csv");
   ASSERT_EQ(rows.size(), 1u);
   EXPECT_NEAR(std::stod(rows[0].at("pga_mps2")), 2.5, 1e-6);
+  // The run's own summary says which record it felt, and the same peak.
+  const std::string summary = read_text(fs::path(rows[0].at("output")) / "summary.json");
+  EXPECT_NE(summary.find("\"record\":\"" + (dir.path() / "ramp.txt").lexically_normal().string() + "\""),
+            std::string::npos)
+      << summary;
+  EXPECT_NE(summary.find("\"window_length_s\":10}"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"peak_horizontal_mps2\":2.5,"), std::string::npos) << summary;
   const auto info = run_app({"info", (dir.path() / "short.yaml").string()}, dir.path());
   ASSERT_EQ(info.code, 0) << info.err;
   EXPECT_NE(info.out.find("horizontal |(a_x, a_y)| 2.5 m/s^2 over the run's 0.25 s"), std::string::npos) << info.out;
