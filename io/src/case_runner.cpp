@@ -403,6 +403,7 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
   if (const std::string w = near_nodes_warning(def); !w.empty()) warn(w);
   if (const std::string w = slender_members_warning(def); !w.empty()) warn(w);
   if (const std::string w = unjoined_members_warning(def, scene); !w.empty()) warn(w);
+  if (const std::string w = horizontal_columns_warning(def); !w.empty()) warn(w);
   for (const std::string& w : ground_motion_direction_warnings(sim.ground_motion())) warn(w);
   // Step 0's forces (run() would do it first): the contacts then know which
   // pairs overlap at the start.
@@ -639,6 +640,27 @@ std::string slender_members_warning(const CaseDef& def) {
     << " (the most slender, '" << worst->id << "' (line "
     << worst->line << "), is " << worst_length_m << " m long and " << worst_thickness_m
     << " m thin, " << worst_ratio << " times): node coordinates are in metres (xyz_m); were they typed in millimetres?";
+  return w.str();
+}
+
+std::string horizontal_columns_warning(const CaseDef& def) {
+  const auto [nodes, sections] = nodes_and_sections_by_name(def);
+  std::vector<const MemberDef*> flat;
+  for (const MemberDef& m : def.members) {
+    if (m.kind != MemberKind::Column) continue;
+    const auto a = nodes.find(m.node_a), b = nodes.find(m.node_b);
+    if (a == nodes.end() || b == nodes.end()) continue;  // build_model refuses these
+    if (std::abs(a->second->xyz_m.z() - b->second->xyz_m.z()) < kStoreyLevelTolerance_m) flat.push_back(&m);
+  }
+  if (flat.empty()) return {};
+  std::ostringstream w;
+  w << def.source_file.string() << ": " << flat.size() << (flat.size() == 1 ? " member" : " members")
+    << " of kind column " << (flat.size() == 1 ? "is" : "are") << " horizontal (";
+  for (std::size_t k = 0; k < std::min<std::size_t>(3, flat.size()); ++k)
+    w << (k ? ", " : "") << "'" << flat[k]->id << "' (line " << flat[k]->line << ")";
+  if (flat.size() > 3) w << ", ...";
+  w << "): a horizontal column spans no storey and is left out of the drift assessment; give it kind: beam, or "
+       "check its nodes' heights";
   return w.str();
 }
 
@@ -1105,6 +1127,7 @@ void describe_case(const CaseDef& def, std::ostream& out) {
   if (const std::string w = near_nodes_warning(def); !w.empty()) out << "warning     " << w << "\n";
   if (const std::string w = slender_members_warning(def); !w.empty()) out << "warning     " << w << "\n";
   if (const std::string w = unjoined_members_warning(def, scene); !w.empty()) out << "warning     " << w << "\n";
+  if (const std::string w = horizontal_columns_warning(def); !w.empty()) out << "warning     " << w << "\n";
   for (const std::string& w : ground_motion_direction_warnings(sim.ground_motion()))
     out << "warning     " << w << "\n";
   if (scene.contacts) {

@@ -9,7 +9,7 @@
 namespace fq {
 
 namespace {
-constexpr double kLevelTolerance_m = 1e-3;  // levels closer than this are one level
+constexpr double kLevelTolerance_m = kStoreyLevelTolerance_m;
 }
 
 const char* storey_verdict_name(StoreyVerdict v) {

@@ -107,6 +107,8 @@ struct CaseRunReport {
 //    their members without being one node (near_nodes_warning);
 //  - a member is held by no joint in a case that has joints
 //    (unjoined_members_warning);
+//  - a member of kind column is horizontal, so it spans no storey
+//    (horizontal_columns_warning);
 //  - a member is more than kSlenderMemberRatio times longer than its
 //    section is thin, as when coordinates are typed in mm
 //    (slender_members_warning);
@@ -186,6 +188,12 @@ std::string near_nodes_warning(const CaseDef& def);
 // Names the most slender member; empty when there is none.
 inline constexpr double kSlenderMemberRatio = 1000.0;
 std::string slender_members_warning(const CaseDef& def);
+
+// The warning for members of kind column whose two ends lie at one height
+// (within kStoreyLevelTolerance_m): such a "column" spans no storey, so the
+// drift assessment leaves it out, which it did silently (geometry probe).
+// Names the first three; empty when there are none.
+std::string horizontal_columns_warning(const CaseDef& def);
 
 // The warning for members that no joint holds, in a case that has joints (a
 // beam drawn 10 mm above the columns it should sit on): they stand only on

@@ -47,8 +47,12 @@ struct Storey {
   std::vector<std::string> column_names;
 };
 
+// Levels closer than this are one level, and a column whose ends lie
+// closer than this in height spans no storey (m).
+inline constexpr double kStoreyLevelTolerance_m = 1e-3;
+
 // Storeys of a built model; empty when it has no (non-horizontal) columns.
-// Levels closer than 1 mm are merged.
+// Levels closer than kStoreyLevelTolerance_m are merged.
 std::vector<Storey> find_storeys(const Model& model);
 
 // Current drift of a storey along world x and y (m).
