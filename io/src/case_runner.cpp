@@ -1005,6 +1005,20 @@ std::string summary_value(const std::filesystem::path& folder, const std::string
 
 CaseRunReport resume_case(const std::filesystem::path& folder, const CaseRunOptions& options) {
   const std::filesystem::path file = folder / kCheckpointFileName;
+  {
+    // A case file or a mistyped name given for the folder: said as such
+    // (it was "checkpoint file 'frame_A.yaml/checkpoint.bin' does not
+    // exist (was the run started with --checkpoint-every?)").
+    std::error_code ec;
+    const std::filesystem::file_status st = std::filesystem::status(folder, ec);
+    if (!std::filesystem::exists(st))
+      throw CheckpointError("no such folder: '" + folder.string() +
+                            "' (resume takes the output folder of a run started with --checkpoint-every)");
+    if (!std::filesystem::is_directory(st))
+      throw CheckpointError("'" + folder.string() +
+                            "' is not a folder (resume takes the output folder of a run started with "
+                            "--checkpoint-every, not its case file)");
+  }
   // What the folder's summary says of the run, for a clear refusal: a run
   // that completed has nothing to resume (resuming it rewrote its summary
   // with the wall time of a no-op), and one stopped before its first step

@@ -256,6 +256,15 @@ TEST(CheckpointCli, BadIntervalOrMissingFolderIsAUsageError) {
   const auto missing = run_app({"resume"}, f.dir.path());
   EXPECT_EQ(missing.code, 2);
   EXPECT_NE(missing.err.find("missing DIR"), std::string::npos) << missing.err;
+  // A case file given for the folder, or a folder that is not there, is
+  // named as such (both said "checkpoint file 'X/checkpoint.bin' does not
+  // exist (was the run started with --checkpoint-every?)").
+  const auto a_file = run_app({"resume", f.case_file.string()}, f.dir.path());
+  EXPECT_EQ(a_file.code, 2);
+  EXPECT_NE(a_file.err.find("' is not a folder (resume takes the output folder"), std::string::npos) << a_file.err;
+  const auto no_folder = run_app({"resume", (f.dir.path() / "nowhere").string()}, f.dir.path());
+  EXPECT_EQ(no_folder.code, 2);
+  EXPECT_NE(no_folder.err.find("no such folder: '"), std::string::npos) << no_folder.err;
 }
 
 }  // namespace
