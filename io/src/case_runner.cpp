@@ -298,6 +298,25 @@ void attach_provider_output(RunOutput& writer, const Scene& scene) {
   if (scene.joints || scene.contacts) attach_base_force_output(writer, scene.joints, scene.contacts);
 }
 
+// A note when --checkpoint-every asks for more than kManyCheckpoints
+// checkpoints: each writes the whole state to a new file and renames it,
+// so a checkpoint every step turned a run of 0.15 s into one of 36 s
+// (failure-mode probe). The state's size is measured by writing it once.
+constexpr std::int64_t kManyCheckpoints = 1000;
+std::string checkpoint_count_note(double every_s, const Simulation& sim) {
+  const std::int64_t every = steps_per_interval(every_s, sim.settings().dt_s);
+  const std::int64_t count = sim.total_steps() / std::max<std::int64_t>(1, every);
+  if (count <= kManyCheckpoints) return "";
+  StateWriter w;
+  sim.save_state(w);
+  std::ostringstream note;
+  note << std::setprecision(3) << "--checkpoint-every " << every_s << " s writes " << count << " checkpoints (one every "
+       << every << (every == 1 ? " step" : " steps") << "), each the whole state of about "
+       << double(w.bytes().size()) / 1024.0 << " KiB: writing them may take longer than the run; an interval of "
+       << "a few minutes of wall time is enough to lose little to a crash";
+  return note.str();
+}
+
 // The ground motion a run applied, for summary.json: each component's
 // record, direction and scales and the part of the record used, and the
 // peaks the run felt (up to its end), so that a results folder can be
@@ -961,7 +980,7 @@ CaseRunReport run_case(const CaseDef& case_def, const CaseRunOptions& options) {
          {interval_rounding_note("output.frame_interval_s", output.frame_interval_s, dt),
           interval_rounding_note("output.history_interval_s", output.history_interval_s, dt),
           meta ? interval_rounding_note("--checkpoint-every", meta->checkpoint_every_s, dt) : std::string(),
-          ground_motion_end_note(sim)})
+          meta ? checkpoint_count_note(meta->checkpoint_every_s, sim) : std::string(), ground_motion_end_note(sim)})
       if (!note.empty()) options.on_note(note);
     for (const std::string& note : planar_link_system_notes(def, scene)) options.on_note(note);
   }

@@ -244,6 +244,28 @@ TEST(CheckpointCli, ResumeIntoAFolderInUseIsAnOutputError) {
   EXPECT_TRUE(read_text(out / "history.csv") == history);
 }
 
+// Checkpoints so frequent that writing them costs more than the run are
+// noted before it starts, with their number and size (a probe's checkpoint
+// every step turned a 0.15 s run into 36 s, silently); a usual interval
+// gives no note. The arm case runs 0.4 s at dt = 1e-5 s: every 0.2 ms is
+// 2000 checkpoints, above the 1000 noted; every 20 ms is 20.
+TEST(CheckpointCli, VeryFrequentCheckpointsAreNoted) {
+  Fixture f;
+  const auto many = run_app({"run", f.case_file.string(), "--out", (f.dir.path() / "many").string(), "--quiet",
+                             "--checkpoint-every", "0.0002"},
+                            f.dir.path());
+  ASSERT_EQ(many.code, 0) << many.err;
+  EXPECT_NE(many.err.find("note: --checkpoint-every 0.0002 s writes 2000 checkpoints (one every 20 steps), each the "
+                          "whole state of about "),
+            std::string::npos)
+      << many.err;
+  const auto few = run_app({"run", f.case_file.string(), "--out", (f.dir.path() / "few").string(), "--quiet",
+                            "--checkpoint-every", "0.02"},
+                           f.dir.path());
+  ASSERT_EQ(few.code, 0) << few.err;
+  EXPECT_EQ(few.err.find("checkpoints (one every"), std::string::npos) << few.err;
+}
+
 TEST(CheckpointCli, BadIntervalOrMissingFolderIsAUsageError) {
   Fixture f;
   const fs::path out = f.dir.path() / "out";
