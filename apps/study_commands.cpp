@@ -27,7 +27,9 @@
 #include "io/atomic_file.h"
 #include "io/batch_runner.h"
 #include "io/case_file.h"
+#include "io/folder_lock.h"
 #include "io/input_error.h"
+#include "io/run_output.h"
 
 namespace fq_app {
 
@@ -418,11 +420,14 @@ bool remove_earlier_tables(const fs::path& out, const std::vector<const char*>& 
   return true;
 }
 
-// Prepares the output folder (and removes the earlier study's `tables`)
-// and runs the jobs side by side, one line per finished run; false when the
-// folder cannot be made or cleared.
+// Prepares the output folder, locks it into `lock` (held by the caller
+// until its tables and figure are written: a second study, or a run or
+// resume, into the same folder at the same time is refused instead of
+// replacing this study's tables; io/folder_lock.h), removes the earlier
+// study's `tables` and runs the jobs side by side, one line per finished
+// run; false when the folder cannot be made, locked or cleared.
 bool run_jobs(const StudyArgs& args, const std::vector<fq::BatchJob>& jobs, const std::atomic<bool>* stop_requested,
-              const std::string& what, const std::vector<const char*>& tables,
+              const std::string& what, const std::vector<const char*>& tables, fq::FolderLock& lock,
               std::vector<fq::BatchOutcome>& outcomes) {
   // Every run's folder is checked before the first run starts, so that a
   // folder a run would refuse (a user's own files, a file in its place, a
@@ -442,7 +447,14 @@ bool run_jobs(const StudyArgs& args, const std::vector<fq::BatchJob>& jobs, cons
       return false;
     }
   }
-  if (!prepare_folder(args.out) || !remove_earlier_tables(args.out, tables)) return false;
+  if (!prepare_folder(args.out)) return false;
+  try {
+    lock = fq::FolderLock(args.out);
+  } catch (const fq::OutputError& e) {
+    std::cerr << "framequake: error: " << e.what() << " (nothing was run)\n";
+    return false;
+  }
+  if (!remove_earlier_tables(args.out, tables)) return false;
   fq::BatchOptions options;
   options.parallel_runs = args.jobs;
   options.allow_unstable_time_step = args.force;
@@ -496,9 +508,10 @@ int command_compare(int argc, char** argv, const std::atomic<bool>* stop_request
     std::cerr << "framequake: error: " << e.what() << "\n";
     return kExitBadInput;
   }
+  fq::FolderLock lock;  // held until the figure is drawn
   std::vector<fq::BatchOutcome> outcomes;
   if (!run_jobs(args, jobs, stop_requested, "comparing " + std::to_string(jobs.size()) + " case(s)",
-                {"comparison.csv", "comparison.md", "first_storey_drift.png"}, outcomes))
+                {"comparison.csv", "comparison.md", "first_storey_drift.png"}, lock, outcomes))
     return kExitOutputFailed;
 
   const std::size_t storeys = max_storeys(outcomes);
@@ -656,9 +669,10 @@ int command_sweep(int argc, char** argv, const std::atomic<bool>* stop_requested
         return kExitBadInput;
       }
   }
+  fq::FolderLock lock;  // held until the figure is drawn
   std::vector<fq::BatchOutcome> outcomes;
   if (!run_jobs(args, jobs, stop_requested, "sweep of " + std::to_string(jobs.size()) + " run(s)",
-                {"sweep.csv", "collapse_scales.csv", "collapse_scales.md", "sweep.png"}, outcomes))
+                {"sweep.csv", "collapse_scales.csv", "collapse_scales.md", "sweep.png"}, lock, outcomes))
     return kExitOutputFailed;
 
   const std::size_t storeys = max_storeys(outcomes);

@@ -13,14 +13,11 @@
 #include <utility>
 #include <vector>
 
-#include <fcntl.h>
-#include <sys/file.h>
-#include <unistd.h>
-
 #include "io/atomic_file.h"
 #include "dem_core/lane_isa.h"
 #include "dem_core/state_io.h"
 #include "io/checkpoint.h"
+#include "io/folder_lock.h"
 #include "event_csv_writer.h"
 #include "fq_config.h"
 #include "io/json_writer.h"
@@ -135,54 +132,6 @@ bool check_output_folder(const fs::path& folder) {
 
 namespace {
 
-// An exclusive advisory lock (flock) on the output folder itself, held for
-// the life of a RunOutput: a second run, resume or study writing into the
-// same folder at the same time is refused instead of interleaving its
-// files with the first (a CLI probe's two runs into one folder left a
-// summary saying "completed" over a history.csv of a fifth of its rows).
-// The kernel drops the lock when the process ends, however it ends, so a
-// killed run leaves no stale lock; nothing is written into the folder.
-class FolderLock {
- public:
-  FolderLock() = default;
-  explicit FolderLock(const fs::path& folder) {
-    fd_ = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-    if (fd_ < 0)
-      throw std::runtime_error("cannot open output folder '" + folder.string() + "': " +
-                               std::generic_category().message(errno));
-    if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
-      const int err = errno;
-      ::close(fd_);
-      fd_ = -1;
-      if (err == EWOULDBLOCK)
-        throw std::runtime_error("output folder '" + folder.string() +
-                                 "' is in use by another framequake process (a run, resume, compare or sweep writing "
-                                 "there now); wait for it to end or choose another folder");
-      throw std::runtime_error("cannot lock output folder '" + folder.string() + "': " +
-                               std::generic_category().message(err));
-    }
-  }
-  FolderLock(FolderLock&& o) noexcept : fd_(o.fd_) { o.fd_ = -1; }
-  FolderLock& operator=(FolderLock&& o) noexcept {
-    if (this != &o) {
-      release();
-      fd_ = o.fd_;
-      o.fd_ = -1;
-    }
-    return *this;
-  }
-  FolderLock(const FolderLock&) = delete;
-  FolderLock& operator=(const FolderLock&) = delete;
-  ~FolderLock() { release(); }
-
- private:
-  void release() {
-    if (fd_ >= 0) ::close(fd_);  // closing the last descriptor drops the lock
-    fd_ = -1;
-  }
-  int fd_ = -1;
-};
-
 // See the constructor's contract in run_output.h. Only files this class
 // writes are ever removed.
 void prepare_folder(const fs::path& folder) {
@@ -282,7 +231,7 @@ struct RunOutput::Impl {
   // `status_override`, when given, replaces the run status's name (abandon()).
   void write_summary(const Simulation& sim, const RunResult& result, const char* status_override = nullptr) const;
 
-  FolderLock lock;  // first, so released last: held while this output exists (FolderLock)
+  FolderLock lock;  // first, so released last: held while this output exists (io/folder_lock.h)
   OutputDef def;
   std::string case_name;
   VtkFrameWriter frames;

@@ -484,6 +484,72 @@ TEST(StudyCommands, AStoppedRunsVerdictIsOnlySoFar) {
   EXPECT_EQ(app.err().find("FAILED"), std::string::npos) << app.err();
 }
 
+// The portal demo running on for 100 s past its record, its record by
+// absolute path, written into `dir` as longer.yaml: a run or study that is
+// still going when a second process starts.
+fs::path write_long_portal(const fs::path& dir) {
+  std::string longer = read_text(kSource / "cases/demo_portal_frame.yaml");
+  const std::string dt = "  dt_s: 1.0e-5\n", record = "file: ground_motions/";
+  longer.replace(longer.find(dt), dt.size(), dt + "  duration_s: 100.0\n");
+  longer.replace(longer.find(record), record.size(), "file: " + (kSource / "cases/ground_motions").string() + "/");
+  std::ofstream(dir / "longer.yaml", std::ios::binary) << longer;
+  return dir / "longer.yaml";
+}
+
+void wait_for_file(const fs::path& file) {
+  for (int i = 0; i < 60000 && !fs::exists(file); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+}
+
+// A study holds its --out folder for its whole duration: a second study
+// into it is refused (exit 3, nothing run), as a second run is. Two
+// compares into one folder both ended with 0 and the table of the one that
+// finished last replaced the other's (tester's probe).
+TEST(StudyCommands, ASecondStudyIntoTheFolderOfARunningStudyIsRefused) {
+  TempDir dir;
+  const fs::path longer = write_long_portal(dir.path());
+  const fs::path cmp = dir.path() / "cmp";
+  fq_test::AppProcess first({"compare", longer.string(), "--no-figure", "--out", cmp.string()}, dir.path());
+  wait_for_file(cmp / "demo_portal_frame" / "case.pvd");
+  const fs::path io2 = dir.path() / "second";
+  fs::create_directories(io2);
+  const auto second = run_app({"sweep", (kSource / "cases/demo_falling_block.yaml").string(), "--scales", "1",
+                               "--window-length", "0.05", "--no-figure", "--out", cmp.string()},
+                              io2);
+  EXPECT_EQ(second.code, 3) << second.err;
+  EXPECT_NE(second.err.find("output folder '" + cmp.string() + "' is in use by another framequake process"),
+            std::string::npos)
+      << second.err;
+  EXPECT_FALSE(fs::exists(cmp / "sweep.csv"));
+  EXPECT_FALSE(fs::exists(cmp / ("demo_falling_block_RSN1106_KOBE_KJM000_x1"))) << "a run of the second started";
+  first.signal(SIGINT);
+  ASSERT_EQ(first.wait(), 130) << first.err();
+  const Table rows = read_csv(cmp / "comparison.csv");
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_EQ(rows[0].at("case"), "demo_portal_frame");
+}
+
+// A study into the folder of a running `run` (or resume) is refused
+// likewise: a compare wrote its tables and run folders into a resumed
+// run's folder (tester's probe).
+TEST(StudyCommands, AStudyIntoTheFolderOfARunningRunIsRefused) {
+  TempDir dir;
+  const fs::path longer = write_long_portal(dir.path());
+  const fs::path out = dir.path() / "run";
+  fq_test::AppProcess run({"run", longer.string(), "--quiet", "--out", out.string()}, dir.path());
+  wait_for_file(out / "case.pvd");
+  const fs::path io2 = dir.path() / "second";
+  fs::create_directories(io2);
+  const auto study = run_app({"compare", (kSource / "cases/demo_falling_block.yaml").string(), "--window-length",
+                              "0.05", "--no-figure", "--out", out.string()},
+                             io2);
+  EXPECT_EQ(study.code, 3) << study.err;
+  EXPECT_NE(study.err.find("is in use by another framequake process"), std::string::npos) << study.err;
+  EXPECT_FALSE(fs::exists(out / "comparison.csv"));
+  EXPECT_FALSE(fs::exists(out / "demo_falling_block")) << "a run of the study started";
+  run.signal(SIGINT);
+  EXPECT_EQ(run.wait(), 130) << run.err();
+}
+
 // --window-length longer than a case's own window keeps that window, and
 // says so (it was capped without a word).
 TEST(StudyCommands, AWindowLengthLongerThanTheCasesWindowIsNoted) {
