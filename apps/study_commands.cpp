@@ -329,6 +329,10 @@ int worst_exit(const std::vector<fq::BatchOutcome>& outcomes) {
   return code;
 }
 
+// True once the study has warned that its folder's file system has no
+// locks: its runs, on the same file system, do not say it again each.
+bool g_said_no_locks = false;
+
 void print_done(std::size_t, const fq::BatchJob& job, const fq::BatchOutcome& out, std::size_t done,
                 std::size_t total) {
   std::ostringstream line;
@@ -343,7 +347,8 @@ void print_done(std::size_t, const fq::BatchJob& job, const fq::BatchOutcome& ou
     for (const fq::StoreyOutcome& s : r.storeys)
       line << "; storey " << s.number << " " << verdict_text(r, s) << " (peak "
            << fixed(s.drift.peak_ratio_rad, 3) << " rad)";
-    for (const std::string& w : r.warnings) line << "\n  warning: " << w;
+    for (const std::string& w : r.warnings)
+      if (!(g_said_no_locks && fq::is_folder_lock_warning(w))) line << "\n  warning: " << w;
   }
   std::cerr << line.str() << "\n";
 }
@@ -453,6 +458,10 @@ bool run_jobs(const StudyArgs& args, const std::vector<fq::BatchJob>& jobs, cons
   } catch (const fq::OutputError& e) {
     std::cerr << "framequake: error: " << e.what() << " (nothing was run)\n";
     return false;
+  }
+  if (!lock.warning().empty()) {
+    std::cerr << "framequake: warning: " << lock.warning() << "\n";
+    g_said_no_locks = true;
   }
   if (!remove_earlier_tables(args.out, tables)) return false;
   fq::BatchOptions options;

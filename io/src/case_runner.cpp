@@ -418,6 +418,7 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
                                                  : "check its results with another integrator");
     warn(w.str());
   }
+  if (!writer.folder_lock_warning().empty()) warn(writer.folder_lock_warning());
   if (const std::string w = nodes_inside_members_warning(def); !w.empty()) warn(w);
   if (const std::string w = near_nodes_warning(def); !w.empty()) warn(w);
   if (const std::string w = slender_members_warning(def); !w.empty()) warn(w);

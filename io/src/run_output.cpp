@@ -533,6 +533,7 @@ void RunOutput::Impl::write_summary(const Simulation& sim, const RunResult& resu
 }
 
 const fs::path& RunOutput::folder() const { return impl_->def.folder; }
+const std::string& RunOutput::folder_lock_warning() const { return impl_->lock.warning(); }
 std::int64_t RunOutput::frame_every_steps() const { return impl_->frame_every; }
 std::int64_t RunOutput::history_every_steps() const { return impl_->history_every; }
 std::size_t RunOutput::frames_written() const { return impl_->pvd.size(); }

@@ -330,3 +330,35 @@ TEST(CheckpointCli, ASecondResumeOfAFolderInUseIsRefused) {
 }
 
 }  // namespace
+
+namespace {
+
+int count(const std::string& text, const std::string& what) {
+  int n = 0;
+  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+// On a file system without flock a run and its resume go on, each saying
+// once that the folder is not locked (and in summary.json's warnings);
+// both were refused with exit 3 (tester's probe). ENOLCK is stood in for by
+// FQ_TEST_FLOCK_ERRNO (io/folder_lock.h).
+TEST(CheckpointCli, RunAndResumeGoOnWithoutLocksWhereTheFileSystemHasNone) {
+  Fixture f;
+  const fs::path out = f.dir.path() / "out";
+  ::setenv("FQ_TEST_FLOCK_ERRNO", std::to_string(ENOLCK).c_str(), 1);
+  const int killed = f.run_and_kill(out);
+  const auto r = run_app({"resume", out.string(), "--quiet"}, f.dir.path());
+  const fs::path once = f.dir.path() / "once";
+  const auto whole = run_app({"run", f.case_file.string(), "--out", once.string(), "--quiet"}, f.dir.path());
+  ::unsetenv("FQ_TEST_FLOCK_ERRNO");
+  ASSERT_EQ(killed, 128 + SIGKILL);
+  const std::string warning = "warning: cannot lock output folder '" + out.string() + "': No locks available";
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(count(r.err, warning), 1) << r.err;
+  EXPECT_NE(read_text(out / "summary.json").find("going on without the lock"), std::string::npos);
+  EXPECT_EQ(whole.code, 0) << whole.err;
+  EXPECT_EQ(count(whole.err, "going on without the lock"), 1) << whole.err;
+}
+
+}  // namespace

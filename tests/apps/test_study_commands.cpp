@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <csignal>
 #include <cmath>
@@ -548,6 +549,29 @@ TEST(StudyCommands, AStudyIntoTheFolderOfARunningRunIsRefused) {
   EXPECT_FALSE(fs::exists(out / "demo_falling_block")) << "a run of the study started";
   run.signal(SIGINT);
   EXPECT_EQ(run.wait(), 130) << run.err();
+}
+
+// On a file system without flock a study goes on and says once that its
+// folder is not locked, not again under each run (each run's summary.json
+// keeps it); it was refused with exit 3. ENOLCK is stood in for by
+// FQ_TEST_FLOCK_ERRNO (io/folder_lock.h).
+TEST(StudyCommands, AStudyGoesOnWithoutLocksWhereTheFileSystemHasNone) {
+  TempDir dir;
+  const fs::path out = dir.path() / "sweep";
+  ::setenv("FQ_TEST_FLOCK_ERRNO", std::to_string(ENOLCK).c_str(), 1);
+  const auto r = run_app({"sweep", (kSource / "cases/demo_falling_block.yaml").string(), "--scales", "1,2",
+                          "--window-length", "0.05", "--no-figure", "--out", out.string()},
+                         dir.path());
+  ::unsetenv("FQ_TEST_FLOCK_ERRNO");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string said = "going on without the lock";
+  const std::size_t first = r.err.find(said);
+  EXPECT_NE(first, std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find(said, first + 1), std::string::npos) << "said more than once:\n" << r.err;
+  EXPECT_NE(r.err.find("warning: cannot lock output folder '" + out.string() + "': No locks available"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(read_csv(out / "sweep.csv").size(), 2u);
 }
 
 // --window-length longer than a case's own window keeps that window, and

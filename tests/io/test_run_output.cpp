@@ -17,6 +17,8 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cerrno>
+#include <cstdlib>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -46,6 +48,7 @@
 #include "dem_core/simulation.h"
 #include "io/case_file.h"
 #include "io/case_runner.h"
+#include "io/folder_lock.h"
 #include "io/vtk_frame_writer.h"
 #include "io/atomic_file.h"
 #include "io/history_writer.h"
@@ -747,6 +750,36 @@ TEST(RunOutput, AFolderInUseByAnotherOutputIsRefused) {
   EXPECT_NE(read_text(folder / "case.pvd").find("<VTKFile"), std::string::npos);  // the first's files untouched
   first.reset();
   EXPECT_NO_THROW(fq::RunOutput third(def, "third"));
+}
+
+// On a file system without flock (ENOLCK, EOPNOTSUPP or ENOTSUP, ENOSYS:
+// some network and FUSE mounts) the output goes on without the lock and
+// says so in a warning naming the folder; every run was refused there
+// ("cannot lock output folder: No locks available", exit 3; tester's
+// probe). Any other lock failure still refuses. The failures are stood in
+// for by FQ_TEST_FLOCK_ERRNO (io/folder_lock.h).
+TEST(RunOutput, AFileSystemWithoutLocksIsWarnedOfNotRefused) {
+  const fs::path folder = fresh_folder("no_locks");
+  fq::OutputDef def;
+  def.folder = folder;
+  for (const int err : {ENOLCK, EOPNOTSUPP, ENOTSUP, ENOSYS}) {
+    ::setenv("FQ_TEST_FLOCK_ERRNO", std::to_string(err).c_str(), 1);
+    try {
+      fq::RunOutput out(def, "unlocked");
+      const std::string w = out.folder_lock_warning();
+      EXPECT_NE(w.find("'" + folder.string() + "'"), std::string::npos) << w;
+      EXPECT_NE(w.find(std::generic_category().message(err)), std::string::npos) << w;
+      EXPECT_NE(w.find("going on without the lock"), std::string::npos) << w;
+      EXPECT_TRUE(fq::is_folder_lock_warning(w)) << w;
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << "errno " << err << ": " << e.what();
+    }
+  }
+  ::setenv("FQ_TEST_FLOCK_ERRNO", std::to_string(EIO).c_str(), 1);
+  EXPECT_THROW(fq::RunOutput(def, "refused"), fq::OutputError);
+  ::unsetenv("FQ_TEST_FLOCK_ERRNO");
+  fq::RunOutput locked(def, "locked");
+  EXPECT_EQ(locked.folder_lock_warning(), "");
 }
 
 // A broken symbolic link as the output folder is named as one (creating

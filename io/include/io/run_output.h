@@ -134,6 +134,10 @@ class RunOutput {
   bool abandon(const Simulation& sim, const std::string& why) noexcept;
 
   const std::filesystem::path& folder() const;
+  // Not empty when the folder's file system has no locks and the run goes
+  // on unprotected against a second process (io/folder_lock.h): a warning
+  // for the run to give.
+  const std::string& folder_lock_warning() const;
   std::int64_t frame_every_steps() const;    // 0 before attach()
   std::int64_t history_every_steps() const;  // 0 before attach()
   std::size_t frames_written() const;
