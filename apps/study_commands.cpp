@@ -19,6 +19,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <system_error>
 #include <sys/wait.h>
 #include <vector>
 
@@ -259,7 +260,13 @@ void check_runnable(const fq::CaseDef& def, const StudyArgs& args) {
   fq::check_case_runnable(def, options);
 }
 
-int run_figure(const std::string& kind, const fs::path& folder) {
+// Exit codes of fq_plot.py (its header): the figure could not be written,
+// having said why in one line naming the file; matplotlib is missing.
+constexpr int kPlotWriteFailed = 3;
+constexpr int kPlotNoMatplotlib = 4;
+constexpr int kShellCommandNotFound = 127;  // the interpreter itself is missing
+
+int run_figure(const std::string& kind, const fs::path& folder, const char* file) {
   const char* python_env = std::getenv("FQ_PYTHON");
   const std::string python = python_env && *python_env ? python_env : "/usr/bin/python3";
   const fs::path script = fs::path(FQ_SOURCE_DIR) / "scripts/plot/fq_plot.py";
@@ -275,6 +282,12 @@ int run_figure(const std::string& kind, const fs::path& folder) {
   const std::string command =
       quoted(python) + " " + quoted(script.string()) + " " + kind + " " + quoted(folder.string());
   const int status = std::system(command.c_str());
+  if (status != 0) {
+    // The script removes its temporary file itself; a script killed
+    // outright cannot, and no failure may leave one.
+    std::error_code ec;
+    fs::remove(folder / (std::string(file) + ".tmp.png"), ec);
+  }
   // Ctrl-C or SIGTERM while the figure is drawn reaches the plotting
   // process (system() lets the child take them): a stop on request, not a
   // missing matplotlib (CLI probe: a traceback, then exit 3).
@@ -284,11 +297,22 @@ int run_figure(const std::string& kind, const fs::path& folder) {
     std::cerr << "framequake: the figure was not drawn: stopped on request. The tables are written.\n";
     return kExitInterrupted;
   }
-  if (status != 0) {
-    std::cerr << "framequake: error: the figure could not be drawn: " << command << " exited with status "
-              << (WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status))
+  const int code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  if (status != 0 && code == kPlotWriteFailed) {
+    // A full disk or an unwritable folder: the script's one line named the
+    // file and the system's reason, all there is to say (a probe's full
+    // disk was blamed on a missing matplotlib, under a traceback).
+    return kExitOutputFailed;
+  }
+  if (status != 0 && (code == kPlotNoMatplotlib || code == kShellCommandNotFound)) {
+    std::cerr << "framequake: error: the figure could not be drawn: " << command << " exited with status " << code
               << " (it needs Debian's python3 with python3-matplotlib: bash scripts/install_deps.sh; FQ_PYTHON "
                  "selects another interpreter). The tables are written.\n";
+    return kExitOutputFailed;
+  }
+  if (status != 0) {
+    std::cerr << "framequake: error: the figure could not be drawn: " << command << " exited with status " << code
+              << " (its message is above). The tables are written.\n";
     return kExitOutputFailed;
   }
   return kExitOk;
@@ -484,7 +508,7 @@ int finish_with_figure(const StudyArgs& args, const std::vector<fq::BatchOutcome
                        const char* file) {
   int code = worst_exit(outcomes);
   if (args.figure && std::any_of(outcomes.begin(), outcomes.end(), [](const auto& o) { return o.ok; })) {
-    const int fig = run_figure(kind, args.out);
+    const int fig = run_figure(kind, args.out, file);
     if (fig == kExitOk)
       std::cout << "framequake: figure in " << (args.out / file).string() << "\n";
     else if (code == kExitOk)

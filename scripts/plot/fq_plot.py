@@ -18,10 +18,21 @@ import math
 import os
 import sys
 
-import matplotlib
+# Exit codes framequake reads (apps/study_commands.cpp, run_figure): 3 the
+# figure could not be written (a full disk: one line naming the file and
+# the system's reason), 4 matplotlib is missing (its install hint), 1 any
+# other failure.
+EXIT_WRITE_FAILED = 3
+EXIT_NO_MATPLOTLIB = 4
 
-matplotlib.use("Agg")  # files only, no display
-import matplotlib.pyplot as plt  # noqa: E402
+try:
+    import matplotlib
+
+    matplotlib.use("Agg")  # files only, no display
+    import matplotlib.pyplot as plt
+except ImportError as e:
+    print("fq_plot.py: error: matplotlib is missing for %s (%s)" % (sys.executable, e), file=sys.stderr)
+    sys.exit(EXIT_NO_MATPLOTLIB)
 
 # One look for every figure.
 STYLE = {
@@ -40,6 +51,31 @@ COLOURS = ["#c0392b", "#2471a3", "#1e8449", "#b9770e", "#6c3483", "#117a65", "#7
 def fail(message):
     print("fq_plot.py: error: " + message, file=sys.stderr)
     sys.exit(1)
+
+
+def save_figure(fig, target, metadata=None):
+    """Writes target under a temporary name, then renames it: a reader never
+    sees half a PNG. A write the system refuses (a full disk) ends the script
+    with one line naming the file; the temporary file goes in every failure
+    path (a full disk left a 0-byte .tmp.png and a 50-line traceback)."""
+    temporary = target + ".tmp.png"
+    try:
+        fig.savefig(temporary, metadata=metadata)
+        os.replace(temporary, target)
+    except OSError as e:
+        remove_quietly(temporary)
+        print("fq_plot.py: error: cannot write %s: %s" % (target, e.strerror or e), file=sys.stderr)
+        sys.exit(EXIT_WRITE_FAILED)
+    finally:
+        remove_quietly(temporary)
+
+
+def remove_quietly(path):
+    try:
+        if os.path.lexists(path):
+            os.remove(path)
+    except OSError:
+        pass
 
 
 def read_csv(path):
@@ -146,9 +182,8 @@ def plot_compare(folder):
     fig.tight_layout()
     target = os.path.join(folder, "first_storey_drift.png")
     # What each trace shows, in the PNG's Description text (read by the tests).
-    fig.savefig(target + ".tmp.png",
+    save_figure(fig, target,
                 metadata={"Description": "; ".join("%s along %s" % (row["case"], axis) for row, axis in drawn)})
-    os.replace(target + ".tmp.png", target)
 
 
 def plot_sweep(folder):
@@ -181,8 +216,7 @@ def plot_sweep(folder):
     ax.legend(loc="lower right", fontsize=8)
     fig.tight_layout()
     target = os.path.join(folder, "sweep.png")
-    fig.savefig(target + ".tmp.png")
-    os.replace(target + ".tmp.png", target)
+    save_figure(fig, target)
 
 
 def plot_stability(csv_path):
@@ -201,8 +235,7 @@ def plot_stability(csv_path):
     ax.legend(loc="upper left", fontsize=8)
     fig.tight_layout()
     target = os.path.splitext(csv_path)[0] + ".png"
-    fig.savefig(target + ".tmp.png")
-    os.replace(target + ".tmp.png", target)
+    save_figure(fig, target)
 
 
 # Fixed colour and marker per integrator, the same in every panel.
@@ -253,8 +286,7 @@ def plot_work_precision(path):
     fig.suptitle("Work-precision: error against the reference vs wall time (median; shared machine)", fontsize=10)
     fig.tight_layout()
     target = os.path.join(os.path.dirname(os.path.abspath(csv_path)), "work_precision.png")
-    fig.savefig(target + ".tmp.png")
-    os.replace(target + ".tmp.png", target)
+    save_figure(fig, target)
 
 
 COMMANDS = {"compare": plot_compare, "sweep": plot_sweep, "work-precision": plot_work_precision,

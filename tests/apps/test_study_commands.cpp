@@ -336,6 +336,46 @@ TEST(StudyCommands, CtrlCWhileTheFigureIsDrawnIsAStopNotAFailure) {
   EXPECT_TRUE(fs::exists(cmp / "comparison.md"));
 }
 
+// A figure the disk refuses (ENOSPC: its temporary file is a link to
+// /dev/full) is reported in one line naming the file and the system's
+// reason, exit 3, and leaves no temporary file; a full disk gave a 50-line
+// traceback, the advice to install matplotlib and a 0-byte .tmp.png
+// (tester's probe). The install hint is kept for a missing matplotlib
+// (here: Debian's python3 without its site packages, -S).
+TEST(StudyCommands, AFigureTheDiskRefusesIsOneLineAndLeavesNoTemporaryFile) {
+  TempDir dir;
+  const fs::path cmp = dir.path() / "cmp";
+  fs::create_directories(cmp);
+  const fs::path temporary = cmp / "first_storey_drift.png.tmp.png";
+  fs::create_symlink("/dev/full", temporary);
+  const std::string portal = (kSource / "cases/demo_portal_frame.yaml").string();
+  const auto r = run_app({"compare", portal, "--window-length", "0.05", "--out", cmp.string()}, dir.path());
+  EXPECT_EQ(r.code, 3) << r.err;
+  EXPECT_NE(r.err.find("cannot write " + (cmp / "first_storey_drift.png").string() + ": No space left on device\n"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(r.err.find("Traceback"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("python3-matplotlib"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'),
+            std::count(r.err.begin(), r.err.begin() + std::ptrdiff_t(r.err.find("cannot write")), '\n') + 1)
+      << "more than one line after the figure's error: " << r.err;
+  EXPECT_FALSE(fs::exists(fs::symlink_status(temporary)));
+  EXPECT_FALSE(fs::exists(cmp / "first_storey_drift.png"));
+  EXPECT_TRUE(fs::exists(cmp / "comparison.csv"));
+
+  const fs::path no_site = dir.path() / "python_without_matplotlib.sh";
+  std::ofstream(no_site) << "#!/bin/sh\nexec /usr/bin/python3 -S \"$@\"\n";
+  fs::permissions(no_site, fs::perms::owner_all);
+  ::setenv("FQ_PYTHON", no_site.c_str(), 1);
+  const auto m = run_app({"compare", portal, "--window-length", "0.05", "--out", (dir.path() / "cmp2").string()},
+                         dir.path());
+  ::unsetenv("FQ_PYTHON");
+  EXPECT_EQ(m.code, 3) << m.err;
+  EXPECT_NE(m.err.find("matplotlib is missing"), std::string::npos) << m.err;
+  EXPECT_NE(m.err.find("python3-matplotlib: bash scripts/install_deps.sh"), std::string::npos) << m.err;
+  EXPECT_EQ(m.err.find("Traceback"), std::string::npos) << m.err;
+}
+
 // The text of a PNG's tEXt chunk `key` ("" when there is none).
 std::string png_text(const fs::path& file, const std::string& key) {
   const std::string bytes = read_text(file);
