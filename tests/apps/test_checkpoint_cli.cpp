@@ -293,46 +293,6 @@ TEST(CheckpointCli, BadIntervalOrMissingFolderIsAUsageError) {
 
 namespace {
 
-// A second resume of a folder a resume is writing is refused as a second
-// run is: exit 3 with the "in use" message (the folder lock's refusal
-// escaped resume as an internal error, exit 4). The portal demo, running on
-// for 100 s past its record, is still going when the second starts.
-TEST(CheckpointCli, ASecondResumeOfAFolderInUseIsRefused) {
-  TempDir dir;
-  std::string longer = read_text(fs::path(FQ_SOURCE_DIR) / "cases/demo_portal_frame.yaml");
-  const std::string dt = "  dt_s: 1.0e-5\n", record = "file: ground_motions/";
-  longer.replace(longer.find(dt), dt.size(), dt + "  duration_s: 100.0\n");
-  longer.replace(longer.find(record), record.size(),
-                 "file: " + (fs::path(FQ_SOURCE_DIR) / "cases/ground_motions").string() + "/");
-  write_text(dir.path() / "longer.yaml", longer);
-  const fs::path out = dir.path() / "out";
-  auto wait_until = [](auto done) {
-    for (int i = 0; i < 60000 && !done(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(1));
-  };
-  {
-    AppProcess run({"run", (dir.path() / "longer.yaml").string(), "--out", out.string(), "--quiet",
-                    "--checkpoint-every", "0.01"},
-                   dir.path());
-    wait_until([&] { return fs::exists(out / "checkpoint.bin"); });
-    run.signal(SIGINT);
-    ASSERT_EQ(run.wait(), 130) << run.err();
-  }
-  ASSERT_TRUE(fs::exists(out / "summary.json"));
-  AppProcess first({"resume", out.string(), "--quiet"}, dir.path());
-  wait_until([&] { return !fs::exists(out / "summary.json"); });  // removed once the resume holds the folder
-  const fs::path io2 = dir.path() / "second";
-  fs::create_directories(io2);
-  const auto second = run_app({"resume", out.string(), "--quiet"}, io2);
-  EXPECT_EQ(second.code, 3) << second.err;
-  EXPECT_NE(second.err.find("is in use by another framequake process"), std::string::npos) << second.err;
-  first.signal(SIGINT);
-  EXPECT_EQ(first.wait(), 130) << first.err();
-}
-
-}  // namespace
-
-namespace {
-
 int count(const std::string& text, const std::string& what) {
   int n = 0;
   for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
