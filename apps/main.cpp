@@ -94,6 +94,9 @@ const char* kMainHelp =
     "  framequake --help               this text;  framequake COMMAND --help for a command\n"
     "  framequake --version            print the version\n"
     "\n"
+    "Options may also be written --option=value; \"--\" ends the options (for a file\n"
+    "whose name starts with '-').\n"
+    "\n"
     "Case files are YAML; cases/README.md documents every key and its unit.\n";
 
 const char* kRunHelp =
@@ -374,10 +377,20 @@ static int dispatch(int argc, char** argv) {
   // Every command reads `--option=value` as `--option value` (the two forms
   // users type); a value may itself contain '='.
   std::vector<std::string> words;
+  bool options_ended = false;
   for (int i = 0; i < argc; ++i) {
     const std::string arg = argv[i];
     const std::size_t eq = arg.find('=');
-    if (i >= 2 && arg.rfind("--", 0) == 0 && eq != std::string::npos && eq > 2) {
+    // "--" ends the options (the usual convention): every word after it is
+    // a path, and one starting with '-' is passed as "./-name", which names
+    // the same file and which no command reads as an option.
+    if (i >= 2 && !options_ended && arg == "--") {
+      options_ended = true;
+      continue;
+    }
+    if (options_ended) {
+      words.push_back(arg.rfind('-', 0) == 0 ? "./" + arg : arg);
+    } else if (i >= 2 && arg.rfind("--", 0) == 0 && eq != std::string::npos && eq > 2) {
       // Options that take no value (every command's flags).
       for (const char* flag : {"--help", "--quiet", "--force", "--no-figure", "--compare", "--png"})
         if (arg.compare(0, eq, flag) == 0)

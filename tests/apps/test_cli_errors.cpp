@@ -473,6 +473,30 @@ TEST(CliUsage, OptionEqualsValueIsTheOptionFollowedByTheValue) {
   EXPECT_NE(flag.err.find("option --quiet takes no value, got '--quiet=1'"), std::string::npos) << flag.err;
 }
 
+// "--" ends the options: a case file whose name starts with '-' is given
+// after it (it was "unknown option '--'"). Without "--" such a name reads
+// as an option, as in every command line tool.
+TEST(CliUsage, DoubleDashEndsTheOptions) {
+  TempDir dir;
+  std::ofstream(dir.path() / "-cube.yaml", std::ios::binary) << fq_test::kForcedCubeCase;
+  // The name relative to the working folder, as a user types it (the
+  // program inherits the test's working folder).
+  struct WorkIn {
+    fs::path before = fs::current_path();
+    explicit WorkIn(const fs::path& p) { fs::current_path(p); }
+    ~WorkIn() { fs::current_path(before); }
+  } work_in(dir.path());
+  const auto info = run_app({"info", "--", "-cube.yaml"}, dir.path());
+  EXPECT_EQ(info.code, 0) << info.err;
+  EXPECT_NE(info.out.find("-cube.yaml"), std::string::npos) << info.out;
+  const auto run = run_app({"run", "--quiet", "--force", "--out", "o", "--", "-cube.yaml"}, dir.path());
+  EXPECT_EQ(run.code, 0) << run.err;
+  EXPECT_TRUE(fs::exists(dir.path() / "o" / "summary.json"));
+  const auto without = run_app({"info", "-cube.yaml"}, dir.path());
+  EXPECT_EQ(without.code, 2) << without.err;
+  EXPECT_NE(without.err.find("unknown option '-cube.yaml'"), std::string::npos) << without.err;
+}
+
 // FRAMEQUAKE_SIMD chooses the SIMD form of the lane kernels
 // (dem_core/lane_isa.h): auto, sse2, avx2 or avx512vl. A bad value is bad input: exit
 // 2, the variable and the accepted values named, no output folder. sse2 is
