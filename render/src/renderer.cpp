@@ -84,12 +84,23 @@ void set_colour(vtkProperty* p, const std::array<std::uint8_t, 3>& c) {
 }
 
 vtkSmartPointer<vtkUnstructuredGrid> read_vtu(const fs::path& file) {
+  // VTK's own messages about a damaged file (a dozen coloured lines from
+  // its XML parser, reader and pipeline) are kept off the terminal while
+  // it reads: the error below names the file and says what it should be
+  // (they came before it, a CLI probe found them hard to read).
+  struct QuietVtk {
+    const int before = vtkObject::GetGlobalWarningDisplay();
+    QuietVtk() { vtkObject::GlobalWarningDisplayOff(); }
+    ~QuietVtk() { vtkObject::SetGlobalWarningDisplay(before); }
+  } quiet;
   vtkNew<vtkXMLUnstructuredGridReader> reader;
   reader->SetFileName(file.c_str());
   reader->Update();
   vtkSmartPointer<vtkUnstructuredGrid> grid = reader->GetOutput();
   if (reader->GetErrorCode() != 0 || !grid || grid->GetNumberOfCells() == 0)
-    throw RenderInputError("'" + file.string() + "' is not a readable framequake frame (VTK XML unstructured grid)");
+    throw RenderInputError("'" + file.string() +
+                           "' is not a readable framequake frame (VTK XML unstructured grid): it is cut short, "
+                           "damaged or empty");
   return grid;
 }
 

@@ -363,6 +363,16 @@ TEST(RenderRun, BadUsageEndsWithAClearMessageAndWritesNothing) {
                     &err),
             2);
   EXPECT_NE(err.find("(folder of the animation file) is a file, not a folder"), std::string::npos) << err;
+  // A frame cut short: one line naming it, without VTK's own dozen lines
+  // of parser and pipeline errors before it (CLI probe), and no animation.
+  const fs::path frame = run / "frames" / "frame_000001.vtu";
+  const std::string text = fq_test::read_text(frame);
+  std::ofstream(frame, std::ios::binary | std::ios::trunc) << text.substr(0, text.size() / 2);
+  EXPECT_EQ(run_app({"render", run.string()}, dir.path(), &out, &err), 2);
+  EXPECT_NE(err.find("frame_000001.vtu' is not a readable framequake frame"), std::string::npos) << err;
+  EXPECT_EQ(err.find("vtkXML"), std::string::npos) << err;
+  EXPECT_EQ(err.find("ERR|"), std::string::npos) << err;
+  EXPECT_FALSE(fs::exists(run / "animation.gif"));
 }
 
 // Ctrl-C (or SIGTERM) during a render stops it between frames: exit 130
