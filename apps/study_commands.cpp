@@ -16,9 +16,11 @@
 #include <iomanip>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <system_error>
 #include <sys/wait.h>
 #include <vector>
@@ -238,6 +240,41 @@ std::string csv_number(double x) {
   return s.str();
 }
 
+// A text field of the csv tables, quoted as RFC 4180 has it when it holds
+// a comma, a quote or a line end: a case named by its file's stem, a
+// record's file name and the output folder are the user's to choose, and
+// an unquoted comma shifted every column after it.
+std::string csv_text(const std::string& text) {
+  if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
+  std::string q = "\"";
+  for (char c : text) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+// The headers of the csv tables, one definition for the writers and for
+// is_earlier_study_file, which recognises the tables by them.
+std::string comparison_csv_header(std::size_t storeys) {
+  std::ostringstream h;
+  h << "case,status";
+  for (std::size_t k = 1; k <= storeys; ++k)
+    h << ",storey" << k << "_peak_drift_ratio_rad,storey" << k << "_peak_drift_ratio_x_rad,storey" << k
+      << "_peak_drift_ratio_y_rad,storey" << k << "_verdict";
+  h << ",first_joint_failure_s,broken_joints,joints,energy_balance_error_relative,wall_s,output";
+  return h.str();
+}
+
+std::string sweep_csv_header(std::size_t storeys) {
+  std::ostringstream h;
+  h << "case,record,scale,pga_mps2,pga_g,status";
+  for (std::size_t k = 1; k <= storeys; ++k) h << ",storey" << k << "_peak_drift_ratio_rad,storey" << k << "_verdict";
+  h << ",collapsed,first_joint_failure_s,broken_joints,joints,energy_balance_error_relative,wall_s,output";
+  return h.str();
+}
+
+const char* const kCollapseCsvHeader =
+    "case,record,largest_scale_without_collapse,smallest_scale_with_collapse,pga_at_collapse_mps2,"
+    "collapsed_storeys_at_that_scale";
+
 // The line of a case's `name` key (0 when the name is the file's stem).
 int name_line(const fq::CaseDef& def) {
   const auto it = def.section_line.find("name");
@@ -405,20 +442,138 @@ bool prepare_folder(const fs::path& out) {
   return true;
 }
 
-// Whether `file` is a table or figure a study of ours wrote, by its start:
-// our CSV tables begin with a "case," header, our Markdown tables with
-// "| case |", our figures are PNGs made by matplotlib. Only those are
-// removed: a user's own notes named comparison.md were deleted by name (CLI
-// probe).
-bool is_earlier_study_file(const fs::path& file) {
+// The records of a CSV text with RFC 4180 quoting (csv_text); nullopt when
+// a quote is stray or left open, or the text does not end in a line end.
+std::optional<std::vector<std::vector<std::string>>> parse_csv(const std::string& text) {
+  std::vector<std::vector<std::string>> rows;
+  std::vector<std::string> row;
+  std::string field;
+  bool quoted = false, was_quoted = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (quoted) {
+      if (c != '"') {
+        field += c;
+      } else if (i + 1 < text.size() && text[i + 1] == '"') {
+        field += '"';
+        ++i;
+      } else {
+        quoted = false;
+      }
+    } else if (c == '"') {
+      if (!field.empty() || was_quoted) return std::nullopt;  // a quote inside an unquoted field
+      quoted = was_quoted = true;
+    } else if (c == ',' || c == '\n') {
+      row.push_back(std::move(field));
+      field.clear();
+      was_quoted = false;
+      if (c == '\n') {
+        rows.push_back(std::move(row));
+        row.clear();
+      }
+    } else {
+      if (was_quoted) return std::nullopt;  // text after a closing quote
+      field += c;
+    }
+  }
+  if (quoted || !field.empty() || was_quoted || !row.empty()) return std::nullopt;
+  return rows;
+}
+
+// Whether `value` is what our tables write in the column `column`.
+bool is_our_csv_field(const std::string& column, const std::string& value) {
+  auto one_of = [&](std::initializer_list<const char*> names) {
+    return std::any_of(names.begin(), names.end(), [&](const char* n) { return value == n; });
+  };
+  auto digits_only = [&](std::string_view also) {
+    return std::all_of(value.begin(), value.end(),
+                       [&](char c) { return (c >= '0' && c <= '9') || also.find(c) != std::string_view::npos; });
+  };
+  if (column == "case" || column == "record" || column == "output") return true;  // the user's names
+  if (column == "status") return one_of({"completed", "stopped", "unstable", "failed", "not run"});
+  if (column.ends_with("_verdict")) return one_of({"", "standing", "damaged", "collapsed", "not_assessed"});
+  if (column == "collapsed") return one_of({"", "0", "1"});
+  if (column == "broken_joints" || column == "joints") return digits_only("");
+  if (column == "collapsed_storeys_at_that_scale") return digits_only(" ");
+  if (value.empty()) return true;  // csv_number of a value not known
+  char* end = nullptr;
+  const double v = std::strtod(value.c_str(), &end);
+  return end == value.c_str() + value.size() && std::isfinite(v) && !std::isspace(static_cast<unsigned char>(value[0]));
+}
+
+// Whether `text` is the table `name` (comparison.csv, sweep.csv or
+// collapse_scales.csv) as a study of ours wrote it: our header, for some
+// number of storeys, and every row one of ours, field by field. A user's
+// own table under the name, or ours with the user's rows added, is not.
+bool is_our_csv_table(const std::string& name, const std::string& text) {
+  const auto rows = parse_csv(text);
+  if (!rows || rows->empty()) return false;
+  const std::vector<std::string>& header = rows->front();
+  std::string expected;
+  if (name == "comparison.csv" && header.size() >= 8 && (header.size() - 8) % 4 == 0)
+    expected = comparison_csv_header((header.size() - 8) / 4);
+  else if (name == "sweep.csv" && header.size() >= 13 && (header.size() - 13) % 2 == 0)
+    expected = sweep_csv_header((header.size() - 13) / 2);
+  else if (name == "collapse_scales.csv")
+    expected = kCollapseCsvHeader;
+  const auto expected_rows = parse_csv(expected + "\n");
+  if (expected.empty() || !expected_rows || expected_rows->front() != header) return false;
+  for (std::size_t r = 1; r < rows->size(); ++r) {
+    const std::vector<std::string>& row = (*rows)[r];
+    if (row.size() != header.size()) return false;
+    for (std::size_t c = 0; c < row.size(); ++c)
+      if (!is_our_csv_field(header[c], row[c])) return false;
+  }
+  return true;
+}
+
+// Whether the PNG `file` carries the mark fq_plot.py gives the figures it
+// draws (figure_marker there): a tEXt chunk "Software" whose text begins
+// "framequake fq_plot.py <its file name>;". Any matplotlib figure says
+// "Matplotlib" in it, a user's own of the same name too (CLI probe: a
+// user's first_storey_drift.png was deleted).
+bool is_our_figure(const fs::path& file) {
   std::ifstream in(file, std::ios::binary);
-  std::string head(4096, '\0');
-  in.read(head.data(), std::streamsize(head.size()));
-  head.resize(std::size_t(std::max<std::streamsize>(0, in.gcount())));
+  char signature[8];
+  if (!in.read(signature, 8) || std::string(signature, 8) != std::string("\x89PNG\r\n\x1a\n", 8)) return false;
+  const std::string mark = "framequake fq_plot.py " + file.filename().string() + ";";
+  constexpr std::uint32_t kMaxText = 1 << 16;  // ours are short; a longer chunk is skipped, not read
+  for (unsigned char head[8]; in.read(reinterpret_cast<char*>(head), 8);) {
+    const std::uint32_t length = std::uint32_t(head[0]) << 24 | std::uint32_t(head[1]) << 16 |
+                                 std::uint32_t(head[2]) << 8 | std::uint32_t(head[3]);
+    const std::string type(reinterpret_cast<const char*>(head) + 4, 4);
+    if (type == "IEND") break;
+    if (type == "tEXt" && length <= kMaxText) {
+      std::string data(length, '\0');
+      if (!in.read(data.data(), std::streamsize(length))) break;
+      if (data.rfind("Software", 0) == 0 && data.size() > 8 && data[8] == '\0' && data.compare(9, mark.size(), mark) == 0)
+        return true;
+      in.seekg(4, std::ios::cur);  // the CRC
+    } else {
+      in.seekg(std::streamoff(length) + 4, std::ios::cur);
+    }
+  }
+  return false;
+}
+
+// Whether `file` is a table or figure a study of ours wrote: our csv tables
+// by their header and rows (is_our_csv_table), our Markdown tables by their
+// start "| case |", our figures by fq_plot.py's mark (is_our_figure). Only
+// those are removed: a user's own notes named comparison.md were deleted by
+// name (CLI probe).
+bool is_earlier_study_file(const fs::path& file) {
   const std::string ext = file.extension().string();
-  if (ext == ".csv") return head.rfind("case,", 0) == 0;
-  if (ext == ".md") return head.rfind("| case |", 0) == 0;
-  if (ext == ".png") return head.rfind("\x89PNG", 0) == 0 && head.find("Matplotlib") != std::string::npos;
+  if (ext == ".png") return is_our_figure(file);
+  // Our tables are a few hundred bytes a run; a larger file is not one.
+  constexpr std::uintmax_t kMaxTable = std::uintmax_t(64) << 20;
+  std::error_code ec;
+  const std::uintmax_t size = fs::file_size(file, ec);
+  if (ec || size > kMaxTable) return false;
+  std::ifstream in(file, std::ios::binary);
+  std::string text(size, '\0');
+  if (!in.read(text.data(), std::streamsize(size))) return false;
+  if (ext == ".csv") return is_our_csv_table(file.filename().string(), text);
+  if (ext == ".md") return text.rfind("| case |", 0) == 0;
   return false;
 }
 
@@ -436,7 +591,12 @@ bool remove_earlier_tables(const fs::path& out, const std::vector<const char*>& 
     if (!fs::is_regular_file(st) || !is_earlier_study_file(out / name)) {
       std::cerr << "framequake: error: " << (out / name).string()
                 << " is not a table or figure of an earlier framequake study; refusing to replace it: move it or "
-                   "choose another --out (nothing was run)\n";
+                   "choose another --out (nothing was run)"
+                // Figures drawn before the mark existed are not known as ours.
+                << (fs::path(name).extension() == ".png" ? "; a figure of an older framequake, without "
+                                                           "fq_plot.py's mark, is refused too"
+                                                         : "")
+                << "\n";
       return false;
     }
     fs::remove(out / name, ec);
@@ -549,22 +709,17 @@ int command_compare(int argc, char** argv, const std::atomic<bool>* stop_request
 
   const std::size_t storeys = max_storeys(outcomes);
   std::ostringstream csv, md;
-  csv << "case,status";
+  csv << comparison_csv_header(storeys) << "\n";
   md << "| case | status";
-  for (std::size_t k = 1; k <= storeys; ++k) {
-    csv << ",storey" << k << "_peak_drift_ratio_rad,storey" << k << "_peak_drift_ratio_x_rad,storey" << k
-        << "_peak_drift_ratio_y_rad,storey" << k << "_verdict";
-    md << " | storey " << k << " peak drift ratio (rad)";
-  }
+  for (std::size_t k = 1; k <= storeys; ++k) md << " | storey " << k << " peak drift ratio (rad)";
   for (std::size_t k = 1; k <= storeys; ++k) md << " | storey " << k;
-  csv << ",first_joint_failure_s,broken_joints,joints,energy_balance_error_relative,wall_s,output\n";
   md << " | first joint failure (s) | broken joints | energy balance error | wall time (s) |\n|---|---";
   for (std::size_t k = 0; k < 2 * storeys; ++k) md << "|---";
   md << "|---|---|---|---|\n";
   for (std::size_t i = 0; i < jobs.size(); ++i) {
     const fq::BatchOutcome& o = outcomes[i];
     const std::string status = outcome_status(o);
-    csv << jobs[i].label << "," << status;
+    csv << csv_text(jobs[i].label) << "," << status;
     md << "| " << jobs[i].label << " | " << status;
     for (std::size_t k = 0; k < storeys; ++k) {
       if (o.ok && k < o.report.storeys.size()) {
@@ -583,7 +738,7 @@ int command_compare(int argc, char** argv, const std::atomic<bool>* stop_request
       const fq::CaseRunReport& r = o.report;
       csv << "," << csv_number(r.first_joint_failure_time_s) << "," << r.joints.broken << "," << r.joint_count << ","
           << csv_number(r.energy_balance_error_relative) << "," << csv_number(r.wall_s) << ","
-          << r.output_folder.string() << "\n";
+          << csv_text(r.output_folder.string()) << "\n";
       md << " | " << fixed(r.first_joint_failure_time_s, 3) << " | " << r.joints.broken << " / " << r.joint_count
          << " | " << scientific(r.energy_balance_error_relative) << " | " << fixed(r.wall_s, 1) << " |\n";
     } else {
@@ -710,13 +865,10 @@ int command_sweep(int argc, char** argv, const std::atomic<bool>* stop_requested
 
   const std::size_t storeys = max_storeys(outcomes);
   std::ostringstream csv;
-  csv << "case,record,scale,pga_mps2,pga_g,status";
-  for (std::size_t k = 1; k <= storeys; ++k)
-    csv << ",storey" << k << "_peak_drift_ratio_rad,storey" << k << "_verdict";
-  csv << ",collapsed,first_joint_failure_s,broken_joints,joints,energy_balance_error_relative,wall_s,output\n";
+  csv << sweep_csv_header(storeys) << "\n";
   for (std::size_t i = 0; i < jobs.size(); ++i) {
     const fq::BatchOutcome& o = outcomes[i];
-    csv << keys[i].case_name << "," << keys[i].record << "," << csv_number(keys[i].scale) << ",";
+    csv << csv_text(keys[i].case_name) << "," << csv_text(keys[i].record) << "," << csv_number(keys[i].scale) << ",";
     if (!o.ok) {
       csv << ",," << outcome_status(o);
       for (std::size_t k = 0; k < storeys; ++k) csv << ",,";
@@ -740,7 +892,7 @@ int command_sweep(int argc, char** argv, const std::atomic<bool>* stop_requested
     csv << "," << (r.result.status == fq::RunStatus::Unstable ? "" : collapsed ? "1" : "0") << ","
         << csv_number(r.first_joint_failure_time_s) << "," << r.joints.broken
         << "," << r.joint_count << "," << csv_number(r.energy_balance_error_relative) << "," << csv_number(r.wall_s)
-        << "," << r.output_folder.string() << "\n";
+        << "," << csv_text(r.output_folder.string()) << "\n";
   }
 
   // Collapse scale per case and record: the smallest scale with a collapsed
@@ -749,8 +901,7 @@ int command_sweep(int argc, char** argv, const std::atomic<bool>* stop_requested
   // unstable one says nothing about the structure (both are listed under
   // the table).
   std::ostringstream cs, md;
-  cs << "case,record,largest_scale_without_collapse,smallest_scale_with_collapse,pga_at_collapse_mps2,"
-        "collapsed_storeys_at_that_scale\n";
+  cs << kCollapseCsvHeader << "\n";
   md << "| case | record | largest scale without collapse | smallest scale with collapse | PGA there (m/s²) | "
         "storeys collapsed there |\n|---|---|---|---|---|---|\n";
   for (const std::string& record : record_order)
@@ -778,7 +929,7 @@ int command_sweep(int argc, char** argv, const std::atomic<bool>* stop_requested
       for (std::size_t i = 0; i < jobs.size(); ++i)
         ran = ran || (keys[i].case_name == name && keys[i].record == record);
       if (!ran) continue;
-      cs << name << "," << record << "," << csv_number(stood) << "," << csv_number(fell) << "," << csv_number(pga)
+      cs << csv_text(name) << "," << csv_text(record) << "," << csv_number(stood) << "," << csv_number(fell) << "," << csv_number(pga)
          << "," << which << "\n";
       md << "| " << name << " | " << record << " | "
          << (std::isnan(largest_completed) ? std::string("-") : std::isnan(stood) ? std::string("none") : fixed(stood, 2))

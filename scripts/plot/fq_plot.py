@@ -53,12 +53,20 @@ def fail(message):
     sys.exit(1)
 
 
+def figure_marker(target):
+    """The PNG "Software" text that marks target as a figure of ours: a study
+    replaces only a figure that carries it (apps/study_commands.cpp,
+    is_our_figure), not a user's own matplotlib figure of the same name."""
+    return "framequake fq_plot.py %s; Matplotlib %s" % (os.path.basename(target), matplotlib.__version__)
+
+
 def save_figure(fig, target, metadata=None):
     """Writes target under a temporary name, then renames it: a reader never
     sees half a PNG. A write the system refuses (a full disk) ends the script
     with one line naming the file; the temporary file goes in every failure
     path (a full disk left a 0-byte .tmp.png and a 50-line traceback)."""
     temporary = target + ".tmp.png"
+    metadata = dict(metadata or {}, Software=figure_marker(target))
     try:
         fig.savefig(temporary, metadata=metadata)
         os.replace(temporary, target)

@@ -9,6 +9,8 @@
 #include <chrono>
 #include <csignal>
 #include <cmath>
+#include <cstdint>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -76,6 +78,17 @@ double peak_storey1_ratio_from_history(const fs::path& history) {
     peak = std::max(peak, std::hypot(v[ix], v[iy]));
   }
   return peak;
+}
+
+// A PNG holding only a tEXt chunk `key`=`text` (CRCs left zero: framequake
+// reads the chunks, it does not check them), enough to tell by its text.
+std::string png_with_text(const std::string& key, const std::string& text) {
+  auto chunk = [](const std::string& type, const std::string& data) {
+    const auto n = std::uint32_t(data.size());
+    std::string c{char(n >> 24), char(n >> 16 & 0xff), char(n >> 8 & 0xff), char(n & 0xff)};
+    return c + type + data + std::string(4, '\0');
+  };
+  return std::string("\x89PNG\r\n\x1a\n", 8) + chunk("tEXt", key + std::string(1, '\0') + text) + chunk("IEND", "");
 }
 
 bool is_png(const fs::path& file) {
@@ -285,7 +298,8 @@ TEST(StudyCommands, AStudyRemovesTheEarlierStudysTablesBeforeItRuns) {
   fs::create_directories(cmp);
   // An earlier study's table and figure, as it wrote them (by their start).
   std::ofstream(cmp / "comparison.md") << "| case | status |\n|---|---|\n| stale | completed |\n";
-  std::ofstream(cmp / "first_storey_drift.png", std::ios::binary) << "\x89PNG\r\n\x1a\n....tEXtSoftware Matplotlib";
+  std::ofstream(cmp / "first_storey_drift.png", std::ios::binary)
+      << png_with_text("Software", "framequake fq_plot.py first_storey_drift.png; Matplotlib 3.6.3");
   const auto r = run_app({"compare", portal, "--window-length", "0.05", "--no-figure", "--out", cmp.string()},
                          dir.path());
   ASSERT_EQ(r.code, 0) << r.err;
@@ -313,6 +327,65 @@ TEST(StudyCommands, AStudyRemovesTheEarlierStudysTablesBeforeItRuns) {
       << n.err;
   EXPECT_EQ(read_text(notes / "comparison.md"), "my notes on the frames\n");
   EXPECT_EQ(std::distance(fs::directory_iterator(notes), fs::directory_iterator()), 1) << "a run started";
+}
+
+// Only what a study of ours wrote is replaced. A user's own matplotlib
+// figure named like ours says "Matplotlib" in its PNG text as ours do, and
+// was deleted (tester's probe); ours carry fq_plot.py's mark naming the
+// figure. A table of ours to which the user added a row is the user's now.
+// Our own tables and figure are recognised, also when the folder's name
+// holds a comma, which the csv quotes.
+TEST(StudyCommands, AUsersOwnFigureOrRowsUnderATablesNameStopTheStudy) {
+  TempDir dir;
+  const std::string portal = (kSource / "cases/demo_portal_frame.yaml").string();
+  const auto compare = [&](const fs::path& out, bool figure) {
+    std::vector<std::string> args{"compare", portal, "--window-length", "0.05", "--out", out.string()};
+    if (!figure) args.push_back("--no-figure");
+    return run_app(args, dir.path());
+  };
+  const fs::path ours = dir.path() / "frames, first look";
+  ASSERT_EQ(compare(ours, true).code, 0);
+  ASSERT_TRUE(is_png(ours / "first_storey_drift.png"));
+  ASSERT_EQ(read_csv(ours / "comparison.csv").size(), 1u);
+  const auto again = compare(ours, true);
+  EXPECT_EQ(again.code, 0) << "our own tables and figure are replaced: " << again.err;
+
+  // A row the user added to our comparison.csv.
+  const std::string table = read_text(ours / "comparison.csv");
+  const std::string with_row = table + "frame_D,completed,0.02,,,damaged (by hand)\n";
+  std::ofstream(ours / "comparison.csv", std::ios::binary) << with_row;
+  const auto row = compare(ours, false);
+  EXPECT_EQ(row.code, 3) << row.err;
+  EXPECT_NE(row.err.find((ours / "comparison.csv").string() + " is not a table or figure of an earlier framequake study"),
+            std::string::npos)
+      << row.err;
+  EXPECT_EQ(read_text(ours / "comparison.csv"), with_row);
+
+  // A user's own matplotlib figures under the names of ours.
+  const fs::path own = dir.path() / "own";
+  fs::create_directories(own);
+  for (const char* name : {"first_storey_drift.png", "sweep.png"}) {
+    const std::string draw = "/usr/bin/python3 -c \"import sys, matplotlib; matplotlib.use('Agg'); "
+                             "import matplotlib.pyplot as plt; plt.plot([0, 1]); plt.savefig(sys.argv[1])\" '" +
+                             (own / name).string() + "'";
+    ASSERT_EQ(std::system(draw.c_str()), 0) << draw;
+  }
+  const std::string figure = read_text(own / "first_storey_drift.png");
+  ASSERT_NE(figure.find("Matplotlib"), std::string::npos) << "not the figure the probe made";
+  const auto c = compare(own, true);
+  EXPECT_EQ(c.code, 3) << c.err;
+  EXPECT_NE(c.err.find("first_storey_drift.png is not a table or figure of an earlier framequake study"),
+            std::string::npos)
+      << c.err;
+  EXPECT_TRUE(read_text(own / "first_storey_drift.png") == figure) << "the user's figure was replaced";
+  const std::string sweep_figure = read_text(own / "sweep.png");
+  const auto s = run_app({"sweep", portal, "--scales", "1", "--window-length", "0.05", "--out", own.string()},
+                         dir.path());
+  EXPECT_EQ(s.code, 3) << s.err;
+  EXPECT_NE(s.err.find("sweep.png is not a table or figure of an earlier framequake study"), std::string::npos)
+      << s.err;
+  EXPECT_TRUE(read_text(own / "sweep.png") == sweep_figure) << "the user's figure was replaced";
+  EXPECT_EQ(std::distance(fs::directory_iterator(own), fs::directory_iterator()), 2) << "a run started";
 }
 
 // Ctrl-C while the figure is drawn stops the plotting process: the study
