@@ -1,5 +1,6 @@
 #include "event_csv_writer.h"
 
+#include <cerrno>
 #include <stdexcept>
 
 #include "io/atomic_file.h"
@@ -107,8 +108,14 @@ void EventCsvWriter::flush() {
 void EventCsvWriter::close() {
   if (!out_) return;
   flush();
+  // A file system may report a write it could not complete only at close
+  // (EIO on NFS, a quota): the rows are then not known to be on disk.
+  errno = 0;
   out_->close();
+  const bool closed = !out_->fail();
+  const std::string why = last_system_error();
   out_.reset();
+  if (!closed) throw std::runtime_error("cannot close '" + file_.string() + "': " + why);
 }
 
 void EventCsvWriter::abandon() noexcept {

@@ -1,5 +1,6 @@
 #include "io/history_writer.h"
 
+#include <cerrno>
 #include <cmath>
 #include <stdexcept>
 
@@ -124,8 +125,14 @@ void HistoryWriter::flush() {
 void HistoryWriter::close() {
   if (!out_) return;
   flush();
+  // A file system may report a write it could not complete only at close
+  // (EIO on NFS, a quota): the rows are then not known to be on disk.
+  errno = 0;
   out_->close();
+  const bool closed = !out_->fail();
+  const std::string why = detail::last_system_error();
   out_.reset();
+  if (!closed) throw std::runtime_error("cannot close '" + file_.string() + "': " + why);
 }
 
 void HistoryWriter::abandon() noexcept {

@@ -413,10 +413,35 @@ void RunOutput::finish(const Simulation& sim, const RunResult& result) {
   if (o.finished) throw std::logic_error("RunOutput::finish called twice");
   o.finished = true;
   // An unstable run ends without a final sample: its Instability event is
-  // only in the log.
-  o.events.write_new(sim.events());
-  o.events.close();
-  o.history.close();
+  // only in the log. Both files are closed whatever the other's fate.
+  std::string failure;
+  try {
+    o.events.write_new(sim.events());
+    o.events.close();
+  } catch (const std::runtime_error& e) {
+    failure = e.what();
+  }
+  try {
+    o.history.close();
+  } catch (const std::runtime_error& e) {
+    if (failure.empty()) failure = e.what();
+  }
+  if (!failure.empty()) {
+    // As abandon(): whole rows only where a flush failed, and a summary
+    // that does not claim the run's output complete.
+    o.history.abandon();
+    o.events.abandon();
+    RunResult reached = result;
+    reached.message = "the output could not be written: " + failure;
+    bool summary_written = true;
+    try {
+      o.write_summary(sim, reached, "output_failed");
+    } catch (const std::exception&) {
+      summary_written = false;
+    }
+    throw OutputError(failure + (summary_written ? " (summary.json says output_failed)"
+                                                 : "; summary.json could not be written either"));
+  }
   o.write_summary(sim, result);
 }
 

@@ -630,6 +630,43 @@ TEST(CliErrors, AFullStandardOutputIsAnOutputFailure) {
   EXPECT_EQ(WEXITSTATUS(ok), 0);
 }
 
+// A file system that reports a failed write only when history.csv or
+// events.csv is closed (EIO at close, made by the preloaded
+// fail_close_shim) fails the run as one at a frame or the summary does:
+// exit 3, a message naming the file and the reason, and summary.json
+// saying output_failed. It ended with exit 0 and status "completed".
+TEST(CliErrors, AFileThatFailsToCloseIsAnOutputFailure) {
+#ifndef FQ_FAIL_CLOSE_SHIM
+  GTEST_SKIP() << "no close-failing library in a sanitizer build (tests/apps/CMakeLists.txt)";
+#else
+  TempDir dir;
+  const fs::path case_file = dir.path() / "block.yaml";
+  std::ofstream(case_file) << "framequake_case: 1\n"
+                              "name: block\n"
+                              "time: {dt_s: 1.0e-4, duration_s: 0.01}\n"
+                              "materials: [{name: spruce, density_kg_per_m3: 450}]\n"
+                              "blocks: [{id: b, size_m: [0.1, 0.1, 0.1], center_m: [0, 0, 1], material: spruce}]\n";
+  for (const char* name : {"history.csv", "events.csv"}) {
+    SCOPED_TRACE(name);
+    const fs::path out = dir.path() / (std::string("out_") + name);
+    ::setenv("LD_PRELOAD", FQ_FAIL_CLOSE_SHIM, 1);
+    ::setenv("FQ_FAIL_CLOSE_SUFFIX", (out / name).c_str(), 1);
+    const auto r = run_app({"run", case_file.string(), "--out", out.string(), "--quiet"}, dir.path());
+    ::unsetenv("LD_PRELOAD");
+    ::unsetenv("FQ_FAIL_CLOSE_SUFFIX");
+    EXPECT_EQ(r.code, 3) << r.err;
+    EXPECT_NE(r.err.find("cannot close '" + (out / name).string() + "': Input/output error"), std::string::npos)
+        << r.err;
+    const std::string summary = fq_test::read_text(out / "summary.json");
+    EXPECT_NE(summary.find("\"status\": \"output_failed\""), std::string::npos) << summary;
+  }
+  // The same run without the failure completes (the case is sound).
+  const auto ok = run_app({"run", case_file.string(), "--out", (dir.path() / "out_ok").string(), "--quiet"},
+                          dir.path());
+  EXPECT_EQ(ok.code, 0) << ok.err;
+#endif
+}
+
 }  // namespace
 
 namespace {

@@ -122,6 +122,8 @@ class RunOutput {
   // Writes the events not yet written, closes history.csv and events.csv and
   // writes summary.json. Call once after run(), also after an unstable or
   // stopped run (the frames and rows up to the last good state are kept).
+  // A file that fails to flush or close throws OutputError naming it, with
+  // summary.json (where the disk takes it) saying "output_failed".
   void finish(const Simulation& sim, const RunResult& result);
   // Instead of finish() when writing failed during the run (an OutputError
   // from a frame, a history row or a checkpoint: a full disk, a folder made
