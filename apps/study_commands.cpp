@@ -531,7 +531,22 @@ bool is_our_csv_table(const std::string& name, const std::string& text) {
 // draws (figure_marker there): a tEXt chunk "Software" whose text begins
 // "framequake fq_plot.py <its file name>;". Any matplotlib figure says
 // "Matplotlib" in it, a user's own of the same name too (CLI probe: a
-// user's first_storey_drift.png was deleted).
+// user's first_storey_drift.png was deleted). A comparison figure drawn
+// before the mark existed (stop 27) is recognised by the Description
+// fq_plot.py gave it, "<case> along <direction>" for each trace, so that
+// the main job run again into its old out/compare is not refused.
+bool is_legacy_comparison_description(const std::string& text) {
+  if (text.empty()) return false;
+  for (std::size_t from = 0; from <= text.size();) {
+    const std::size_t end = std::min(text.find("; ", from), text.size());
+    const std::string item = text.substr(from, end - from);
+    const std::size_t along = item.find(" along ");
+    if (along == std::string::npos || along == 0 || along + 7 >= item.size()) return false;
+    from = end + 2;
+  }
+  return true;
+}
+
 bool is_our_figure(const fs::path& file) {
   std::ifstream in(file, std::ios::binary);
   char signature[8];
@@ -547,6 +562,9 @@ bool is_our_figure(const fs::path& file) {
       std::string data(length, '\0');
       if (!in.read(data.data(), std::streamsize(length))) break;
       if (data.rfind("Software", 0) == 0 && data.size() > 8 && data[8] == '\0' && data.compare(9, mark.size(), mark) == 0)
+        return true;
+      if (file.filename() == "first_storey_drift.png" && data.rfind("Description", 0) == 0 && data.size() > 11 &&
+          data[11] == '\0' && is_legacy_comparison_description(data.substr(12)))
         return true;
       in.seekg(4, std::ios::cur);  // the CRC
     } else {

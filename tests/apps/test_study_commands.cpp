@@ -386,6 +386,26 @@ TEST(StudyCommands, AUsersOwnFigureOrRowsUnderATablesNameStopTheStudy) {
       << s.err;
   EXPECT_TRUE(read_text(own / "sweep.png") == sweep_figure) << "the user's figure was replaced";
   EXPECT_EQ(std::distance(fs::directory_iterator(own), fs::directory_iterator()), 2) << "a run started";
+
+  // A comparison figure of the framequake before the mark (stop 27), which
+  // fq_plot.py gave the Description "<case> along <direction>" per trace,
+  // is ours: the main job run again into its old out/compare must not be
+  // refused. A figure with another Description is the user's.
+  const fs::path legacy = dir.path() / "legacy", other = dir.path() / "other";
+  for (const auto& [folder, description] : {std::pair{legacy, std::string("frame_A along x; frame_B along -y")},
+                                            std::pair{other, std::string("my own sketch")}}) {
+    fs::create_directories(folder);
+    const std::string draw = "/usr/bin/python3 -c \"import sys, matplotlib; matplotlib.use('Agg'); "
+                             "import matplotlib.pyplot as plt; plt.plot([0, 1]); "
+                             "plt.savefig(sys.argv[1], metadata={'Description': sys.argv[2]})\" '" +
+                             (folder / "first_storey_drift.png").string() + "' '" + description + "'";
+    ASSERT_EQ(std::system(draw.c_str()), 0) << draw;
+  }
+  EXPECT_EQ(compare(legacy, false).code, 0);
+  EXPECT_FALSE(fs::exists(legacy / "first_storey_drift.png")) << "the old figure of ours was kept";
+  const std::string other_figure = read_text(other / "first_storey_drift.png");
+  EXPECT_EQ(compare(other, false).code, 3);
+  EXPECT_TRUE(read_text(other / "first_storey_drift.png") == other_figure);
 }
 
 // Ctrl-C while the figure is drawn stops the plotting process: the study
