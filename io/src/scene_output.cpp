@@ -15,7 +15,10 @@ namespace {
 // member's body cell (the bodies block comes first with one cell per body,
 // so body i is cell i: vtk_frame_writer.h). 0 intact: every joint elastic
 // (or no joint); 1 yielded: a joint yielded, none broken; 2 damaged: a joint
-// broken, another still holding; 3 detached: every joint broken.
+// broken, another still holding; 3 detached: every joint broken. The
+// ground is no member: -1, the array's fill (it took the states of the
+// support joints, and a frame coloured by damage showed it "detached";
+// output probe).
 void add_member_damage(const Simulation& sim, const JointSystem& js, VtkFrameBuilder& frame) {
   const std::size_t bodies = sim.bodies().size();
   std::vector<std::int32_t> joints(bodies, 0), broken(bodies, 0), yielded(bodies, 0);
@@ -31,6 +34,7 @@ void add_member_damage(const Simulation& sim, const JointSystem& js, VtkFrameBui
   }
   const auto damage = frame.cell_array("damage_state", VtkArrayType::Int32, 1, -1);
   for (std::size_t i = 0; i < bodies; ++i) {
+    if (sim.bodies().info[i].kind == MemberKind::Ground) continue;  // stays -1
     double state = 0.0;
     if (broken[i] > 0)
       state = broken[i] == joints[i] ? 3.0 : 2.0;

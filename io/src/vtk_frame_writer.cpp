@@ -170,6 +170,7 @@ void VtkFrameWriter::add_bodies(const Simulation& sim, VtkFrameBuilder& frame) {
   const auto state = frame.cell_array("state", VtkArrayType::Int32, 1, -1.0);
   // Damage of the member: 0 here; the springs block raises it from its joints
   // (io/src/scene_output.cpp), so a scene without joints still carries it.
+  // The ground keeps the fill, -1.
   const auto damage = frame.cell_array("damage_state", VtkArrayType::Int32, 1, -1.0);
 
   // VTK_HEXAHEDRON order: bottom face 0-1-2-3 counter-clockwise seen from
@@ -194,7 +195,7 @@ void VtkFrameWriter::add_bodies(const Simulation& sim, VtkFrameBuilder& frame) {
     frame.set(vel, cell, b.velocity_mps[i]);
     frame.set(omega, cell, b.angular_velocity_radps[i]);
     frame.set(state, cell, b.is_fixed[i] ? 1.0 : 0.0);
-    frame.set(damage, cell, 0.0);
+    if (b.info[i].kind != MemberKind::Ground) frame.set(damage, cell, 0.0);  // the ground is no member: -1
     names.push_back(b.info[i].name);
   }
   frame.add_field("body_names", std::move(names));

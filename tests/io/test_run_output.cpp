@@ -1031,6 +1031,43 @@ TEST(RunOutput, AsciiFramesOfARunWithContactsReadWithoutErrors) {
   EXPECT_GT(with_contacts, 0);  // the block lands: contact cells with NaN-filled arrays on the body cells
 }
 
+// damage_state colours members by their joints; the ground is no member and
+// is left at the array's fill, -1 (it took the states of the support
+// joints, so a portal frame's ground read "yielded" and frame A's
+// "detached"; output probe). The portal demo for 0.05 s: every joint still
+// elastic, so each member is 0, intact.
+TEST(RunOutput, TheGroundHasNoDamageState) {
+  fq::test::TempDir dir;
+  fq::CaseDef def = fq::load_case_file(fs::path(FQ_SOURCE_DIR) / "cases" / "demo_portal_frame.yaml");
+  def.time.duration_s = 0.05;
+  def.output.folder = dir.path() / "out";
+  const fq::CaseRunReport report = fq::run_case(def, {});
+  ASSERT_EQ(report.result.status, fq::RunStatus::Completed);
+  bool ok = false;
+  const std::vector<PvdEntry> entries = parse_pvd(def.output.folder / "case.pvd", &ok);
+  ASSERT_TRUE(ok);
+  ASSERT_FALSE(entries.empty());
+  ReadFrame f = read_vtu(def.output.folder / entries.back().file);
+  ASSERT_EQ(f.errors, 0);
+  vtkDataArray* damage = f.grid->GetCellData()->GetArray("damage_state");
+  vtkDataArray* kind = f.grid->GetCellData()->GetArray("member_kind");
+  ASSERT_NE(damage, nullptr);
+  ASSERT_NE(kind, nullptr);
+  int ground = 0, members = 0;
+  for (vtkIdType c = 0; c < f.grid->GetNumberOfCells(); ++c) {
+    if (f.grid->GetCellType(c) != VTK_HEXAHEDRON) continue;
+    if (kind->GetTuple1(c) == double(int(fq::MemberKind::Ground))) {
+      EXPECT_EQ(damage->GetTuple1(c), -1.0) << "cell " << c;
+      ++ground;
+    } else {
+      EXPECT_EQ(damage->GetTuple1(c), 0.0) << "cell " << c;
+      ++members;
+    }
+  }
+  EXPECT_EQ(ground, 1);
+  EXPECT_GT(members, 0);
+}
+
 TEST(RunOutput, UnstableRunKeepsGoodFramesAndWritesSummaryAndEvent) {
   auto sim = make_simulation(0.1);
   sim->add_force_provider(std::make_unique<PoisonProvider>(7));
