@@ -329,7 +329,11 @@ std::string ground_motion_summary(const Simulation& sim) {
   JsonWriter w(0);
   w.begin_object().key("components").begin_array();
   for (const GroundMotionComponent& c : gm.components()) {
-    const double used_s = std::max(0.0, std::min(c.window_length_s, c.record.duration_s() - c.window_start_s));
+    // Record seconds the run applies: the window, cut by the record's end
+    // and by the run's end (a 1 s run of a 142 s window applies 1 s of it;
+    // output probe).
+    const double used_s = std::max(
+        0.0, std::min({c.window_length_s, c.record.duration_s() - c.window_start_s, duration_s / c.time_scale}));
     std::error_code ec;
     const std::filesystem::path record = c.record.source.empty()
                                              ? std::filesystem::path()
