@@ -154,7 +154,7 @@ class CheckpointObserver final : public StepObserver {
       StateWriter w;
       write_run_meta(w, meta_, sim);
       output_->save_state(sim, w);
-      storeys_->save_peaks(w);
+      storeys_->save_state(w);
       sim.save_state(w);
       write_checkpoint_file(file_, w.bytes());
     } catch (const std::exception& e) {
@@ -991,7 +991,7 @@ CaseRunReport run_case(const CaseDef& case_def, const CaseRunOptions& options) {
   }
 
   std::unique_ptr<RunOutput> writer;
-  StoreyDriftMonitor storeys(scene.storeys, def.assessment);
+  StoreyDriftMonitor storeys(scene.storeys, def.assessment, sim.settings().dt_s);
   try {
     writer = std::make_unique<RunOutput>(output, def.name);
     attach_provider_output(*writer, scene);
@@ -1088,10 +1088,10 @@ CaseRunReport resume_case(const std::filesystem::path& folder, const CaseRunOpti
   const std::vector<Vec3> initial_position_m = sim.bodies().position_m;
 
   std::unique_ptr<RunOutput> writer;
-  StoreyDriftMonitor storeys(scene.storeys, def.assessment);
+  StoreyDriftMonitor storeys(scene.storeys, def.assessment, sim.settings().dt_s);
   try {
     writer = std::make_unique<RunOutput>(RunOutput::resume(def.output, def.name, in));
-    storeys.load_peaks(in);
+    storeys.load_state(in);
     sim.load_state(in);
     if (in.remaining() != 0) in.fail(std::to_string(in.remaining()) + " bytes left over after the state");
   } catch (const StateFormatError& e) {
@@ -1110,12 +1110,6 @@ CaseRunReport resume_case(const std::filesystem::path& folder, const CaseRunOpti
     attach_provider_output(*writer, scene);
     if (!scene.storeys.empty()) attach_storey_output(*writer, storeys);
     writer->attach(sim, &initial_position_m);
-    // The final and residual drift so far are in the rows kept from before
-    // the checkpoint (the peaks were in the checkpoint), read once attach
-    // has cut history.csv back to them: the killed run's rows after the
-    // checkpoint, the last one maybe cut mid-row by the kill, made resume
-    // fail ("a row has the wrong length").
-    if (!scene.storeys.empty()) storeys.replay_history(history_path(writer->folder()));
   } catch (const std::exception& e) {
     throw OutputError(e.what());
   }

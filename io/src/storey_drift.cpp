@@ -1,9 +1,7 @@
 #include "io/storey_drift.h"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
-#include <fstream>
 #include <stdexcept>
 
 namespace fq {
@@ -96,13 +94,18 @@ Eigen::Vector2d storey_drift_m(const Storey& storey, const BodyStore& bodies) {
   return {sum.x(), sum.y()};
 }
 
-StoreyDriftMonitor::StoreyDriftMonitor(std::vector<Storey> storeys, AssessmentDef limits)
+StoreyDriftMonitor::StoreyDriftMonitor(std::vector<Storey> storeys, AssessmentDef limits, double dt_s)
     : storeys_(std::move(storeys)),
       limits_(limits),
       records_(storeys_.size()),
       drift_m_(storeys_.size(), Eigen::Vector2d::Zero()),
-      window_(storeys_.size()),
-      window_sum_(storeys_.size(), Eigen::Vector2d::Zero()) {}
+      residual_(storeys_.size()),
+      dt_s_(dt_s) {
+  if (!(dt_s > 0.0)) throw std::invalid_argument("StoreyDriftMonitor: the time step must be positive");
+  const double window_steps = std::max(1.0, std::round(kResidualDriftWindow_s / dt_s));
+  block_steps_ = std::max<std::int64_t>(1, std::int64_t(window_steps / 1000.0));
+  window_blocks_ = std::size_t(std::ceil(window_steps / double(block_steps_)));
+}
 
 void StoreyDriftMonitor::sample(const BodyStore& bodies, std::int64_t step, double time_s) {
   if (step == last_step_) return;
@@ -111,74 +114,67 @@ void StoreyDriftMonitor::sample(const BodyStore& bodies, std::int64_t step, doub
 }
 
 void StoreyDriftMonitor::track(const BodyStore& bodies, double time_s) {
-  for (std::size_t i = 0; i < storeys_.size(); ++i)
-    record_peaks(i, storey_drift_m(storeys_[i], bodies) / storeys_[i].height_m(), time_s);
-}
-
-void StoreyDriftMonitor::save_peaks(StateWriter& out) const {
-  out.section("storeys");
-  out.u64(records_.size());
-  for (const StoreyDriftRecord& r : records_) {
-    out.f64(r.peak_ratio_x_rad);
-    out.f64(r.peak_ratio_y_rad);
-    out.f64(r.peak_ratio_rad);
-    out.f64(r.peak_time_s);
-    out.f64(r.collapse_time_s);
+  for (std::size_t i = 0; i < storeys_.size(); ++i) {
+    const Eigen::Vector2d ratio = storey_drift_m(storeys_[i], bodies) / storeys_[i].height_m();
+    record_peaks(i, ratio, time_s);
+    record_residual(i, ratio);
   }
 }
 
-void StoreyDriftMonitor::load_peaks(StateReader& in) {
+void StoreyDriftMonitor::save_state(StateWriter& out) const {
+  out.section("storeys");
+  out.u64(records_.size());
+  out.i64(block_steps_);
+  for (std::size_t i = 0; i < records_.size(); ++i) {
+    const StoreyDriftRecord& r = records_[i];
+    for (const double v : {r.peak_ratio_x_rad, r.peak_ratio_y_rad, r.peak_ratio_rad, r.peak_time_s, r.collapse_time_s,
+                           r.final_ratio_x_rad, r.final_ratio_y_rad, r.residual_ratio_x_rad, r.residual_ratio_y_rad,
+                           r.residual_window_s})
+      out.f64(v);
+    out.f64(drift_m_[i].x());
+    out.f64(drift_m_[i].y());
+    const ResidualBlocks& b = residual_[i];
+    out.u64(b.sums.size());
+    for (const Eigen::Vector2d& v : b.sums) {
+      out.f64(v.x());
+      out.f64(v.y());
+    }
+    out.f64(b.total.x());
+    out.f64(b.total.y());
+    out.f64(b.open_sum.x());
+    out.f64(b.open_sum.y());
+    out.i64(b.open_steps);
+  }
+}
+
+void StoreyDriftMonitor::load_state(StateReader& in) {
   in.section("storeys");
   const std::uint64_t n = in.u64("storey count");
   if (n != records_.size())
     in.fail("the checkpoint has " + std::to_string(n) + " storeys, the case " + std::to_string(records_.size()));
-  for (StoreyDriftRecord& r : records_) {
-    r.peak_ratio_x_rad = in.f64("peak drift ratio x");
-    r.peak_ratio_y_rad = in.f64("peak drift ratio y");
-    r.peak_ratio_rad = in.f64("peak drift ratio");
-    r.peak_time_s = in.f64("peak time");
-    r.collapse_time_s = in.f64("collapse time");
-  }
-}
-
-void StoreyDriftMonitor::replay_history(const std::filesystem::path& history_csv) {
-  std::ifstream in(history_csv, std::ios::binary);
-  if (!in) throw std::runtime_error("cannot read " + history_csv.string());
-  auto split = [](const std::string& line) {
-    std::vector<std::string> cells;
-    std::size_t from = 0;
-    for (std::size_t comma; (comma = line.find(',', from)) != std::string::npos; from = comma + 1)
-      cells.push_back(line.substr(from, comma - from));
-    cells.push_back(line.substr(from));
-    return cells;
-  };
-  std::string line;
-  if (!std::getline(in, line)) return;  // empty file: nothing sampled yet
-  const std::vector<std::string> header = split(line);
-  auto column = [&](const std::string& name) {
-    const auto it = std::find(header.begin(), header.end(), name);
-    if (it == header.end()) throw std::runtime_error(history_csv.string() + " has no column " + name);
-    return std::size_t(it - header.begin());
-  };
-  const std::size_t time_col = column("time_s");
-  std::vector<std::pair<std::size_t, std::size_t>> cols;
-  for (const Storey& s : storeys_) {
-    const std::string prefix = "storey" + std::to_string(s.number) + "_drift";
-    cols.emplace_back(column(prefix + "_x_m"), column(prefix + "_y_m"));
-  }
-  auto number = [&](const std::string& text) {
-    double v = 0.0;
-    const auto res = std::from_chars(text.data(), text.data() + text.size(), v);
-    if (res.ec != std::errc() || res.ptr != text.data() + text.size())
-      throw std::runtime_error(history_csv.string() + ": '" + text + "' is not a number");
-    return v;
-  };
-  while (std::getline(in, line)) {
-    const std::vector<std::string> cells = split(line);
-    if (cells.size() != header.size()) throw std::runtime_error(history_csv.string() + ": a row has the wrong length");
-    const double t = number(cells[time_col]);
-    for (std::size_t i = 0; i < storeys_.size(); ++i)
-      record(i, Eigen::Vector2d(number(cells[cols[i].first]), number(cells[cols[i].second])), t);
+  if (in.i64("residual block") != block_steps_) in.fail("the residual's blocks are of another size");
+  for (std::size_t i = 0; i < records_.size(); ++i) {
+    StoreyDriftRecord& r = records_[i];
+    for (double* v : {&r.peak_ratio_x_rad, &r.peak_ratio_y_rad, &r.peak_ratio_rad, &r.peak_time_s, &r.collapse_time_s,
+                      &r.final_ratio_x_rad, &r.final_ratio_y_rad, &r.residual_ratio_x_rad, &r.residual_ratio_y_rad,
+                      &r.residual_window_s})
+      *v = in.f64("storey record");
+    drift_m_[i].x() = in.f64("drift x");
+    drift_m_[i].y() = in.f64("drift y");
+    ResidualBlocks& b = residual_[i];
+    const std::uint64_t blocks = in.u64("residual blocks");
+    if (blocks > window_blocks_) in.fail("more residual blocks than the window holds");
+    b.sums.clear();
+    for (std::uint64_t k = 0; k < blocks; ++k) {
+      const double x = in.f64("block sum x");
+      b.sums.emplace_back(x, in.f64("block sum y"));
+    }
+    b.total.x() = in.f64("residual total x");
+    b.total.y() = in.f64("residual total y");
+    b.open_sum.x() = in.f64("open block x");
+    b.open_sum.y() = in.f64("open block y");
+    b.open_steps = in.i64("open block steps");
+    if (b.open_steps < 0 || b.open_steps >= block_steps_) in.fail("the open residual block is out of range");
   }
 }
 
@@ -194,6 +190,29 @@ void StoreyDriftMonitor::record_peaks(std::size_t i, const Eigen::Vector2d& rati
   if (r.collapse_time_s < 0.0 && magnitude >= limits_.collapse_drift_ratio_rad) r.collapse_time_s = time_s;
 }
 
+void StoreyDriftMonitor::record_residual(std::size_t i, const Eigen::Vector2d& ratio) {
+  // A running total of the complete blocks (one add and one subtract per
+  // block): its round-off stays below 1e-16 of the largest block sum times
+  // the blocks of a run, far below any drift worth reading.
+  ResidualBlocks& b = residual_[i];
+  b.open_sum += ratio;
+  if (++b.open_steps == block_steps_) {
+    b.sums.push_back(b.open_sum);
+    b.total += b.open_sum;
+    b.open_sum.setZero();
+    b.open_steps = 0;
+    if (b.sums.size() > window_blocks_) {
+      b.total -= b.sums.front();
+      b.sums.pop_front();
+    }
+  }
+  const std::int64_t steps = std::int64_t(b.sums.size()) * block_steps_ + b.open_steps;
+  StoreyDriftRecord& r = records_[i];
+  r.residual_ratio_x_rad = (b.total.x() + b.open_sum.x()) / double(steps);
+  r.residual_ratio_y_rad = (b.total.y() + b.open_sum.y()) / double(steps);
+  r.residual_window_s = double(steps - 1) * dt_s_;
+}
+
 void StoreyDriftMonitor::record(std::size_t i, const Eigen::Vector2d& drift_m, double time_s) {
   drift_m_[i] = drift_m;
   const Eigen::Vector2d ratio = drift_ratio_rad(i);
@@ -201,21 +220,6 @@ void StoreyDriftMonitor::record(std::size_t i, const Eigen::Vector2d& drift_m, d
   StoreyDriftRecord& r = records_[i];
   r.final_ratio_x_rad = ratio.x();
   r.final_ratio_y_rad = ratio.y();
-  // Residual: the mean of the samples within the trailing window, from a
-  // running sum (one add and one subtract per sample: its round-off stays
-  // below 1e-16 of the largest ratio times the samples of a run, 1e-10 at
-  // most, far below any drift worth reading).
-  std::deque<TimedRatio>& w = window_[i];
-  Eigen::Vector2d& sum = window_sum_[i];
-  w.push_back({time_s, ratio});
-  sum += ratio;
-  while (w.front().time_s < time_s - kResidualDriftWindow_s * (1.0 - 1e-9)) {
-    sum -= w.front().ratio;
-    w.pop_front();
-  }
-  r.residual_ratio_x_rad = sum.x() / double(w.size());
-  r.residual_ratio_y_rad = sum.y() / double(w.size());
-  r.residual_window_s = time_s - w.front().time_s;
 }
 
 StoreyVerdict StoreyDriftMonitor::verdict(std::size_t i) const {

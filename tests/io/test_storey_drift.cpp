@@ -145,7 +145,7 @@ TEST(StoreyDrift, TranslatedStoreyDoesNotDrift) {
 TEST(StoreyDrift, MonitorKeepsPeaksAndJudgesByTheLimits) {
   Model model = frame_model();
   AssessmentDef limits;  // 1/30 and 1/10 rad
-  StoreyDriftMonitor monitor(find_storeys(model), limits);
+  StoreyDriftMonitor monitor(find_storeys(model), limits, 1e-5);
   const BodyId col_a1 = model.member_body[0], col_b1 = model.member_body[2], col_c = model.member_body[4];
   auto lean_storey1 = [&](double angle) {  // sets storey 1 to lean by `angle` (absolute)
     Model fresh = frame_model();
@@ -285,16 +285,17 @@ namespace fq {
 namespace {
 
 TEST(StoreyDrift, ResidualIsTheMeanOfTheLastSecondNotTheLastSample) {
-  // Storey 1 leans by theta(t) = theta0 + a sin(2 pi t / T), sampled every
-  // 1 ms for 3 s, T = 0.25 s: a sway about a permanent lean. The trailing
-  // second holds 1000 samples over exactly 4 periods, whose discrete means
+  // Storey 1 leans by theta(t) = theta0 + a sin(2 pi t / T), tracked at
+  // every step of 1 ms for 3 s (blocks of one step), T = 0.25 s: a sway
+  // about a permanent lean. The trailing second holds 1000 steps over
+  // exactly 4 periods, whose discrete means
   // are mean(sin) = 0 and mean(sin^2) = 1/2, so the mean drift ratio
   // sin(theta) is sin(theta0) (1 - a^2 / 4) up to O(a^4) (here 1e-13 of
   // it). The run ends at a crest, where the last sample is sin(theta0 + a).
   const double theta0 = 0.01, a = 1e-3, period = 0.25;
   Model model = frame_model();
   const Model fresh = frame_model();
-  StoreyDriftMonitor monitor(find_storeys(model), AssessmentDef{});
+  StoreyDriftMonitor monitor(find_storeys(model), AssessmentDef{}, 1e-3);  // steps of 1 ms
   const BodyId cols[] = {model.member_body[0], model.member_body[2], model.member_body[4]};
   const double pivots_x[] = {0.0, 0.5, 1.0};
   const int samples = 3000;
@@ -308,6 +309,7 @@ TEST(StoreyDrift, ResidualIsTheMeanOfTheLastSecondNotTheLastSample) {
     }
     model.bodies.update_rotations();
     for (int c = 0; c < 3; ++c) turn_about_y(model.bodies, cols[c], Vec3(pivots_x[c], 0, 0), theta);
+    monitor.track(model.bodies, t);
     monitor.sample(model.bodies, k, t);
   }
   const StoreyDriftRecord& r = monitor.records()[0];
@@ -315,6 +317,38 @@ TEST(StoreyDrift, ResidualIsTheMeanOfTheLastSecondNotTheLastSample) {
   EXPECT_NEAR(r.residual_ratio_x_rad, std::sin(theta0) * (1.0 - a * a / 4.0), 1e-12);
   EXPECT_NEAR(r.residual_ratio_y_rad, 0.0, 1e-15);
   EXPECT_NEAR(r.residual_window_s, 0.999, 1e-9);
+}
+
+// The residual's window in blocks of whole steps. At dt = 1e-4 s the second
+// is 10 000 steps, summed in 1000 blocks of 10. After steps 0..25 004 the
+// window holds the last 1000 complete blocks (steps 15 000..24 999) and the
+// open block (25 000..25 004): the mean of the drift ratio over steps
+// 15 000..25 004, summed here directly, step by step. The lean grows with
+// the step, theta_k = 1e-6 k, so a window off by one block would be off by
+// 1e-6 x 10 / 2 in theta, far above the 1e-12 allowed.
+TEST(StoreyDrift, ResidualIsTheMeanOverTheLastSecondsStepsInBlocks) {
+  Model model = frame_model();
+  const Model fresh = frame_model();
+  const double dt = 1e-4;
+  StoreyDriftMonitor monitor(find_storeys(model), AssessmentDef{}, dt);
+  const BodyId cols[] = {model.member_body[0], model.member_body[2], model.member_body[4]};
+  const double pivots_x[] = {0.0, 0.5, 1.0};
+  const int last = 25004, first_in_window = 15000;
+  double sum = 0.0;
+  for (int k = 0; k <= last; ++k) {
+    const double theta = 1e-6 * k;
+    for (int c = 0; c < 3; ++c) {
+      model.bodies.position_m[cols[c]] = fresh.bodies.position_m[cols[c]];
+      model.bodies.orientation[cols[c]] = fresh.bodies.orientation[cols[c]];
+    }
+    model.bodies.update_rotations();
+    for (int c = 0; c < 3; ++c) turn_about_y(model.bodies, cols[c], Vec3(pivots_x[c], 0, 0), theta);
+    monitor.track(model.bodies, dt * k);
+    if (k >= first_in_window) sum += storey_drift_m(monitor.storeys()[0], model.bodies).x() / monitor.storeys()[0].height_m();
+  }
+  const StoreyDriftRecord& r = monitor.records()[0];
+  EXPECT_NEAR(r.residual_ratio_x_rad, sum / double(last - first_in_window + 1), 1e-12);
+  EXPECT_NEAR(r.residual_window_s, dt * double(last - first_in_window), 1e-12);
 }
 
 // A run that became unstable is not assessed: summary.json gives its
@@ -403,6 +437,30 @@ double largest_storey1_ratio_of_rows(const fs::path& history) {
   return peak;
 }
 
+double mean_storey1_ratio_x_of_rows(const fs::path& history) {
+  std::ifstream in(history);
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::string> header;
+  {
+    std::stringstream h(line);
+    for (std::string cell; std::getline(h, cell, ',');) header.push_back(cell);
+  }
+  const std::size_t rx =
+      std::size_t(std::find(header.begin(), header.end(), "storey1_drift_ratio_x_rad") - header.begin());
+  EXPECT_LT(rx, header.size());
+  double sum = 0.0;
+  int rows = 0;
+  while (std::getline(in, line)) {
+    std::vector<double> v;
+    std::stringstream r(line);
+    for (std::string cell; std::getline(r, cell, ',');) v.push_back(std::stod(cell));
+    sum += v[rx];
+    ++rows;
+  }
+  return rows ? sum / rows : 0.0;
+}
+
 // Stops a run once its simulated time reaches `at_s` (asked every 1000 steps).
 class StopAt final : public StepObserver {
  public:
@@ -439,6 +497,13 @@ TEST(StoreyDrift, PeaksAreTakenAtEveryStepWhateverTheHistoryIntervalAndSurviveAR
   EXPECT_EQ(coarse_peak.peak_time_s, fine_peak.peak_time_s);
   EXPECT_LT(largest_storey1_ratio_of_rows(dir.path() / "coarse/history.csv"), reference * (1.0 - 1e-6))
       << "the 13 ms rows must miss the peak for this test to prove anything";
+  // The residual too: the run is shorter than the 1 s window, so it is the
+  // mean of the drift ratio over every step, the mean of the every-step
+  // rows (written to 9 significant digits or more).
+  const double mean_of_rows = mean_storey1_ratio_x_of_rows(dir.path() / "fine/history.csv");
+  EXPECT_NEAR(fine_peak.residual_ratio_x_rad, mean_of_rows, 1e-9 * reference);
+  EXPECT_EQ(coarse_peak.residual_ratio_x_rad, fine_peak.residual_ratio_x_rad);
+  EXPECT_EQ(coarse_peak.residual_window_s, fine_peak.residual_window_s);
 
   // Stopped after the peak, at a time no 13 ms row falls on, and resumed.
   const double stop_s = fine_peak.peak_time_s + 0.005;
@@ -459,6 +524,8 @@ TEST(StoreyDrift, PeaksAreTakenAtEveryStepWhateverTheHistoryIntervalAndSurviveAR
   ASSERT_EQ(resumed.storeys.size(), 1u);
   EXPECT_EQ(resumed.storeys[0].drift.peak_ratio_rad, reference);
   EXPECT_EQ(resumed.storeys[0].drift.peak_time_s, fine_peak.peak_time_s);
+  EXPECT_EQ(resumed.storeys[0].drift.residual_ratio_x_rad, fine_peak.residual_ratio_x_rad);
+  EXPECT_EQ(resumed.storeys[0].drift.final_ratio_x_rad, coarse_peak.final_ratio_x_rad);
 }
 
 }  // namespace

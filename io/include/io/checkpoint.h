@@ -16,7 +16,8 @@
 //              frames listed in case.pvd, byte lengths and row counts of
 //              history.csv and events.csv)
 //   "storeys"  each storey's peak drift ratios (x, y, magnitude), the time
-//              of the peak and the collapse time (StoreyDriftMonitor::save_peaks)
+//              of the peak, the collapse time, the final drift and the
+//              residual's block sums (StoreyDriftMonitor::save_state)
 //   simulation state (Simulation::save_state: bodies, ledger, events,
 //              bonded pairs, then each force provider's own state)
 // The file is written under a temporary name and renamed (atomic_file.h), so
@@ -33,8 +34,8 @@
 namespace fq {
 
 // Version 2: a CUREE spring's state holds whether it has passed delta_p.
-// Version 3: the storeys' peaks, taken at every step, follow the output
-// section.
+// Version 3: the storeys' peaks and residual, taken at every step, follow
+// the output section.
 inline constexpr std::uint32_t kCheckpointFormatVersion = 3;
 inline constexpr const char* kCheckpointFileName = "checkpoint.bin";
 
