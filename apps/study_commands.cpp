@@ -600,8 +600,12 @@ bool is_earlier_study_file(const fs::path& file) {
 // table of the earlier results beside its own runs' folders (a probe's
 // failed compare left comparison.md saying "completed"). False, with the
 // message printed, when one of them cannot be removed or is not ours
-// (is_earlier_study_file).
+// (is_earlier_study_file). Every file is checked before any is removed: a
+// study refused for one file that is not ours had already deleted the
+// tables before it (workflow probe: a user's comparison.md refused, but
+// comparison.csv gone), where the message says nothing was touched.
 bool remove_earlier_tables(const fs::path& out, const std::vector<const char*>& names) {
+  std::vector<fs::path> ours;
   for (const char* name : names) {
     std::error_code ec;
     const fs::file_status st = fs::symlink_status(out / name, ec);
@@ -617,10 +621,14 @@ bool remove_earlier_tables(const fs::path& out, const std::vector<const char*>& 
                 << "\n";
       return false;
     }
-    fs::remove(out / name, ec);
+    ours.push_back(out / name);
+  }
+  for (const fs::path& file : ours) {
+    std::error_code ec;
+    fs::remove(file, ec);
     if (ec) {
-      std::cerr << "framequake: error: cannot remove the earlier study's " << (out / name).string() << ": "
-                << ec.message() << "\n";
+      std::cerr << "framequake: error: cannot remove the earlier study's " << file.string() << ": " << ec.message()
+                << "\n";
       return false;
     }
   }

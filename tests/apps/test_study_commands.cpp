@@ -361,6 +361,19 @@ TEST(StudyCommands, AUsersOwnFigureOrRowsUnderATablesNameStopTheStudy) {
       << row.err;
   EXPECT_EQ(read_text(ours / "comparison.csv"), with_row);
 
+  // The user's own comparison.md beside our comparison.csv: refused with
+  // nothing touched, our table included (it was deleted before the
+  // refusal; workflow probe).
+  std::ofstream(ours / "comparison.csv", std::ios::binary) << table;
+  std::ofstream(ours / "comparison.md", std::ios::binary) << "# my notes on the frames\n";
+  const auto md = compare(ours, false);
+  EXPECT_EQ(md.code, 3) << md.err;
+  EXPECT_NE(md.err.find("comparison.md is not a table or figure of an earlier framequake study"), std::string::npos)
+      << md.err;
+  EXPECT_EQ(read_text(ours / "comparison.csv"), table) << "our table was removed by a study that was refused";
+  EXPECT_TRUE(fs::exists(ours / "first_storey_drift.png"));
+  EXPECT_EQ(read_text(ours / "comparison.md"), "# my notes on the frames\n");
+
   // A user's own matplotlib figures under the names of ours.
   const fs::path own = dir.path() / "own";
   fs::create_directories(own);
