@@ -303,14 +303,41 @@ constexpr int kPlotWriteFailed = 3;
 constexpr int kPlotNoMatplotlib = 4;
 constexpr int kShellCommandNotFound = 127;  // the interpreter itself is missing
 
+// Where the figure script may be: FQ_PLOT_SCRIPT, then beside the program
+// (scripts/plot/ under its folder or one or two folders up, as in a source
+// tree whose build/apps/ holds it), then the source tree it was built from.
+// Only the last was looked at (workflow probe: a copied binary next to its
+// own scripts/plot/fq_plot.py failed, after all its runs).
+std::vector<fs::path> plot_script_candidates() {
+  std::vector<fs::path> c;
+  if (const char* env = std::getenv("FQ_PLOT_SCRIPT"); env && *env) c.emplace_back(env);
+  std::error_code ec;
+  const fs::path exe_dir = fs::read_symlink("/proc/self/exe", ec).parent_path();
+  if (!ec && !exe_dir.empty())
+    for (const fs::path& dir : {exe_dir, exe_dir.parent_path(), exe_dir.parent_path().parent_path()})
+      c.push_back(dir / "scripts/plot/fq_plot.py");
+  c.push_back(fs::path(FQ_SOURCE_DIR) / "scripts/plot/fq_plot.py");
+  return c;
+}
+
+// The first candidate that is a file, or empty after saying which were tried.
+fs::path find_plot_script() {
+  const std::vector<fs::path> candidates = plot_script_candidates();
+  for (const fs::path& p : candidates) {
+    std::error_code ec;
+    if (fs::is_regular_file(p, ec)) return p;
+  }
+  std::cerr << "framequake: error: the figure script fq_plot.py was not found (looked for";
+  for (std::size_t k = 0; k < candidates.size(); ++k) std::cerr << (k ? ", " : " ") << candidates[k].string();
+  std::cerr << "); set FQ_PLOT_SCRIPT to its path, or give --no-figure (nothing was run)\n";
+  return {};
+}
+
 int run_figure(const std::string& kind, const fs::path& folder, const char* file) {
   const char* python_env = std::getenv("FQ_PYTHON");
   const std::string python = python_env && *python_env ? python_env : "/usr/bin/python3";
-  const fs::path script = fs::path(FQ_SOURCE_DIR) / "scripts/plot/fq_plot.py";
-  if (!fs::exists(script)) {
-    std::cerr << "framequake: error: plotting script not found: " << script.string() << "\n";
-    return kExitOutputFailed;
-  }
+  const fs::path script = find_plot_script();
+  if (script.empty()) return kExitOutputFailed;
   auto quoted = [](const std::string& s) {
     std::string q = "'";
     for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
@@ -662,6 +689,9 @@ bool run_jobs(const StudyArgs& args, const std::vector<fq::BatchJob>& jobs, cons
       return false;
     }
   }
+  // A figure that cannot be drawn for want of its script is said before
+  // any run, not after all of them.
+  if (args.figure && find_plot_script().empty()) return false;
   if (!prepare_folder(args.out)) return false;
   try {
     lock = fq::FolderLock(args.out);

@@ -442,6 +442,42 @@ TEST(StudyCommands, CtrlCWhileTheFigureIsDrawnIsAStopNotAFailure) {
   EXPECT_TRUE(fs::exists(cmp / "comparison.md"));
 }
 
+// The figure script is looked for where FQ_PLOT_SCRIPT says, then beside
+// the program (scripts/plot/ under its folder, or one or two up), then in
+// the source tree it was built from; only the last was tried (workflow
+// probe: a copied program beside its own scripts/plot/fq_plot.py failed,
+// after all its runs). Stand-in scripts, run by /bin/sh as FQ_PYTHON,
+// write which one was called.
+TEST(StudyCommands, TheFigureScriptIsFoundBesideTheProgramOrWhereFqPlotScriptSays) {
+  TempDir dir;
+  const std::string block = (kSource / "cases/demo_falling_block.yaml").string();
+  auto stand_in = [](const fs::path& p, const std::string& tag) {
+    fs::create_directories(p.parent_path());
+    std::ofstream(p) << "echo " << tag << " > \"$2/called.txt\"\n";
+  };
+  // A copy of the program with a script beside it.
+  const fs::path bin = dir.path() / "bin";
+  fs::create_directories(bin);
+  fs::copy_file(FQ_APP_PATH, bin / "framequake");
+  fs::permissions(bin / "framequake", fs::perms::owner_all);
+  stand_in(bin / "scripts/plot/fq_plot.py", "beside");
+  const std::string command = "FQ_PYTHON=/bin/sh '" + (bin / "framequake").string() + "' compare '" + block +
+                              "' --window-length 0.05 --out '" + (dir.path() / "o1").string() + "' > '" +
+                              (dir.path() / "o1.log").string() + "' 2>&1";
+  ASSERT_EQ(std::system(command.c_str()), 0) << read_text(dir.path() / "o1.log");
+  EXPECT_EQ(read_text(dir.path() / "o1" / "called.txt"), "beside\n");
+  // FQ_PLOT_SCRIPT first.
+  stand_in(dir.path() / "elsewhere" / "my_plot.py", "env");
+  ::setenv("FQ_PYTHON", "/bin/sh", 1);
+  ::setenv("FQ_PLOT_SCRIPT", (dir.path() / "elsewhere" / "my_plot.py").c_str(), 1);
+  const auto r = run_app({"compare", block, "--window-length", "0.05", "--out", (dir.path() / "o2").string()},
+                         dir.path());
+  ::unsetenv("FQ_PLOT_SCRIPT");
+  ::unsetenv("FQ_PYTHON");
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(read_text(dir.path() / "o2" / "called.txt"), "env\n");
+}
+
 // A figure the disk refuses (ENOSPC: its temporary file is a link to
 // /dev/full) is reported in one line naming the file and the system's
 // reason, exit 3, and leaves no temporary file; a full disk gave a 50-line
