@@ -120,12 +120,14 @@ def read_history_columns(path, names):
     return columns
 
 
-def collapse_limit(summary_path):
+def drift_limits(summary_path):
+    """(damage limit, collapse limit) of a run's assessment (rad), or None."""
     import json
 
     try:
         with open(summary_path) as f:
-            return float(json.load(f)["assessment"]["collapse_drift_ratio_rad"])
+            a = json.load(f)["assessment"]
+            return float(a["safety_drift_ratio_rad"]), float(a["collapse_drift_ratio_rad"])
     except (OSError, KeyError, ValueError, TypeError):
         return None
 
@@ -151,7 +153,10 @@ def plot_compare(folder):
         drawn.append((row, main_axis(row)))
     axes_used = sorted(set(axis for _, axis in drawn))
     fig, ax = plt.subplots()
-    limit = None
+    # Each case's own limits: the first case's were drawn for all, so a case
+    # with stricter ones was labelled collapsed beside a line its trace never
+    # reached; the damage limit was not drawn (workflow probe).
+    limits = {}  # (damage, collapse) -> cases that use them
     peak = 0.0
     for k, (row, axis) in enumerate(drawn):
         out = row["output"]
@@ -168,13 +173,20 @@ def plot_compare(folder):
         else:
             label = "%s (storey 1: %s)" % (row["case"], verdict)
         ax.plot(t, drift, color=COLOURS[k % len(COLOURS)], lw=1.0, label=label)
-        limit = limit or collapse_limit(os.path.join(out, "summary.json"))
-    if limit:
+        case_limits = drift_limits(os.path.join(out, "summary.json"))
+        if case_limits:
+            limits.setdefault(case_limits, []).append(row["case"])
+    for (damage, collapse), cases in sorted(limits.items()):
+        who = "" if len(limits) == 1 else " (%s)" % ", ".join(cases)
         for sign in (1, -1):
-            ax.axhline(sign * limit, color="0.4", ls="--", lw=0.8)
+            ax.axhline(sign * collapse, color="0.4", ls="--", lw=0.8)
+            ax.axhline(sign * damage, color="0.6", ls=":", lw=0.8)
         # At the right end: the legend sits at the upper left.
-        ax.text(ax.get_xlim()[1], limit, "collapse limit %.2f rad " % limit, va="bottom", ha="right", fontsize=8,
-                color="0.3")
+        ax.text(ax.get_xlim()[1], collapse, "collapse limit %.3g rad%s " % (collapse, who), va="bottom", ha="right",
+                fontsize=8, color="0.3")
+        ax.text(ax.get_xlim()[1], damage, "damage limit %.3g rad%s " % (damage, who), va="bottom", ha="right",
+                fontsize=8, color="0.45")
+    limit = max([c for _, c in limits] or [0.0])
     if limit and peak > 3 * limit:
         ax.set_ylim(-3 * limit, 3 * limit)  # a fallen storey would flatten the others' traces
         ax.text(0.99, 0.02, "clipped at +/- %.2f rad" % (3 * limit), transform=ax.transAxes, ha="right",

@@ -442,6 +442,46 @@ TEST(StudyCommands, CtrlCWhileTheFigureIsDrawnIsAStopNotAFailure) {
   EXPECT_TRUE(fs::exists(cmp / "comparison.md"));
 }
 
+// The compare table's footnote gives each case's own drift limits when they
+// differ (it gave the first case's for all, contradicting the row of a case
+// with stricter ones; workflow probe), and says when --window-length cut the
+// record (a verdict may change with the part of the record left out).
+TEST(StudyCommands, CompareFootnoteGivesEachCasesLimitsAndTheShortenedWindow) {
+  TempDir dir;
+  std::string strict = read_text(kSource / "cases/demo_portal_frame.yaml");
+  const std::string name = "name: demo_portal_frame", record = "file: ground_motions/";
+  ASSERT_NE(strict.find(name), std::string::npos);
+  strict.replace(strict.find(name), name.size(), "name: strict_portal");
+  strict.replace(strict.find(record), record.size(), "file: " + (kSource / "cases/ground_motions").string() + "/");
+  strict += "\nassessment: {safety_drift_ratio_rad: 0.02, collapse_drift_ratio_rad: 0.035}\n";
+  std::ofstream(dir.path() / "strict.yaml") << strict;
+  const fs::path out = dir.path() / "cmp";
+  const auto r = run_app({"compare", (kSource / "cases/demo_portal_frame.yaml").string(),
+                          (dir.path() / "strict.yaml").string(), "--window-length", "0.05", "--out", out.string(),
+                          "--no-figure"},
+                         dir.path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string md = read_text(out / "comparison.md");
+  EXPECT_NE(md.find("Verdicts: demo_portal_frame: collapsed = peak storey drift ratio >= 0.1 rad, damaged = above "
+                    "0.0333 rad, standing otherwise; strict_portal: collapsed = peak storey drift ratio >= 0.035 rad, "
+                    "damaged = above 0.0200 rad, standing otherwise"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("Ground motion cut to the first 0.05 record seconds of each case's window (--window-length)"),
+            std::string::npos)
+      << md;
+  // One case: one sentence, and no window note without --window-length.
+  const auto one = run_app({"compare", (kSource / "cases/demo_falling_block.yaml").string(), "--out",
+                            (dir.path() / "one").string(), "--no-figure"},
+                           dir.path());
+  ASSERT_EQ(one.code, 0) << one.err;
+  const std::string md1 = read_text(dir.path() / "one" / "comparison.md");
+  EXPECT_NE(md1.find("Verdicts: collapsed = peak storey drift ratio >= 0.1 rad, damaged = above 0.0333 rad"),
+            std::string::npos)
+      << md1;
+  EXPECT_EQ(md1.find("Ground motion cut"), std::string::npos) << md1;
+}
+
 // The figure script is looked for where FQ_PLOT_SCRIPT says, then beside
 // the program (scripts/plot/ under its folder, or one or two up), then in
 // the source tree it was built from; only the last was tried (workflow
