@@ -188,7 +188,14 @@ void add_storey_summary(RunOutput& output, const StoreyDriftMonitor& monitor, bo
         .value(r.peak_ratio_y_rad)
         .key("peak_time_s")
         .value(r.peak_time_s)
-        .key("residual_drift_ratio_x_rad")
+        .key("peak_column_drift_ratio_rad")
+        .value(r.peak_column_ratio_rad)
+        .key("peak_column");
+    if (r.peak_column >= 0)
+      w.value(s.column_names[std::size_t(r.peak_column)]);
+    else
+      w.null();
+    w.key("residual_drift_ratio_x_rad")
         .value(r.residual_ratio_x_rad)
         .key("residual_drift_ratio_y_rad")
         .value(r.residual_ratio_y_rad)

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
+#include <sstream>
 #include <stdexcept>
 
 namespace fq {
@@ -83,12 +85,15 @@ std::vector<Storey> find_storeys(const Model& model) {
   return storeys;
 }
 
-Eigen::Vector2d storey_drift_m(const Storey& storey, const BodyStore& bodies) {
+Eigen::Vector2d storey_drift_m(const Storey& storey, const BodyStore& bodies, std::vector<Eigen::Vector2d>* per_column) {
   Vec3 sum = Vec3::Zero();
+  if (per_column) per_column->clear();
   for (const StoreyColumn& c : storey.columns) {
     const Vec3 top = bodies.to_world(c.body, c.top_local_m) - c.top_start_m;
     const Vec3 bottom = bodies.to_world(c.body, c.bottom_local_m) - c.bottom_start_m;
-    sum += top - bottom;
+    const Vec3 drift = top - bottom;
+    if (per_column) per_column->emplace_back(drift.x(), drift.y());
+    sum += drift;
   }
   sum /= double(storey.columns.size());
   return {sum.x(), sum.y()};
@@ -115,9 +120,18 @@ void StoreyDriftMonitor::sample(const BodyStore& bodies, std::int64_t step, doub
 
 void StoreyDriftMonitor::track(const BodyStore& bodies, double time_s) {
   for (std::size_t i = 0; i < storeys_.size(); ++i) {
-    const Eigen::Vector2d ratio = storey_drift_m(storeys_[i], bodies) / storeys_[i].height_m();
+    const double height_m = storeys_[i].height_m();
+    const Eigen::Vector2d ratio = storey_drift_m(storeys_[i], bodies, &column_drift_m_) / height_m;
     record_peaks(i, ratio, time_s);
     record_residual(i, ratio);
+    StoreyDriftRecord& r = records_[i];
+    for (std::size_t c = 0; c < column_drift_m_.size(); ++c) {
+      const double column_ratio = column_drift_m_[c].norm() / height_m;
+      if (column_ratio > r.peak_column_ratio_rad) {
+        r.peak_column_ratio_rad = column_ratio;
+        r.peak_column = int(c);
+      }
+    }
   }
 }
 
@@ -129,8 +143,9 @@ void StoreyDriftMonitor::save_state(StateWriter& out) const {
     const StoreyDriftRecord& r = records_[i];
     for (const double v : {r.peak_ratio_x_rad, r.peak_ratio_y_rad, r.peak_ratio_rad, r.peak_time_s, r.collapse_time_s,
                            r.final_ratio_x_rad, r.final_ratio_y_rad, r.residual_ratio_x_rad, r.residual_ratio_y_rad,
-                           r.residual_window_s})
+                           r.residual_window_s, r.peak_column_ratio_rad})
       out.f64(v);
+    out.i64(r.peak_column);
     out.f64(drift_m_[i].x());
     out.f64(drift_m_[i].y());
     const ResidualBlocks& b = residual_[i];
@@ -157,8 +172,10 @@ void StoreyDriftMonitor::load_state(StateReader& in) {
     StoreyDriftRecord& r = records_[i];
     for (double* v : {&r.peak_ratio_x_rad, &r.peak_ratio_y_rad, &r.peak_ratio_rad, &r.peak_time_s, &r.collapse_time_s,
                       &r.final_ratio_x_rad, &r.final_ratio_y_rad, &r.residual_ratio_x_rad, &r.residual_ratio_y_rad,
-                      &r.residual_window_s})
+                      &r.residual_window_s, &r.peak_column_ratio_rad})
       *v = in.f64("storey record");
+    r.peak_column = int(in.i64("peak column"));
+    if (r.peak_column < -1 || r.peak_column >= int(storeys_[i].columns.size())) in.fail("peak column out of range");
     drift_m_[i].x() = in.f64("drift x");
     drift_m_[i].y() = in.f64("drift y");
     ResidualBlocks& b = residual_[i];
@@ -222,11 +239,27 @@ void StoreyDriftMonitor::record(std::size_t i, const Eigen::Vector2d& drift_m, d
   r.final_ratio_y_rad = ratio.y();
 }
 
-StoreyVerdict StoreyDriftMonitor::verdict(std::size_t i) const {
-  const double peak = records_[i].peak_ratio_rad;
-  if (peak >= limits_.collapse_drift_ratio_rad) return StoreyVerdict::Collapsed;
-  if (peak > limits_.safety_drift_ratio_rad) return StoreyVerdict::Damaged;
+StoreyVerdict verdict_for_peak(double peak, const AssessmentDef& limits) {
+  if (peak >= limits.collapse_drift_ratio_rad) return StoreyVerdict::Collapsed;
+  if (peak > limits.safety_drift_ratio_rad) return StoreyVerdict::Damaged;
   return StoreyVerdict::Standing;
+}
+
+StoreyVerdict StoreyDriftMonitor::verdict(std::size_t i) const {
+  return verdict_for_peak(records_[i].peak_ratio_rad, limits_);
+}
+
+std::string StoreyDriftMonitor::twist_warning(std::size_t i) const {
+  const StoreyDriftRecord& r = records_[i];
+  const StoreyVerdict storey = verdict(i), column = verdict_for_peak(r.peak_column_ratio_rad, limits_);
+  if (r.peak_column < 0 || int(column) <= int(storey)) return "";
+  const Storey& s = storeys_[i];
+  std::ostringstream w;
+  w << std::setprecision(3) << "storey " << s.number << " twists: its drift, the mean of its " << s.columns.size()
+    << " columns, peaked at " << r.peak_ratio_rad << " rad (" << storey_verdict_name(storey) << "), but column '"
+    << s.column_names[std::size_t(r.peak_column)] << "' alone drifted " << r.peak_column_ratio_rad << " rad, which would "
+    << "make it " << storey_verdict_name(column) << "; the verdict uses the mean (cases/README.md, assessment)";
+  return w.str();
 }
 
 }  // namespace fq

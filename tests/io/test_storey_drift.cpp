@@ -180,6 +180,43 @@ TEST(StoreyDrift, MonitorKeepsPeaksAndJudgesByTheLimits) {
   EXPECT_NEAR(monitor.records()[1].peak_ratio_rad, std::sin(0.2) / 3.0, 1e-12);
 }
 
+// A storey that twists: storey 1's mean drift is that of its three columns,
+// so one column leaning by 0.05 rad (drift ratio sin 0.05 = 0.04998, past
+// the 1/30 damage limit) while the other two stand gives the storey
+// 0.04998 / 3 = 0.0167 rad, standing. The column's own peak is kept and
+// named, and the warning says the column alone would make the storey
+// damaged. The same lean on all three columns gives no warning (the mean
+// then is the column's).
+TEST(StoreyDrift, AColumnPastAWorseVerdictThanItsStoreysMeanIsWarnedOf) {
+  Model model = frame_model();
+  StoreyDriftMonitor monitor(find_storeys(model), AssessmentDef{}, 1e-5);
+  const BodyId col_a1 = model.member_body[0];
+  monitor.track(model.bodies, 0.0);
+  turn_about_y(model.bodies, col_a1, Vec3(0, 0, 0), -0.05);
+  monitor.track(model.bodies, 0.1);
+  const StoreyDriftRecord& r = monitor.records()[0];
+  EXPECT_NEAR(r.peak_ratio_rad, std::sin(0.05) / 3.0, 1e-12);
+  EXPECT_EQ(monitor.verdict(0), StoreyVerdict::Standing);
+  EXPECT_NEAR(r.peak_column_ratio_rad, std::sin(0.05), 1e-12);
+  ASSERT_GE(r.peak_column, 0);
+  EXPECT_EQ(monitor.storeys()[0].column_names[std::size_t(r.peak_column)], "col_a1");
+  const std::string w = monitor.twist_warning(0);
+  EXPECT_NE(w.find("storey 1 twists: its drift, the mean of its 3 columns, peaked at 0.0167 rad (standing), but "
+                   "column 'col_a1' alone drifted 0.05 rad, which would make it damaged"),
+            std::string::npos)
+      << w;
+
+  Model even = frame_model();
+  StoreyDriftMonitor same(find_storeys(even), AssessmentDef{}, 1e-5);
+  same.track(even.bodies, 0.0);
+  turn_about_y(even.bodies, even.member_body[0], Vec3(0, 0, 0), -0.05);
+  turn_about_y(even.bodies, even.member_body[2], Vec3(0.5, 0, 0), -0.05);
+  turn_about_y(even.bodies, even.member_body[4], Vec3(1.0, 0, 0), -0.05);
+  same.track(even.bodies, 0.1);
+  EXPECT_EQ(same.verdict(0), StoreyVerdict::Damaged);
+  EXPECT_EQ(same.twist_warning(0), "");
+}
+
 TEST(StoreyDrift, AssessmentLimitsAreReadAndChecked) {
   TempDir dir;
   const CaseDef def = load_case_file(

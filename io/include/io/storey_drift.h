@@ -55,11 +55,15 @@ inline constexpr double kStoreyLevelTolerance_m = 1e-3;
 // Levels closer than kStoreyLevelTolerance_m are merged.
 std::vector<Storey> find_storeys(const Model& model);
 
-// Current drift of a storey along world x and y (m).
-Eigen::Vector2d storey_drift_m(const Storey& storey, const BodyStore& bodies);
+// Current drift of a storey along world x and y (m); with `per_column`,
+// also each column's own drift (top point relative to bottom point, m).
+Eigen::Vector2d storey_drift_m(const Storey& storey, const BodyStore& bodies,
+                               std::vector<Eigen::Vector2d>* per_column = nullptr);
 
 enum class StoreyVerdict { Standing, Damaged, Collapsed };
 const char* storey_verdict_name(StoreyVerdict v);
+// The verdict a peak drift ratio (rad) gets under `limits`.
+StoreyVerdict verdict_for_peak(double peak_ratio_rad, const AssessmentDef& limits);
 
 // Running peaks of one storey's drift ratio. The peaks, the collapse time
 // and the residual drift are taken at every step (StoreyDriftMonitor::
@@ -84,6 +88,14 @@ struct StoreyDriftRecord {
   double residual_ratio_y_rad = 0.0;
   double residual_window_s = 0.0;
   double collapse_time_s = -1.0;  // first step at or beyond the collapse limit; < 0: never
+  // The largest drift ratio magnitude any one column of the storey reached
+  // (rad), and which column (index into Storey::columns; -1: none yet).
+  // The storey's drift is the mean of its columns', so a storey that twists
+  // (one side braced, the other not) has a column well past it; the verdict
+  // uses the mean, and the run warns when a column's own peak would have
+  // given a worse one (storey_twist_warning).
+  double peak_column_ratio_rad = 0.0;
+  int peak_column = -1;
 };
 
 // Trailing window (simulated s) over which the residual drift is averaged.
@@ -127,11 +139,16 @@ class StoreyDriftMonitor {
   const Eigen::Vector2d& drift_m(std::size_t i) const { return drift_m_[i]; }
   Eigen::Vector2d drift_ratio_rad(std::size_t i) const { return drift_m_[i] / storeys_[i].height_m(); }
   StoreyVerdict verdict(std::size_t i) const;
+  // The warning for storey i when one of its columns alone drifted far
+  // enough for a worse verdict than the storey's mean gives (a storey that
+  // twists); empty otherwise.
+  std::string twist_warning(std::size_t i) const;
 
  private:
   void record(std::size_t i, const Eigen::Vector2d& drift_m, double time_s);
   void record_peaks(std::size_t i, const Eigen::Vector2d& ratio, double time_s);
   void record_residual(std::size_t i, const Eigen::Vector2d& ratio);
+  std::vector<Eigen::Vector2d> column_drift_m_;  // scratch of track()
 
   std::vector<Storey> storeys_;
   AssessmentDef limits_;
