@@ -81,7 +81,7 @@ const char* kSweepHelp =
     "                                  failure, broken joints\n"
     "  DIR/collapse_scales.csv, .md    per case and record: the smallest scale at which a\n"
     "                                  storey collapsed (from the runs that completed)\n"
-    "  DIR/sweep.png                   peak first-storey drift ratio against PGA\n"
+    "  DIR/sweep.png                   peak drift ratio of the largest storey against PGA\n"
     "An earlier study's tables and figure in DIR are removed before the runs start;\n"
     "a file of the same name that no study of ours wrote stops the study.\n"
     "\n"

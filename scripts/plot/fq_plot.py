@@ -206,6 +206,25 @@ def plot_compare(folder):
                 metadata={"Description": "; ".join("%s along %s" % (row["case"], axis) for row, axis in drawn)})
 
 
+def largest_storey_peak(row):
+    """The largest peak drift ratio over a run's storeys, and which storey."""
+    best, which = 0.0, 1
+    k = 1
+    while "storey%d_peak_drift_ratio_rad" % k in row:
+        value = row["storey%d_peak_drift_ratio_rad" % k]
+        if value and number(value) > best:
+            best, which = number(value), k
+        k += 1
+    return best, which
+
+
+# Colours that stay apart (no two greens), one per case; the records are
+# told apart by the line's style.
+CASE_COLOURS = ["#c0392b", "#2471a3", "#1e8449", "#b9770e", "#6c3483", "#17a2b8", "#7b7d7d", "#e67e22", "#000000",
+                "#e84393"]
+RECORD_STYLES = ["-", "--", ":", "-."]
+
+
 def plot_sweep(folder):
     rows = read_csv(os.path.join(folder, "sweep.csv"))
     series = {}
@@ -214,29 +233,39 @@ def plot_sweep(folder):
         if row.get("status") in ("failed", "unstable", None, ""):
             continue
         key = (row["case"], row["record"])
+        # The largest storey's, not the first's only: a braced first storey
+        # moves the damage up, which a first-storey plot hid (workflow probe).
         series.setdefault(key, []).append(
-            (number(row["pga_mps2"]), number(row["storey1_peak_drift_ratio_rad"]), row["collapsed"] == "1"))
+            (number(row["pga_mps2"]), largest_storey_peak(row)[0], row["collapsed"] == "1"))
     if not series:
         fail("no completed runs in sweep.csv")
-    fig, ax = plt.subplots()
-    for k, (key, points) in enumerate(sorted(series.items())):
+    cases = sorted(set(case for case, _ in series))
+    records = sorted(set(record for _, record in series))
+    fig, ax = plt.subplots(figsize=(8.5, 4.8))
+    for key, points in sorted(series.items()):
         points.sort()
-        colour = COLOURS[k % len(COLOURS)]
+        colour = CASE_COLOURS[cases.index(key[0]) % len(CASE_COLOURS)]
+        style = RECORD_STYLES[records.index(key[1]) % len(RECORD_STYLES)]
         x = [p[0] / 9.80665 for p in points]
         y = [max(p[1], 1e-5) for p in points]
-        ax.plot(x, y, color=colour, lw=1.0, label="%s, %s" % key)
+        ax.plot(x, y, color=colour, ls=style, lw=1.2, label="%s, %s" % key)
         ax.scatter([xi for xi, p in zip(x, points) if p[2]], [yi for yi, p in zip(y, points) if p[2]],
                    color=colour, marker="x", s=40, zorder=3)
         ax.scatter([xi for xi, p in zip(x, points) if not p[2]], [yi for yi, p in zip(y, points) if not p[2]],
                    facecolors="none", edgecolors=colour, marker="o", s=30, zorder=3)
     ax.set_yscale("log")
     ax.set_xlabel("peak ground acceleration (g)")
-    ax.set_ylabel("peak first-storey drift ratio (rad)")
-    ax.set_title("Amplitude sweep: x = a storey collapsed, o = none collapsed (standing or damaged)")
-    ax.legend(loc="lower right", fontsize=8)
+    ax.set_ylabel("peak storey drift ratio, largest storey (rad)")
+    ax.set_title("Amplitude sweep: x = a storey collapsed, o = none collapsed", fontsize=11)
+    # Beside the axes, where it covers no point (it sat on the high-PGA
+    # points; workflow probe).
+    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8, borderaxespad=0.0)
     fig.tight_layout()
     target = os.path.join(folder, "sweep.png")
-    save_figure(fig, target)
+    # What each series shows, in the PNG's Description text (read by the tests).
+    save_figure(fig, target, metadata={"Description": "; ".join(
+        "%s, %s: %s" % (key[0], key[1], " ".join("%.4g" % p[1] for p in sorted(points)))
+        for key, points in sorted(series.items()))})
 
 
 def plot_stability(csv_path):

@@ -482,6 +482,26 @@ TEST(StudyCommands, CompareFootnoteGivesEachCasesLimitsAndTheShortenedWindow) {
   EXPECT_EQ(md1.find("Ground motion cut"), std::string::npos) << md1;
 }
 
+// The sweep figure plots each run's largest storey, not its first only (a
+// braced first storey moves the damage up, which the figure hid; workflow
+// probe). A sweep.csv of two runs whose second storey drifts more: the
+// series drawn (the PNG's Description, written by fq_plot.py) holds the
+// second storey's peaks.
+TEST(StudyCommands, TheSweepFigurePlotsTheLargestStorey) {
+  TempDir dir;
+  std::ofstream(dir.path() / "sweep.csv")
+      << "case,record,scale,pga_mps2,pga_g,status,collapsed,storey1_peak_drift_ratio_rad,storey1_verdict,"
+         "storey2_peak_drift_ratio_rad,storey2_verdict\n"
+         "braced,kobe,0.5,4.0,0.41,completed,0,0.005,standing,0.031,standing\n"
+         "braced,kobe,1,8.0,0.82,completed,0,0.006,standing,0.045,damaged\n";
+  const std::string command = "/usr/bin/python3 '" + (kSource / "scripts/plot/fq_plot.py").string() + "' sweep '" +
+                              dir.path().string() + "' && /usr/bin/python3 -c \"import sys; from PIL import Image; "
+                              "print(Image.open(sys.argv[1]).info['Description'])\" '" +
+                              (dir.path() / "sweep.png").string() + "' > '" + (dir.path() / "d.txt").string() + "'";
+  ASSERT_EQ(std::system(command.c_str()), 0) << command;
+  EXPECT_EQ(read_text(dir.path() / "d.txt"), "braced, kobe: 0.031 0.045\n");
+}
+
 // The figure script is looked for where FQ_PLOT_SCRIPT says, then beside
 // the program (scripts/plot/ under its folder, or one or two up), then in
 // the source tree it was built from; only the last was tried (workflow
