@@ -400,10 +400,18 @@ RenderReport render_runs(const std::vector<RunData>& runs, const RenderOptions& 
     } else if (ext != ".gif") {
       throw RenderInputError("'" + options.animation.string() + "': the animation must end in .gif or .mp4");
     }
+    // A missing folder is made, as run, compare and sweep make theirs (it
+    // was refused: workflow probe); a file in its place is refused.
     const fs::path parent = options.animation.parent_path();
-    if (!parent.empty() && !fs::is_directory(parent))
-      throw RenderInputError("'" + parent.string() + "' (folder of the animation file) " +
-                             (fs::exists(parent) ? "is a file, not a folder" : "does not exist"));
+    if (!parent.empty() && !fs::is_directory(parent)) {
+      std::error_code ec;
+      if (fs::exists(parent, ec))
+        throw RenderInputError("'" + parent.string() + "' (folder of the animation file) is a file, not a folder");
+      fs::create_directories(parent, ec);
+      if (ec)
+        throw RenderInputError("'" + parent.string() + "' (folder of the animation file) cannot be made: " +
+                               ec.message());
+    }
   }
 
   RenderReport report;

@@ -363,6 +363,13 @@ TEST(RenderRun, BadUsageEndsWithAClearMessageAndWritesNothing) {
                     &err),
             2);
   EXPECT_NE(err.find("(folder of the animation file) is a file, not a folder"), std::string::npos) << err;
+  // A folder that is not there yet is made, as run, compare and sweep make
+  // theirs (it was refused; workflow probe).
+  EXPECT_EQ(run_app({"render", run.string(), "--to", (dir.path() / "new" / "deeper" / "r.gif").string()}, dir.path(),
+                    &out, &err),
+            0)
+      << err;
+  EXPECT_TRUE(fs::is_regular_file(dir.path() / "new" / "deeper" / "r.gif"));
   // A frame cut short: one line naming it, without VTK's own dozen lines
   // of parser and pipeline errors before it (CLI probe), and no animation.
   const fs::path frame = run / "frames" / "frame_000001.vtu";
