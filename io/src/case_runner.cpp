@@ -1146,8 +1146,26 @@ void describe_case(const CaseDef& def, std::ostream& out) {
   out << "bodies      " << bodies.size() << " (" << free_bodies << " free, " << bodies.size() - free_bodies
       << " fixed)\n";
   out << "total mass  " << total_mass << " kg (free bodies)\n";
-  if (scene.joints)
+  if (scene.joints) {
     out << "joints      " << scene.joints->joint_count() << " (" << scene.joints->spring_count() << " springs)\n";
+    // How many joints of each type, in the order the types first occur: a
+    // retrofit (a stronger foot joint) shows here (info of a retrofitted
+    // frame read the same as the original's; workflow probe).
+    std::vector<std::pair<std::string, int>> by_type;
+    for (const std::string& type : scene.joint_types) {
+      auto it = std::find_if(by_type.begin(), by_type.end(), [&](const auto& p) { return p.first == type; });
+      if (it == by_type.end())
+        by_type.emplace_back(type, 1);
+      else
+        ++it->second;
+    }
+    if (!by_type.empty()) {
+      out << "            by type:";
+      for (std::size_t k = 0; k < by_type.size(); ++k)
+        out << (k ? ", " : " ") << by_type[k].first << " " << by_type[k].second;
+      out << "\n";
+    }
+  }
   if (!scene.storeys.empty()) {
     // What the run's drifts and verdicts will be taken over (io/storey_drift.h).
     // One line each, with the columns: a post meant as a roof strut shows
@@ -1160,6 +1178,8 @@ void describe_case(const CaseDef& def, std::ostream& out) {
       for (std::size_t c = 0; c < st.column_names.size(); ++c) out << (c ? ", " : " ") << st.column_names[c];
       out << "\n";
     }
+    out << "            verdicts: damaged above " << def.assessment.safety_drift_ratio_rad
+        << " rad, collapsed from " << def.assessment.collapse_drift_ratio_rad << " rad of peak drift ratio (assessment)\n";
   }
   if (const std::string w = nodes_inside_members_warning(def); !w.empty()) out << "warning     " << w << "\n";
   if (const std::string w = near_nodes_warning(def); !w.empty()) out << "warning     " << w << "\n";

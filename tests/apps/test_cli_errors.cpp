@@ -717,9 +717,19 @@ TEST(CliErrors, InfoListsJointsAndStoreysAndWarnsOfANodeInsideAMember) {
   const auto info = run_app({"info", frame_b.string()}, dir.path());
   EXPECT_EQ(info.code, 0) << info.err;
   EXPECT_NE(info.out.find("joints      24 (288 springs)"), std::string::npos) << info.out;
+  // The joints by type (frame B's 24 are all tenon_new: default and
+  // support type, cases/frame_B.yaml) and frame C's braces beside them, so
+  // a retrofit shows; and the drift limits the verdicts will use (the
+  // defaults, 1/30 and 1/10 rad).
+  EXPECT_NE(info.out.find("            by type: tenon_new 24\n"), std::string::npos) << info.out;
+  EXPECT_NE(info.out.find("            verdicts: damaged above 0.0333333 rad, collapsed from 0.1 rad"), std::string::npos)
+      << info.out;
+  const auto info_c = run_app({"info", (fs::path(FQ_SOURCE_DIR) / "cases" / "frame_C.yaml").string()}, dir.path());
+  EXPECT_NE(info_c.out.find("            by type: tenon_new 24, brace_end 4\n"), std::string::npos) << info_c.out;
   EXPECT_NE(info.out.find("storeys     2\n"
                           "            1 from z = 0 to 0.29 m, 4 columns: column1_se, column1_ne, column1_sw, column1_nw\n"
-                          "            2 from z = 0.29 to 0.58 m, 4 columns: column2_se, column2_ne, column2_sw, column2_nw\n"),
+                          "            2 from z = 0.29 to 0.58 m, 4 columns: column2_se, column2_ne, column2_sw, column2_nw\n"
+                          "            verdicts:"),
             std::string::npos)
       << info.out;
   EXPECT_EQ(info.out.find("warning"), std::string::npos) << info.out;
