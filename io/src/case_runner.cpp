@@ -470,7 +470,7 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
       for (const std::string& w : report.warnings) list.value(w);
       writer.add_summary_field("warnings", list.end_array().str());
     }
-    if (scene.joints) add_joint_summary(writer, *scene.joints, sim.events());
+    if (scene.joints) add_joint_summary(writer, *scene.joints, sim.events(), scene.joint_labels);
     if (!scene.storeys.empty())
       add_storey_summary(writer, storeys, report.result.status != RunStatus::Unstable);
     char hash[19];
@@ -491,6 +491,7 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
     report.joint_count = scene.joints->joint_count();
   }
   report.first_joint_failure_time_s = first_joint_failure_time_s(sim.events());
+  report.first_joint_failure = first_joint_failure_label(sim.events(), scene.joint_labels);
   report.energy_balance_error_relative = sim.ledger().balance_error_relative();
   // What the run felt: up to its duration, not the whole window.
   report.peak_ground_acceleration_mps2 = sim.ground_motion().peak_horizontal_mps2(sim.settings().duration_s);

@@ -119,13 +119,24 @@ void attach_base_force_output(RunOutput& output, const JointSystem* joints, cons
   output.add_history_column("base_reaction_z_N", [base_force](const Simulation& sim) { return base_force(sim).z(); });
 }
 
-void add_joint_summary(RunOutput& output, const JointSystem& joints, const EventLog& events) {
+void add_joint_summary(RunOutput& output, const JointSystem& joints, const EventLog& events,
+                       const std::vector<std::string>& labels) {
   const JointCounts c = joints.counts();
   std::ostringstream counts;
   counts << "{\"total\": " << joints.joint_count() << ", \"intact\": " << c.intact << ", \"yielded\": " << c.yielded
          << ", \"broken\": " << c.broken << "}";
   output.add_summary_field("joints", counts.str());
   output.add_summary_field("first_joint_failure_time_s", JsonWriter::number(first_joint_failure_time_s(events)));
+  const std::string first = first_joint_failure_label(events, labels);
+  output.add_summary_field("first_joint_failure", first.empty() ? std::string("null") : JsonWriter::quote(first));
+}
+
+std::string first_joint_failure_label(const EventLog& events, const std::vector<std::string>& labels) {
+  for (const Event& e : events.all())
+    if (e.kind == EventKind::SpringDeleted || e.kind == EventKind::JointBroken)
+      return e.joint_id >= 0 && std::size_t(e.joint_id) < labels.size() ? labels[std::size_t(e.joint_id)]
+                                                                         : "joint " + std::to_string(e.joint_id);
+  return "";
 }
 
 double first_joint_failure_time_s(const EventLog& events) {

@@ -21,10 +21,16 @@ void attach_joint_output(RunOutput& output, const JointSystem& joints);
 
 // Summary fields: joint counts at the end and the time of the first joint
 // failure (first spring deletion or joint break; null when none).
-void add_joint_summary(RunOutput& output, const JointSystem& joints, const EventLog& events);
+// `labels`: each joint's label (Scene::joint_labels), for naming the first
+// joint to fail.
+void add_joint_summary(RunOutput& output, const JointSystem& joints, const EventLog& events,
+                       const std::vector<std::string>& labels);
 
 // Time of the first spring deletion or joint break (NaN when none).
 double first_joint_failure_time_s(const EventLog& events);
+// The label of the first joint to fail (a spring deleted or the joint
+// broken), "" when none failed: where a frame is weakest.
+std::string first_joint_failure_label(const EventLog& events, const std::vector<std::string>& labels);
 
 // History columns storeyK_drift_{x,y}_m and storeyK_drift_ratio_{x,y}_rad
 // per storey; each row samples the monitor first (it ignores repeats).

@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <map>
 #include <regex>
 #include <sstream>
@@ -500,6 +501,35 @@ TEST(StudyCommands, TheSweepFigurePlotsTheLargestStorey) {
                               (dir.path() / "sweep.png").string() + "' > '" + (dir.path() / "d.txt").string() + "'";
   ASSERT_EQ(std::system(command.c_str()), 0) << command;
   EXPECT_EQ(read_text(dir.path() / "d.txt"), "braced, kobe: 0.031 0.045\n");
+}
+
+// The weak point: comparison.md and each summary.json name the first joint
+// to fail and when (events.csv gives joint and body numbers only; workflow
+// probe). The breaking-cantilever demo: its first spring deletion in
+// events.csv (the reference) is at the joint of the column and the arm.
+TEST(StudyCommands, TheFirstJointToFailIsNamed) {
+  TempDir dir;
+  const fs::path out = dir.path() / "cmp";
+  const auto r = run_app({"compare", (kSource / "cases/demo_breaking_cantilever.yaml").string(), "--out", out.string(),
+                          "--no-figure"},
+                         dir.path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::stringstream events(read_text(out / "demo_breaking_cantilever" / "events.csv"));
+  std::string line, time_s;
+  while (std::getline(events, line))
+    if (line.find(",spring_deleted,") != std::string::npos) {
+      time_s = line.substr(0, line.find(','));
+      break;
+    }
+  ASSERT_FALSE(time_s.empty()) << "the demo must break a joint";
+  const std::string label = "node top: column column - beam arm (type weak_tenon)";
+  const std::string md = read_text(out / "comparison.md");
+  std::ostringstream expected;
+  expected << "- demo_breaking_cantilever: " << label << " at t = " << std::fixed << std::setprecision(3)
+           << std::stod(time_s) << " s";
+  EXPECT_NE(md.find(expected.str()), std::string::npos) << md;
+  EXPECT_NE(read_text(out / "demo_breaking_cantilever" / "summary.json").find("\"first_joint_failure\": \"" + label + "\""),
+            std::string::npos);
 }
 
 // The figure script is looked for where FQ_PLOT_SCRIPT says, then beside
