@@ -450,7 +450,8 @@ std::string swaying_column_case(const fs::path& out, double history_interval_s) 
          "output: {folder: " + out.string() + ", frame_interval_s: 1.0, history_interval_s: " + interval.str() + "}\n";
 }
 
-double largest_storey1_ratio_of_rows(const fs::path& history) {
+// Storey 1's drift ratio (x, y) of every row of a history.csv.
+std::vector<Eigen::Vector2d> storey1_ratio_rows(const fs::path& history) {
   std::ifstream in(history);
   std::string line;
   std::getline(in, line);
@@ -464,38 +465,27 @@ double largest_storey1_ratio_of_rows(const fs::path& history) {
   };
   const std::size_t rx = column("storey1_drift_ratio_x_rad"), ry = column("storey1_drift_ratio_y_rad");
   EXPECT_LT(std::max(rx, ry), header.size());
-  double peak = 0.0;
+  std::vector<Eigen::Vector2d> rows;
   while (std::getline(in, line)) {
     std::vector<double> v;
     std::stringstream r(line);
     for (std::string cell; std::getline(r, cell, ',');) v.push_back(std::stod(cell));
-    peak = std::max(peak, std::hypot(v[rx], v[ry]));
+    rows.emplace_back(v[rx], v[ry]);
   }
+  return rows;
+}
+
+double largest_storey1_ratio_of_rows(const fs::path& history) {
+  double peak = 0.0;
+  for (const Eigen::Vector2d& r : storey1_ratio_rows(history)) peak = std::max(peak, std::hypot(r.x(), r.y()));
   return peak;
 }
 
 double mean_storey1_ratio_x_of_rows(const fs::path& history) {
-  std::ifstream in(history);
-  std::string line;
-  std::getline(in, line);
-  std::vector<std::string> header;
-  {
-    std::stringstream h(line);
-    for (std::string cell; std::getline(h, cell, ',');) header.push_back(cell);
-  }
-  const std::size_t rx =
-      std::size_t(std::find(header.begin(), header.end(), "storey1_drift_ratio_x_rad") - header.begin());
-  EXPECT_LT(rx, header.size());
+  const std::vector<Eigen::Vector2d> rows = storey1_ratio_rows(history);
   double sum = 0.0;
-  int rows = 0;
-  while (std::getline(in, line)) {
-    std::vector<double> v;
-    std::stringstream r(line);
-    for (std::string cell; std::getline(r, cell, ',');) v.push_back(std::stod(cell));
-    sum += v[rx];
-    ++rows;
-  }
-  return rows ? sum / rows : 0.0;
+  for (const Eigen::Vector2d& r : rows) sum += r.x();
+  return rows.empty() ? 0.0 : sum / double(rows.size());
 }
 
 // Stops a run once its simulated time reaches `at_s` (asked every 1000 steps).
