@@ -325,7 +325,10 @@ std::string checkpoint_count_note(double every_s, const Simulation& sim) {
 std::string ground_motion_summary(const Simulation& sim) {
   const GroundMotion& gm = sim.ground_motion();
   if (gm.empty()) return "null";
-  const double duration_s = sim.settings().duration_s;
+  // Up to where the run got: its end, or where it was stopped or blew up
+  // (a stopped run reported the motion it had not yet felt; new-features
+  // probe).
+  const double duration_s = std::min(sim.settings().duration_s, sim.time_s());
   JsonWriter w(0);
   w.begin_object().key("components").begin_array();
   for (const GroundMotionComponent& c : gm.components()) {
@@ -395,7 +398,6 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
     v << std::setprecision(17) << scene.stable_time_step.dt_crit_s;
     writer.add_summary_field("stable_dt_s", std::isfinite(scene.stable_time_step.dt_crit_s) ? v.str() : "null");
     writer.add_summary_field("integrator", std::string("\"") + integrator_name(sim.settings().integrator) + "\"");
-    writer.add_summary_field("ground_motion", ground_motion_summary(sim));
   }
 
   CaseRunReport report;
@@ -441,6 +443,7 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
   } catch (const OutputError& e) {
     // A frame, a row or a checkpoint could not be written: the folder is
     // left with whole rows and a summary saying so (where the disk allows).
+    writer.add_summary_field("ground_motion", ground_motion_summary(sim));
     const bool summary_written = writer.abandon(sim, e.what());
     std::ostringstream m;
     m << e.what() << " (the run ended at t = " << sim.time_s() << " s; the rows and frames before it are kept"
@@ -470,6 +473,7 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
       for (const std::string& w : report.warnings) list.value(w);
       writer.add_summary_field("warnings", list.end_array().str());
     }
+    writer.add_summary_field("ground_motion", ground_motion_summary(sim));
     if (scene.joints) add_joint_summary(writer, *scene.joints, sim.events(), scene.joint_labels);
     if (!scene.storeys.empty())
       add_storey_summary(writer, storeys, report.result.status != RunStatus::Unstable);
@@ -493,8 +497,10 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
   report.first_joint_failure_time_s = first_joint_failure_time_s(sim.events());
   report.first_joint_failure = first_joint_failure_label(sim.events(), scene.joint_labels);
   report.energy_balance_error_relative = sim.ledger().balance_error_relative();
-  // What the run felt: up to its duration, not the whole window.
-  report.peak_ground_acceleration_mps2 = sim.ground_motion().peak_horizontal_mps2(sim.settings().duration_s);
+  // What the run felt: up to its end (or where it stopped), not the whole
+  // window.
+  report.peak_ground_acceleration_mps2 =
+      sim.ground_motion().peak_horizontal_mps2(std::min(sim.settings().duration_s, sim.time_s()));
   report.wall_s = report.result.wall_s;
   return report;
 }

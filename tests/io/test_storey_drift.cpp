@@ -501,6 +501,34 @@ class StopAt final : public StepObserver {
   std::atomic<bool>* stop_;
 };
 
+// A run stopped early felt the ground motion only up to the stop: its
+// summary's ground_motion block and its report's PGA say so (they gave the
+// planned window; new-features probe). A ramp record a(t) = 10 t m/s^2
+// over 0.3 s, the run stopped at 0.05 s: 0.05 record seconds applied, peak
+// 0.5 m/s^2.
+TEST(StoreyDrift, AStoppedRunReportsTheGroundMotionItFelt) {
+  TempDir dir;
+  {
+    std::ofstream record(dir.path() / "shake.txt");
+    for (int k = 0; k <= 300; ++k) record << 0.001 * k << " " << 0.01 * k << "\n";
+  }
+  std::atomic<bool> stop{false};
+  StopAt stopper(0.05, &stop);
+  CaseRunOptions options;
+  options.progress = &stopper;
+  options.stop_requested = &stop;
+  const CaseRunReport r =
+      run_case(load_case_file(dir.write("ramp.yaml", swaying_column_case(dir.path() / "out", 0.01))), options);
+  ASSERT_EQ(r.result.status, RunStatus::Stopped);
+  ASSERT_NEAR(r.result.simulated_s, 0.05, 1e-12);
+  EXPECT_NEAR(r.peak_ground_acceleration_mps2, 0.5, 1e-9);
+  std::ifstream in(dir.path() / "out" / "summary.json");
+  std::stringstream summary;
+  summary << in.rdbuf();
+  EXPECT_NE(summary.str().find("\"window_length_s\":0.05}"), std::string::npos) << summary.str();
+  EXPECT_NE(summary.str().find("\"peak_horizontal_mps2\":0.5,"), std::string::npos) << summary.str();
+}
+
 TEST(StoreyDrift, PeaksAreTakenAtEveryStepWhateverTheHistoryIntervalAndSurviveAResume) {
   TempDir dir;
   {
