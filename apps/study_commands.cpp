@@ -322,6 +322,15 @@ std::vector<fs::path> plot_script_candidates() {
 
 // The first candidate that is a file, or empty after saying which were tried.
 fs::path find_plot_script() {
+  // A script named by FQ_PLOT_SCRIPT must be there: falling back to
+  // another copy without a word hid the mistake (new-features probe).
+  if (const char* env = std::getenv("FQ_PLOT_SCRIPT"); env && *env) {
+    std::error_code ec;
+    if (fs::is_regular_file(env, ec)) return env;
+    std::cerr << "framequake: error: FQ_PLOT_SCRIPT names '" << env
+              << "', which is not a file; point it at fq_plot.py, unset it, or give --no-figure (nothing was run)\n";
+    return {};
+  }
   const std::vector<fs::path> candidates = plot_script_candidates();
   for (const fs::path& p : candidates) {
     std::error_code ec;
@@ -377,6 +386,14 @@ int run_figure(const std::string& kind, const fs::path& folder, const char* file
   if (status != 0) {
     std::cerr << "framequake: error: the figure could not be drawn: " << command << " exited with status " << code
               << " (its message is above). The tables are written.\n";
+    return kExitOutputFailed;
+  }
+  // A script that ended well without writing the figure (another script
+  // under FQ_PLOT_SCRIPT): the figure was announced all the same
+  // (new-features probe).
+  if (std::error_code ec; !fs::is_regular_file(folder / file, ec)) {
+    std::cerr << "framequake: error: " << command << " ended without writing " << (folder / file).string()
+              << ". The tables are written.\n";
     return kExitOutputFailed;
   }
   return kExitOk;
@@ -809,15 +826,22 @@ int command_compare(int argc, char** argv, const std::atomic<bool>* stop_request
   for (std::size_t i = 0; i < outcomes.size(); ++i)
     if (outcomes[i].ok) assessed.push_back(i);
   if (!assessed.empty()) {
+    // Six significant digits, and limits compared exactly: two limits
+    // that printed alike at four decimals were merged while one row said
+    // damaged and the other standing at the same printed peak
+    // (new-features probe).
     auto limits_text = [](const fq::AssessmentDef& a) {
       std::ostringstream t;
-      t << "collapsed = peak storey drift ratio >= " << a.collapse_drift_ratio_rad << " rad, damaged = above "
-        << fixed(a.safety_drift_ratio_rad, 4) << " rad, standing otherwise";
+      t << std::setprecision(6) << "collapsed = peak storey drift ratio >= " << a.collapse_drift_ratio_rad
+        << " rad, damaged = above " << a.safety_drift_ratio_rad << " rad, standing otherwise";
       return t.str();
     };
-    const std::string first = limits_text(outcomes[assessed.front()].report.assessment);
+    const fq::AssessmentDef& a0 = outcomes[assessed.front()].report.assessment;
+    const std::string first = limits_text(a0);
     const bool shared = std::all_of(assessed.begin(), assessed.end(), [&](std::size_t i) {
-      return limits_text(outcomes[i].report.assessment) == first;
+      const fq::AssessmentDef& a = outcomes[i].report.assessment;
+      return a.safety_drift_ratio_rad == a0.safety_drift_ratio_rad &&
+             a.collapse_drift_ratio_rad == a0.collapse_drift_ratio_rad;
     });
     md << "\nVerdicts: ";
     if (shared) {

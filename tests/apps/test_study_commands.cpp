@@ -445,8 +445,10 @@ TEST(StudyCommands, CtrlCWhileTheFigureIsDrawnIsAStopNotAFailure) {
 
 // The compare table's footnote gives each case's own drift limits when they
 // differ (it gave the first case's for all, contradicting the row of a case
-// with stricter ones; workflow probe), and says when --window-length cut the
-// record (a verdict may change with the part of the record left out).
+// with stricter ones; workflow probe), even when they differ only past the
+// fourth decimal (1/30 against 0.03334 were merged as 0.0333; new-features
+// probe), and says when --window-length cut the record (a verdict may
+// change with the part of the record left out).
 TEST(StudyCommands, CompareFootnoteGivesEachCasesLimitsAndTheShortenedWindow) {
   TempDir dir;
   std::string strict = read_text(kSource / "cases/demo_portal_frame.yaml");
@@ -454,7 +456,7 @@ TEST(StudyCommands, CompareFootnoteGivesEachCasesLimitsAndTheShortenedWindow) {
   ASSERT_NE(strict.find(name), std::string::npos);
   strict.replace(strict.find(name), name.size(), "name: strict_portal");
   strict.replace(strict.find(record), record.size(), "file: " + (kSource / "cases/ground_motions").string() + "/");
-  strict += "\nassessment: {safety_drift_ratio_rad: 0.02, collapse_drift_ratio_rad: 0.035}\n";
+  strict += "\nassessment: {safety_drift_ratio_rad: 0.03334}\n";
   std::ofstream(dir.path() / "strict.yaml") << strict;
   const fs::path out = dir.path() / "cmp";
   const auto r = run_app({"compare", (kSource / "cases/demo_portal_frame.yaml").string(),
@@ -464,8 +466,8 @@ TEST(StudyCommands, CompareFootnoteGivesEachCasesLimitsAndTheShortenedWindow) {
   ASSERT_EQ(r.code, 0) << r.err;
   const std::string md = read_text(out / "comparison.md");
   EXPECT_NE(md.find("Verdicts: demo_portal_frame: collapsed = peak storey drift ratio >= 0.1 rad, damaged = above "
-                    "0.0333 rad, standing otherwise; strict_portal: collapsed = peak storey drift ratio >= 0.035 rad, "
-                    "damaged = above 0.0200 rad, standing otherwise"),
+                    "0.0333333 rad, standing otherwise; strict_portal: collapsed = peak storey drift ratio >= 0.1 rad, "
+                    "damaged = above 0.03334 rad, standing otherwise"),
             std::string::npos)
       << md;
   EXPECT_NE(md.find("Ground motion cut to the first 0.05 record seconds of each case's window (--window-length)"),
@@ -477,7 +479,7 @@ TEST(StudyCommands, CompareFootnoteGivesEachCasesLimitsAndTheShortenedWindow) {
                            dir.path());
   ASSERT_EQ(one.code, 0) << one.err;
   const std::string md1 = read_text(dir.path() / "one" / "comparison.md");
-  EXPECT_NE(md1.find("Verdicts: collapsed = peak storey drift ratio >= 0.1 rad, damaged = above 0.0333 rad"),
+  EXPECT_NE(md1.find("Verdicts: collapsed = peak storey drift ratio >= 0.1 rad, damaged = above 0.0333333 rad"),
             std::string::npos)
       << md1;
   EXPECT_EQ(md1.find("Ground motion cut"), std::string::npos) << md1;
@@ -543,7 +545,7 @@ TEST(StudyCommands, TheFigureScriptIsFoundBesideTheProgramOrWhereFqPlotScriptSay
   const std::string block = (kSource / "cases/demo_falling_block.yaml").string();
   auto stand_in = [](const fs::path& p, const std::string& tag) {
     fs::create_directories(p.parent_path());
-    std::ofstream(p) << "echo " << tag << " > \"$2/called.txt\"\n";
+    std::ofstream(p) << "echo " << tag << " > \"$2/called.txt\"\ntouch \"$2/first_storey_drift.png\"\n";
   };
   // A copy of the program with a script beside it.
   const fs::path bin = dir.path() / "bin";
@@ -566,6 +568,26 @@ TEST(StudyCommands, TheFigureScriptIsFoundBesideTheProgramOrWhereFqPlotScriptSay
   ::unsetenv("FQ_PYTHON");
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(read_text(dir.path() / "o2" / "called.txt"), "env\n");
+  // FQ_PLOT_SCRIPT naming no file is an error before any run (it fell
+  // back to another copy without a word), and a script that writes no
+  // figure is not announced as having drawn one (new-features probe).
+  ::setenv("FQ_PLOT_SCRIPT", (dir.path() / "nowhere.py").c_str(), 1);
+  const auto missing = run_app({"compare", block, "--window-length", "0.05", "--out", (dir.path() / "o3").string()},
+                               dir.path());
+  ::unsetenv("FQ_PLOT_SCRIPT");
+  EXPECT_EQ(missing.code, 3) << missing.err;
+  EXPECT_NE(missing.err.find("FQ_PLOT_SCRIPT names '"), std::string::npos) << missing.err;
+  EXPECT_FALSE(fs::exists(dir.path() / "o3" / "comparison.csv")) << "a run started";
+  std::ofstream(dir.path() / "silent.sh") << "exit 0\n";
+  ::setenv("FQ_PYTHON", "/bin/sh", 1);
+  ::setenv("FQ_PLOT_SCRIPT", (dir.path() / "silent.sh").c_str(), 1);
+  const auto silent = run_app({"compare", block, "--window-length", "0.05", "--out", (dir.path() / "o4").string()},
+                              dir.path());
+  ::unsetenv("FQ_PLOT_SCRIPT");
+  ::unsetenv("FQ_PYTHON");
+  EXPECT_EQ(silent.code, 3) << silent.err;
+  EXPECT_NE(silent.err.find("ended without writing"), std::string::npos) << silent.err;
+  EXPECT_EQ(silent.out.find("figure in"), std::string::npos) << silent.out;
 }
 
 // A figure the disk refuses (ENOSPC: its temporary file is a link to
