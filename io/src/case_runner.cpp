@@ -687,17 +687,20 @@ std::string horizontal_columns_warning(const CaseDef& def) {
     if (m.kind != MemberKind::Column) continue;
     const auto a = nodes.find(m.node_a), b = nodes.find(m.node_b);
     if (a == nodes.end() || b == nodes.end()) continue;  // build_model refuses these
-    if (std::abs(a->second->xyz_m.z() - b->second->xyz_m.z()) < kStoreyLevelTolerance_m) flat.push_back(&m);
+    // Nearer horizontal than vertical: a column rising 2 mm over 0.49 m
+    // made a storey 2 mm tall of its own (new-features probe).
+    const Vec3 d = b->second->xyz_m - a->second->xyz_m;
+    if (std::abs(d.z()) < kStoreyLevelTolerance_m || std::abs(d.z()) < d.head<2>().norm()) flat.push_back(&m);
   }
   if (flat.empty()) return {};
   std::ostringstream w;
   w << def.source_file.string() << ": " << flat.size() << (flat.size() == 1 ? " member" : " members")
-    << " of kind column " << (flat.size() == 1 ? "is" : "are") << " horizontal (";
+    << " of kind column " << (flat.size() == 1 ? "lies" : "lie") << " nearer horizontal than vertical (";
   for (std::size_t k = 0; k < std::min<std::size_t>(3, flat.size()); ++k)
     w << (k ? ", " : "") << "'" << flat[k]->id << "' (line " << flat[k]->line << ")";
   if (flat.size() > 3) w << ", ...";
-  w << "): a horizontal column spans no storey and is left out of the drift assessment; give it kind: beam, or "
-       "check its nodes' heights";
+  w << "): a horizontal column spans no storey and is left out of the drift assessment, and a slightly sloping one "
+       "makes a storey as tall as its rise; give it kind: beam, or check its nodes' heights";
   return w.str();
 }
 

@@ -425,7 +425,7 @@ TEST(RunWarnings, MembersAThousandTimesLongerThanThickAreNamed) {
 // A member of kind column lying flat spans no storey, so the drift
 // assessment leaves it out; that is said, naming it (it was silent:
 // geometry probe). The portal's beam given kind column is named; a column
-// leaning by 1 m over its 0.3 m height still spans one and is not; the
+// leaning by 0.2 m over its 0.3 m height still spans one and is not; the
 // shipped cases and demos give no warning.
 TEST(RunWarnings, AHorizontalColumnIsNamed) {
   test::TempDir dir;
@@ -433,11 +433,20 @@ TEST(RunWarnings, AHorizontalColumnIsNamed) {
   const std::string beam_line = "  - {id: beam, kind: beam,";
   flat.replace(flat.find(beam_line), beam_line.size(), "  - {id: beam, kind: column,");
   const std::string w = horizontal_columns_warning(load_case_file(dir.write("flat.yaml", flat)));
-  EXPECT_NE(w.find("1 member of kind column is horizontal ('beam' (line 15))"), std::string::npos) << w;
+  EXPECT_NE(w.find("1 member of kind column lies nearer horizontal than vertical ('beam' (line 15))"),
+            std::string::npos)
+      << w;
   EXPECT_NE(w.find("left out of the drift assessment"), std::string::npos) << w;
   EXPECT_EQ(horizontal_columns_warning(load_case_file(dir.write("portal.yaml", portal_case(0.3, 0.3)))), "");
+  // A "column" rising 2 mm over 0.5 m (new-features probe: it made a storey
+  // 2 mm tall) is named too.
+  std::string sloping = flat;
+  sloping.replace(sloping.find("{id: b2, xyz_m: [0.5, 0, 0.3]}"), 30, "{id: b2, xyz_m: [0.5, 0, 0.302]}");
+  sloping.replace(sloping.find("nodes: [a1, b1], section: s"), 27, "nodes: [a1, b2], section: s");
+  EXPECT_NE(horizontal_columns_warning(load_case_file(dir.write("sloping.yaml", sloping))).find("'beam' (line 15)"),
+            std::string::npos);
   std::string leaning = portal_case(0.3, 0.3);
-  leaning.replace(leaning.find("{id: a1, xyz_m: [0, 0, 0.3]}"), 28, "{id: a1, xyz_m: [1, 0, 0.3]}");
+  leaning.replace(leaning.find("{id: a1, xyz_m: [0, 0, 0.3]}"), 28, "{id: a1, xyz_m: [0.2, 0, 0.3]}");
   EXPECT_EQ(horizontal_columns_warning(load_case_file(dir.write("leaning.yaml", leaning))), "");
   for (const auto& e : std::filesystem::directory_iterator(std::filesystem::path(FQ_SOURCE_DIR) / "cases")) {
     if (e.path().extension() != ".yaml") continue;

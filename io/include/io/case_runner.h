@@ -190,9 +190,11 @@ std::string near_nodes_warning(const CaseDef& def);
 inline constexpr double kSlenderMemberRatio = 1000.0;
 std::string slender_members_warning(const CaseDef& def);
 
-// The warning for members of kind column whose two ends lie at one height
-// (within kStoreyLevelTolerance_m): such a "column" spans no storey, so the
-// drift assessment leaves it out, which it did silently (geometry probe).
+// The warning for members of kind column that lie nearer horizontal than
+// vertical (or whose two ends lie at one height, within
+// kStoreyLevelTolerance_m): a flat "column" spans no storey, so the drift
+// assessment leaves it out, which it did silently (geometry probe), and a
+// slightly sloping one makes a storey as tall as its rise.
 // Names the first three; empty when there are none.
 std::string horizontal_columns_warning(const CaseDef& def);
 
