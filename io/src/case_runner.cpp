@@ -311,9 +311,11 @@ std::string checkpoint_count_note(double every_s, const Simulation& sim) {
   sim.save_state(w);
   std::ostringstream note;
   note << std::setprecision(3) << "--checkpoint-every " << every_s << " s writes " << count << " checkpoints (one every "
-       << every << (every == 1 ? " step" : " steps") << "), each the whole state of about "
-       << double(w.bytes().size()) / 1024.0 << " KiB: writing them may take longer than the run; an interval of "
-       << "a few minutes of wall time is enough to lose little to a crash";
+       << every << (every == 1 ? " step" : " steps") << "), each the whole state, at least "
+       << double(w.bytes().size()) / 1024.0
+       << " KiB (bodies, joints, contacts; the list of frames written and the storeys' drift books add to it): "
+          "writing them may take longer than the run; an interval of a few minutes of wall time is enough to lose "
+          "little to a crash";
   return note.str();
 }
 

@@ -78,7 +78,7 @@ struct StoreyDriftRecord {
   double final_ratio_y_rad = 0.0;
   // Residual drift: the mean over the steps of the last
   // kResidualDriftWindow_s of the run (the whole run if shorter; to within
-  // a thousandth of the window, StoreyDriftMonitor; residual_window_s is the
+  // about two thousandths of the window, StoreyDriftMonitor; residual_window_s is the
   // time from the first to the last step averaged), not the last sample,
   // which a frame still swaying after the shaking ends puts anywhere
   // within its sway. Taken over the history rows until stop 28, it moved
@@ -116,8 +116,9 @@ inline constexpr double kResidualDriftWindow_s = 1.0;
 // The residual is summed in blocks of B whole steps, B = the window's
 // steps / 1000 (at least 1): the window holds the last 1000 complete blocks
 // and the block under way, so it spans the last kResidualDriftWindow_s to
-// within one block (1 ms of 1 s) and keeps 1000 block sums per storey, not
-// one number per step.
+// within two blocks and a step (about 2 ms of 1 s; a step that does not
+// divide the block's length rounds it down) and keeps about 1000 block
+// sums per storey, not one number per step.
 class StoreyDriftMonitor {
  public:
   // dt_s: the run's time step (s), which sets the residual's blocks.
