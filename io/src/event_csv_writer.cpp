@@ -32,7 +32,7 @@ void append_csv_text(std::string& out, const char* text) {
 void EventCsvWriter::open(const std::filesystem::path& file) {
   auto out = std::make_unique<std::ofstream>(file, std::ios::binary | std::ios::trunc);
   if (!*out) throw std::runtime_error("cannot create '" + file.string() + "': " + last_system_error());
-  *out << "time_s,step,kind,joint_id,body_a,body_b,spring_index,mode,force_N,x_m,y_m,z_m\n";
+  *out << "time_s,step,kind,joint_id,body_a,body_b,spring_index,mode,force_N,x_m,y_m,z_m,body_a_name,body_b_name\n";
   if (!*out) throw std::runtime_error("cannot write '" + file.string() + "'");
   out_ = std::move(out);
   file_ = file;
@@ -92,6 +92,10 @@ void EventCsvWriter::write_new(const EventLog& log) {
     for (int k = 0; k < 3; ++k) {
       line_.push_back(',');
       append_number(line_, e.position_m[k]);
+    }
+    for (const BodyId b : {e.body_a, e.body_b}) {
+      line_.push_back(',');
+      if (b >= 0 && std::size_t(b) < body_names_.size()) append_csv_text(line_, body_names_[std::size_t(b)].c_str());
     }
     line_.push_back('\n');
     out_->write(line_.data(), std::streamsize(line_.size()));

@@ -1,8 +1,11 @@
 // Private to io: events.csv, one row per fq::Event (STYLE.md 3.4 "record each
 // break with who, when, where and why"):
-//   time_s,step,kind,joint_id,body_a,body_b,spring_index,mode,force_N,x_m,y_m,z_m
+//   time_s,step,kind,joint_id,body_a,body_b,spring_index,mode,force_N,x_m,y_m,z_m,body_a_name,body_b_name
 // Rows are appended as the log grows (at each history sample), so the file
-// follows the run; -1 marks "not applicable" ids as in fq::Event.
+// follows the run; -1 marks "not applicable" ids as in fq::Event, and an
+// empty name a body id that is -1. The names (the members' ids in the case
+// file) are there so that a weak point can be read without the VTK frames
+// (workflow probe: only numbers, the names only in body_names of a frame).
 #pragma once
 
 #include <cstdint>
@@ -10,6 +13,7 @@
 #include <fstream>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "dem_core/events.h"
 
@@ -26,6 +30,8 @@ class EventCsvWriter {
   std::uint64_t bytes_written() const;
   // Writes the events of `log` not written yet.
   void write_new(const EventLog& log);
+  // The bodies' names, by id, for the name columns (before the first write).
+  void set_body_names(std::vector<std::string> names) { body_names_ = std::move(names); }
   void flush();
   void close();
   // As HistoryWriter::abandon: closed, cut back to its last complete row.
@@ -37,6 +43,7 @@ class EventCsvWriter {
   std::filesystem::path file_;
   std::size_t written_ = 0;  // entries of the log already in the file
   std::int64_t rows_ = 0;
+  std::vector<std::string> body_names_;
   std::string line_;
 };
 

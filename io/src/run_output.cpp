@@ -300,6 +300,11 @@ void RunOutput::attach(Simulation& sim, const std::vector<Vec3>* initial_positio
   const double dt = sim.settings().dt_s;
   o.history_every = steps_per_interval(o.def.history_interval_s, dt);
   o.frame_every = steps_per_interval(o.def.frame_interval_s, dt);
+  {
+    std::vector<std::string> names;
+    for (const BodyInfo& info : sim.bodies().info) names.push_back(info.name);
+    o.events.set_body_names(std::move(names));
+  }
   if (o.resume) {
     const Impl::Resume& r = *o.resume;
     if (r.frame_every != o.frame_every || r.history_every != o.history_every)

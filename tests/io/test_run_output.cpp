@@ -535,7 +535,7 @@ TEST(RunOutput, EventsFileHasHeaderAndNoRowsWithoutEvents) {
   const MainRun& run = main_run();
   const std::vector<std::string> lines = read_lines(run.folder / "events.csv");
   ASSERT_EQ(lines.size(), 1u);
-  EXPECT_EQ(lines[0], "time_s,step,kind,joint_id,body_a,body_b,spring_index,mode,force_N,x_m,y_m,z_m");
+  EXPECT_EQ(lines[0], "time_s,step,kind,joint_id,body_a,body_b,spring_index,mode,force_N,x_m,y_m,z_m,body_a_name,body_b_name");
 }
 
 TEST(RunOutput, SummaryIsValidJsonWithStatusAndExtraFields) {
@@ -1097,10 +1097,15 @@ TEST(RunOutput, UnstableRunKeepsGoodFramesAndWritesSummaryAndEvent) {
   const std::vector<std::string> events = read_lines(def.folder / "events.csv");
   ASSERT_EQ(events.size(), 2u);
   const std::vector<std::string> cols = split(events[1], ',');
-  ASSERT_EQ(cols.size(), 12u);
+  ASSERT_EQ(cols.size(), 14u);
   EXPECT_EQ(cols[1], "7");
   EXPECT_EQ(cols[2], "instability");
   EXPECT_EQ(cols[4], "1");  // the poisoned body
+  // Its name from the scene (body 1 is "column"), and none for body_b = -1:
+  // a weak point read without the frames (workflow probe).
+  EXPECT_EQ(cols[5], "-1");
+  EXPECT_EQ(cols[12], "column");
+  EXPECT_EQ(cols[13], "");
   const std::string summary = read_text(def.folder / "summary.json");
   EXPECT_TRUE(fq::json_is_valid(summary));
   EXPECT_NE(summary.find("\"status\": \"unstable\""), std::string::npos);
