@@ -303,14 +303,14 @@ constexpr int kPlotWriteFailed = 3;
 constexpr int kPlotNoMatplotlib = 4;
 constexpr int kShellCommandNotFound = 127;  // the interpreter itself is missing
 
-// Where the figure script may be: FQ_PLOT_SCRIPT, then beside the program
-// (scripts/plot/ under its folder or one or two folders up, as in a source
-// tree whose build/apps/ holds it), then the source tree it was built from.
+// Where the figure script may be when FQ_PLOT_SCRIPT does not say
+// (find_plot_script): beside the program (scripts/plot/ under its folder or
+// one or two folders up, as in a source tree whose build/apps/ holds it),
+// then the source tree it was built from.
 // Only the last was looked at (workflow probe: a copied binary next to its
 // own scripts/plot/fq_plot.py failed, after all its runs).
 std::vector<fs::path> plot_script_candidates() {
   std::vector<fs::path> c;
-  if (const char* env = std::getenv("FQ_PLOT_SCRIPT"); env && *env) c.emplace_back(env);
   std::error_code ec;
   const fs::path exe_dir = fs::read_symlink("/proc/self/exe", ec).parent_path();
   if (!ec && !exe_dir.empty())
@@ -735,6 +735,17 @@ bool run_jobs(const StudyArgs& args, const std::vector<fq::BatchJob>& jobs, cons
   return true;
 }
 
+// The Markdown tables' note when --window-length cut the record ("" when
+// not): `what` holds for that part of the record only.
+std::string window_length_note(const StudyArgs& args, const char* what) {
+  if (!args.window_length_s) return "";
+  std::ostringstream note;
+  note << "\nGround motion cut to the first " << *args.window_length_s
+       << " record seconds of each case's window (--window-length): " << what
+       << " hold for that part of the record only.\n";
+  return note.str();
+}
+
 // Draws `kind`'s figure when asked and at least one run finished; the exit
 // code folds in a figure failure only when the runs themselves succeeded.
 int finish_with_figure(const StudyArgs& args, const std::vector<fq::BatchOutcome>& outcomes, const char* kind,
@@ -864,10 +875,7 @@ int command_compare(int argc, char** argv, const std::atomic<bool>* stop_request
     // A shortened window can miss the record's strongest part, and with
     // it a verdict (workflow probe: B standing at --window-length 8,
     // damaged over its whole window).
-    if (args.window_length_s)
-      md << "\nGround motion cut to the first " << *args.window_length_s
-         << " record seconds of each case's window (--window-length): the verdicts hold for that part of the "
-            "record only.\n";
+    md << window_length_note(args, "the verdicts");
   }
   for (std::size_t i = 0; i < jobs.size(); ++i)
     if (!outcomes[i].ok) md << "\n" << jobs[i].label << ": " << outcomes[i].error << "\n";
@@ -1066,10 +1074,7 @@ int command_sweep(int argc, char** argv, const std::atomic<bool>* stop_requested
     }
     if (!skipped.empty()) md << "\nNot counted above (the run did not complete):" << skipped << "\n";
   }
-  if (args.window_length_s)
-    md << "\nGround motion cut to the first " << *args.window_length_s
-       << " record seconds of each case's window (--window-length): the collapse scales hold for that part of the "
-          "record only.\n";
+  md << window_length_note(args, "the collapse scales");
   if (!write_text(args.out / "sweep.csv", csv.str()) || !write_text(args.out / "collapse_scales.csv", cs.str()) ||
       !write_text(args.out / "collapse_scales.md", md.str()))
     return kExitOutputFailed;

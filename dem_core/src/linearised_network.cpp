@@ -170,7 +170,6 @@ NetworkStableStep network_stable_step(const std::vector<LinearisedSpring>& rows,
 
   const NetworkOperator op{rows, nb};
   std::vector<Vec6> x(nb);
-  // A deterministic start with a component along every degree of freedom.
   // A deterministic start with a component along every mode: entries drawn
   // from [-1, 1) by a fixed hash of their index (splitmix64). A smooth
   // start (the earlier 1 + 0.1 sin(7 i + d + 1)) holds little of the
@@ -213,13 +212,13 @@ NetworkStableStep network_stable_step(const std::vector<LinearisedSpring>& rows,
       const double top = top_eigenpair(
           op, [dt](const LinearisedSpring& r) { return dt * dt * r.k_Npm + 2.0 * dt * r.c_Nspm; }, x, kMaxSteps);
       if (!(top > 0.0)) break;
-      double xx = 0.0, a = 0.0, b = 0.0;
+      double a = 0.0, b = 0.0;
       for (const LinearisedSpring& r : rows) {
         const double proj = op.projection(r, x);
         a += r.k_Npm * proj * proj;
         b += r.c_Nspm * proj * proj;
       }
-      xx = op.dot(x, x);
+      const double xx = op.dot(x, x);
       if (!(xx > 0.0) || !(a > 0.0)) break;
       a /= xx;
       b /= xx;

@@ -324,13 +324,15 @@ std::string checkpoint_count_note(double every_s, const Simulation& sim) {
 // peaks the run felt (up to its end), so that a results folder can be
 // checked against its input on its own (geometry probe: only info and
 // sweep.csv said which record a run had felt). null without ground motion.
+// The simulation time up to which a run felt its ground motion: its end, or
+// where it was stopped or blew up (a stopped run reported the motion it had
+// not yet felt; new-features probe).
+double ground_motion_felt_until_s(const Simulation& sim) { return std::min(sim.settings().duration_s, sim.time_s()); }
+
 std::string ground_motion_summary(const Simulation& sim) {
   const GroundMotion& gm = sim.ground_motion();
   if (gm.empty()) return "null";
-  // Up to where the run got: its end, or where it was stopped or blew up
-  // (a stopped run reported the motion it had not yet felt; new-features
-  // probe).
-  const double duration_s = std::min(sim.settings().duration_s, sim.time_s());
+  const double duration_s = ground_motion_felt_until_s(sim);
   JsonWriter w(0);
   w.begin_object().key("components").begin_array();
   for (const GroundMotionComponent& c : gm.components()) {
@@ -499,10 +501,8 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
   report.first_joint_failure_time_s = first_joint_failure_time_s(sim.events());
   report.first_joint_failure = first_joint_failure_label(sim.events(), scene.joint_labels);
   report.energy_balance_error_relative = sim.ledger().balance_error_relative();
-  // What the run felt: up to its end (or where it stopped), not the whole
-  // window.
-  report.peak_ground_acceleration_mps2 =
-      sim.ground_motion().peak_horizontal_mps2(std::min(sim.settings().duration_s, sim.time_s()));
+  // What the run felt, not the whole window.
+  report.peak_ground_acceleration_mps2 = sim.ground_motion().peak_horizontal_mps2(ground_motion_felt_until_s(sim));
   report.wall_s = report.result.wall_s;
   return report;
 }

@@ -8,10 +8,6 @@
 
 namespace fq {
 
-namespace {
-constexpr double kLevelTolerance_m = kStoreyLevelTolerance_m;
-}
-
 const char* storey_verdict_name(StoreyVerdict v) {
   switch (v) {
     case StoreyVerdict::Standing: return "standing";
@@ -34,7 +30,7 @@ std::vector<Storey> find_storeys(const Model& model) {
     if (m.kind != MemberKind::Column) continue;
     Vec3 a = def.nodes[std::size_t(def.node_index(m.node_a))].xyz_m;
     Vec3 b = def.nodes[std::size_t(def.node_index(m.node_b))].xyz_m;
-    if (std::abs(a.z() - b.z()) < kLevelTolerance_m) continue;  // a horizontal "column" spans no storey
+    if (std::abs(a.z() - b.z()) < kStoreyLevelTolerance_m) continue;  // a horizontal "column" spans no storey
     if (a.z() > b.z()) std::swap(a, b);
     columns.push_back({i, a, b});
     levels.push_back(b.z());
@@ -50,7 +46,7 @@ std::vector<Storey> find_storeys(const Model& model) {
   std::sort(levels.begin(), levels.end());
   std::vector<double> merged;
   for (double z : levels)
-    if (merged.empty() || z - merged.back() > kLevelTolerance_m) merged.push_back(z);
+    if (merged.empty() || z - merged.back() > kStoreyLevelTolerance_m) merged.push_back(z);
 
   std::vector<Storey> storeys;
   for (std::size_t k = 1; k < merged.size(); ++k) {
@@ -61,8 +57,8 @@ std::vector<Storey> find_storeys(const Model& model) {
     for (const ColumnSpan& c : columns) {
       // A column of the band reaches its top level and starts at or below
       // it; one whose foot lies inside the band counts from its foot.
-      if (c.low_m.z() > s.top_z_m - kLevelTolerance_m || c.high_m.z() < s.top_z_m - kLevelTolerance_m) continue;
-      const double foot_z = c.low_m.z() > s.bottom_z_m + kLevelTolerance_m ? c.low_m.z() : s.bottom_z_m;
+      if (c.low_m.z() > s.top_z_m - kStoreyLevelTolerance_m || c.high_m.z() < s.top_z_m - kStoreyLevelTolerance_m) continue;
+      const double foot_z = c.low_m.z() > s.bottom_z_m + kStoreyLevelTolerance_m ? c.low_m.z() : s.bottom_z_m;
       const BodyId body = model.member_body[c.member];
       auto point_at = [&](double z) {  // on the column axis at height z
         const double f = (z - c.low_m.z()) / (c.high_m.z() - c.low_m.z());

@@ -19,7 +19,6 @@
 #pragma once
 
 #include <deque>
-#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -93,7 +92,7 @@ struct StoreyDriftRecord {
   // The storey's drift is the mean of its columns', so a storey that twists
   // (one side braced, the other not) has a column well past it; the verdict
   // uses the mean, and the run warns when a column's own peak would have
-  // given a worse one (storey_twist_warning).
+  // given a worse one (StoreyDriftMonitor::twist_warning).
   double peak_column_ratio_rad = 0.0;
   int peak_column = -1;
 };
