@@ -32,6 +32,7 @@
 #include "io/case_file.h"
 #include "io/folder_lock.h"
 #include "io/input_error.h"
+#include "io/model.h"
 #include "io/run_output.h"
 
 namespace fq_app {
@@ -438,6 +439,19 @@ int worst_exit(const std::vector<fq::BatchOutcome>& outcomes) {
 // locks: its runs, on the same file system, do not say it again each.
 bool g_said_no_locks = false;
 
+// Warnings the study said once before its first run, which its runs would
+// otherwise repeat each, after running (direction of a record).
+std::set<std::string> g_said_before_runs;
+
+// A record applied along a direction its header contradicts (a vertical
+// --record along x) holds for every run of a case and record: said before
+// the runs, not only after each (workflow probe: the sweep ran first).
+void warn_before_runs(const std::vector<fq::BatchJob>& jobs) {
+  for (const fq::BatchJob& job : jobs)
+    for (const std::string& w : fq::ground_motion_direction_warnings(fq::build_model(job.def).ground_motion))
+      if (g_said_before_runs.insert(w).second) std::cerr << "framequake: warning: " << w << "\n";
+}
+
 void print_done(std::size_t, const fq::BatchJob& job, const fq::BatchOutcome& out, std::size_t done,
                 std::size_t total) {
   std::ostringstream line;
@@ -453,7 +467,8 @@ void print_done(std::size_t, const fq::BatchJob& job, const fq::BatchOutcome& ou
       line << "; storey " << s.number << " " << verdict_text(r, s) << " (peak "
            << fixed(s.drift.peak_ratio_rad, 3) << " rad)";
     for (const std::string& w : r.warnings)
-      if (!(g_said_no_locks && fq::is_folder_lock_warning(w))) line << "\n  warning: " << w;
+      if (!(g_said_no_locks && fq::is_folder_lock_warning(w)) && !g_said_before_runs.count(w))
+        line << "\n  warning: " << w;
   }
   std::cerr << line.str() << "\n";
 }
@@ -730,6 +745,7 @@ bool run_jobs(const StudyArgs& args, const std::vector<fq::BatchJob>& jobs, cons
   // until the first one ended (CLI probe: 13.8 s of silence).
   options.progress_interval_s = 10.0;
   options.on_progress = [](const std::string& line) { std::cerr << "framequake: running " << line << "\n"; };
+  warn_before_runs(jobs);
   std::cerr << "framequake: " << what << ", output in " << args.out.string() << "\n";
   outcomes = fq::run_batch(jobs, options);
   return true;
