@@ -30,6 +30,7 @@
 #include "io/atomic_file.h"
 #include "io/batch_runner.h"
 #include "io/case_file.h"
+#include "io/csv_text.h"
 #include "io/folder_lock.h"
 #include "io/input_error.h"
 #include "io/model.h"
@@ -239,17 +240,6 @@ std::string csv_number(double x) {
   std::ostringstream s;
   s << std::setprecision(9) << x;
   return s.str();
-}
-
-// A text field of the csv tables, quoted as RFC 4180 has it when it holds
-// a comma, a quote or a line end: a case named by its file's stem, a
-// record's file name and the output folder are the user's to choose, and
-// an unquoted comma shifted every column after it.
-std::string csv_text(const std::string& text) {
-  if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
-  std::string q = "\"";
-  for (char c : text) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
 }
 
 // The headers of the csv tables, one definition for the writers and for
@@ -819,7 +809,7 @@ int command_compare(int argc, char** argv, const std::atomic<bool>* stop_request
   for (std::size_t i = 0; i < jobs.size(); ++i) {
     const fq::BatchOutcome& o = outcomes[i];
     const std::string status = outcome_status(o);
-    csv << csv_text(jobs[i].label) << "," << status;
+    csv << fq::csv_text(jobs[i].label) << "," << status;
     md << "| " << jobs[i].label << " | " << status;
     for (std::size_t k = 0; k < storeys; ++k) {
       if (o.ok && k < o.report.storeys.size()) {
@@ -838,7 +828,7 @@ int command_compare(int argc, char** argv, const std::atomic<bool>* stop_request
       const fq::CaseRunReport& r = o.report;
       csv << "," << csv_number(r.first_joint_failure_time_s) << "," << r.joints.broken << "," << r.joint_count << ","
           << csv_number(r.energy_balance_error_relative) << "," << csv_number(r.wall_s) << ","
-          << csv_text(r.output_folder.string()) << "\n";
+          << fq::csv_text(r.output_folder.string()) << "\n";
       md << " | " << fixed(r.first_joint_failure_time_s, 3) << " | " << r.joints.broken << " / " << r.joint_count
          << " | " << scientific(r.energy_balance_error_relative) << " | " << fixed(r.wall_s, 1) << " |\n";
     } else {
@@ -1007,7 +997,7 @@ int command_sweep(int argc, char** argv, const std::atomic<bool>* stop_requested
   csv << sweep_csv_header(storeys) << "\n";
   for (std::size_t i = 0; i < jobs.size(); ++i) {
     const fq::BatchOutcome& o = outcomes[i];
-    csv << csv_text(keys[i].case_name) << "," << csv_text(keys[i].record) << "," << csv_number(keys[i].scale) << ",";
+    csv << fq::csv_text(keys[i].case_name) << "," << fq::csv_text(keys[i].record) << "," << csv_number(keys[i].scale) << ",";
     if (!o.ok) {
       csv << ",," << outcome_status(o);
       for (std::size_t k = 0; k < storeys; ++k) csv << ",,";
@@ -1031,7 +1021,7 @@ int command_sweep(int argc, char** argv, const std::atomic<bool>* stop_requested
     csv << "," << (r.result.status == fq::RunStatus::Unstable ? "" : collapsed ? "1" : "0") << ","
         << csv_number(r.first_joint_failure_time_s) << "," << r.joints.broken
         << "," << r.joint_count << "," << csv_number(r.energy_balance_error_relative) << "," << csv_number(r.wall_s)
-        << "," << csv_text(r.output_folder.string()) << "\n";
+        << "," << fq::csv_text(r.output_folder.string()) << "\n";
   }
 
   // Collapse scale per case and record: the smallest scale with a collapsed
@@ -1069,7 +1059,7 @@ int command_sweep(int argc, char** argv, const std::atomic<bool>* stop_requested
       for (std::size_t i = 0; i < jobs.size(); ++i)
         ran = ran || (keys[i].case_name == name && keys[i].record == record);
       if (!ran) continue;
-      cs << csv_text(name) << "," << csv_text(record) << "," << csv_number(stood) << "," << csv_number(fell) << "," << csv_number(pga)
+      cs << fq::csv_text(name) << "," << fq::csv_text(record) << "," << csv_number(stood) << "," << csv_number(fell) << "," << csv_number(pga)
          << "," << which << "\n";
       md << "| " << name << " | " << record << " | "
          << (std::isnan(largest_completed) ? std::string("-") : std::isnan(stood) ? std::string("none") : fixed(stood, 2))

@@ -4,30 +4,11 @@
 #include <stdexcept>
 
 #include "io/atomic_file.h"
+#include "io/csv_text.h"
 
 #include "number_format.h"
 
 namespace fq::detail {
-
-namespace {
-
-// Modes are identifiers ("tension", "shear"...), but a stray comma or quote
-// must not shift the columns: quote such a field per RFC 4180.
-void append_csv_text(std::string& out, const char* text) {
-  const std::string s = text ? text : "";
-  if (s.find_first_of(",\"\r\n") == std::string::npos) {
-    out += s;
-    return;
-  }
-  out.push_back('"');
-  for (const char c : s) {
-    if (c == '"') out.push_back('"');
-    out.push_back(c);
-  }
-  out.push_back('"');
-}
-
-}  // namespace
 
 void EventCsvWriter::open(const std::filesystem::path& file) {
   auto out = std::make_unique<std::ofstream>(file, std::ios::binary | std::ios::trunc);
@@ -86,7 +67,7 @@ void EventCsvWriter::write_new(const EventLog& log) {
     line_.push_back(',');
     append_integer(line_, e.spring_index);
     line_.push_back(',');
-    append_csv_text(line_, e.mode);
+    line_ += csv_text(e.mode ? e.mode : "");
     line_.push_back(',');
     append_number(line_, e.force_N);
     for (int k = 0; k < 3; ++k) {
@@ -95,7 +76,7 @@ void EventCsvWriter::write_new(const EventLog& log) {
     }
     for (const BodyId b : {e.body_a, e.body_b}) {
       line_.push_back(',');
-      if (b >= 0 && std::size_t(b) < body_names_.size()) append_csv_text(line_, body_names_[std::size_t(b)].c_str());
+      if (b >= 0 && std::size_t(b) < body_names_.size()) line_ += csv_text(body_names_[std::size_t(b)]);
     }
     line_.push_back('\n');
     out_->write(line_.data(), std::streamsize(line_.size()));

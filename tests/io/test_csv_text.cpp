@@ -1,0 +1,27 @@
+// fq::csv_text against RFC 4180, section 2: a field holding a comma, a
+// double quote or a line break is enclosed in double quotes (rule 6), and a
+// double quote inside it is written twice (rule 7); other fields go as they
+// are. The expected texts are the RFC's rules applied by hand.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "io/csv_text.h"
+
+namespace {
+
+TEST(CsvText, PlainFieldsGoAsTheyAre) {
+  EXPECT_EQ(fq::csv_text("column1_se"), "column1_se");
+  EXPECT_EQ(fq::csv_text(""), "");
+  EXPECT_EQ(fq::csv_text("a b;c'd"), "a b;c'd");  // spaces, semicolons, apostrophes need no quotes
+}
+
+TEST(CsvText, FieldsWithCommasQuotesOrLineBreaksAreQuoted) {
+  EXPECT_EQ(fq::csv_text("out/a,b"), "\"out/a,b\"");
+  EXPECT_EQ(fq::csv_text("say \"hi\""), "\"say \"\"hi\"\"\"");
+  EXPECT_EQ(fq::csv_text("\""), "\"\"\"\"");
+  EXPECT_EQ(fq::csv_text("two\nlines"), "\"two\nlines\"");
+  EXPECT_EQ(fq::csv_text("cr\rhere"), "\"cr\rhere\"");
+}
+
+}  // namespace
