@@ -45,7 +45,10 @@ STYLE = {
     "font.size": 10,
     "legend.frameon": False,
 }
-COLOURS = ["#c0392b", "#2471a3", "#1e8449", "#b9770e", "#6c3483", "#117a65", "#7b7d7d"]
+# One palette for every figure: ten colours that stay apart from each other
+# (before, the compare figure's sixth colour was a second dark green).
+COLOURS = ["#c0392b", "#2471a3", "#1e8449", "#b9770e", "#6c3483", "#17a2b8", "#7b7d7d", "#e67e22", "#000000",
+           "#e84393"]
 
 
 def fail(message):
@@ -220,8 +223,6 @@ def largest_storey_peak(row):
 
 # Colours that stay apart (no two greens), one per case; the records are
 # told apart by the line's style.
-CASE_COLOURS = ["#c0392b", "#2471a3", "#1e8449", "#b9770e", "#6c3483", "#17a2b8", "#7b7d7d", "#e67e22", "#000000",
-                "#e84393"]
 RECORD_STYLES = ["-", "--", ":", "-."]
 
 
@@ -244,7 +245,7 @@ def plot_sweep(folder):
     fig, ax = plt.subplots(figsize=(8.5, 4.8))
     for key, points in sorted(series.items()):
         points.sort()
-        colour = CASE_COLOURS[cases.index(key[0]) % len(CASE_COLOURS)]
+        colour = COLOURS[cases.index(key[0]) % len(COLOURS)]
         style = RECORD_STYLES[records.index(key[1]) % len(RECORD_STYLES)]
         x = [p[0] / 9.80665 for p in points]
         y = [max(p[1], 1e-5) for p in points]
