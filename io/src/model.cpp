@@ -7,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "io/input_error.h"
 
@@ -53,6 +54,42 @@ std::string fmt(double x) {
   os.precision(12);
   os << x;
   return os.str();
+}
+
+// What clears a member box that reaches below the ground surface. A node
+// under the surface is a mistake in the heights; a member whose nodes are on
+// or above the surface and whose box still dips below it leans (a post off
+// plumb, an inclined brace or strut standing on the ground): the corners of
+// its end face, half the section to either side of the axis, hang below
+// the node. Trimming that end by t raises them by t u_z (u the axis pointing
+// into the member from that end), so the trim that clears them is the
+// present one plus dip / u_z (modelled as a box, the member cannot have its
+// foot cut level).
+std::string below_ground_advice(const CaseDef& def, const MemberDef& m, const BoxBodyDef& box, double level_m) {
+  const Vec3 pa = def.nodes[std::size_t(def.node_index(m.node_a))].xyz_m;
+  const Vec3 pb = def.nodes[std::size_t(def.node_index(m.node_b))].xyz_m;
+  for (const auto& [node, xyz] : {std::pair{&m.node_a, pa}, std::pair{&m.node_b, pb}})
+    if (xyz.z() < level_m - kGroundTolerance_m)
+      return "its node '" + *node + "' is at z = " + fmt(xyz.z()) +
+             " m, under the surface: raise its nodes or lower ground.level_m";
+  // The lower end's face: its corners are the box's lowest points.
+  const Mat3 r = box.orientation.toRotationMatrix();
+  const Vec3 axis = (pb - pa).normalized();
+  const bool at_a = pa.z() <= pb.z();
+  const Vec3 into = at_a ? axis : Vec3(-axis);
+  const Vec3 face_centre = box.position_m - into * (0.5 * box.size_m.x());
+  const double corner_z =
+      face_centre.z() - 0.5 * (std::fabs(r(2, 1)) * box.size_m.y() + std::fabs(r(2, 2)) * box.size_m.z());
+  const double dip_m = level_m - corner_z;
+  if (!(into.z() > 1e-6) || !(dip_m > 0.0))
+    return "raise its nodes, trim it clear of the ground (trim_m) or lower ground.level_m";
+  const double trim_now = at_a ? m.trim_a_m : m.trim_b_m;
+  // Rounded up to a micrometre, so that the advised trim clears the corner
+  // (to within the tolerance the check allows).
+  const double trim_needed = std::ceil((trim_now + dip_m / into.z() - kGroundTolerance_m) * 1e6) * 1e-6;
+  return "it leans, so the corners of its end at node '" + (at_a ? m.node_a : m.node_b) +
+         "' dip below that node: trim that end by at least " + fmt(trim_needed) + " m (trim_m[" + (at_a ? "0" : "1") +
+         "], now " + fmt(trim_now) + " m), or raise its nodes";
 }
 
 std::string item_path(const char* list, std::size_t i) { return std::string(list) + "[" + std::to_string(i) + "]"; }
@@ -229,8 +266,8 @@ Model build_model(const CaseDef& def_in) {
       if (mlo.z() < level_m - kGroundTolerance_m)
         fail(def.members[i].line, item_path("members", i) + ".nodes",
              "the member '" + def.members[i].id + "' reaches " + fmt(level_m - mlo.z()) +
-                 " m below the ground surface (z = " + fmt(level_m) +
-                 " m); raise its nodes, trim it clear of the ground (trim_m) or lower ground.level_m");
+                 " m below the ground surface (z = " + fmt(level_m) + " m); " +
+                 below_ground_advice(def, def.members[i], member_boxes[i], level_m));
     }
     for (std::size_t i = 0; i < def.blocks.size(); ++i) {
       Vec3 blo = Vec3::Constant(std::numeric_limits<double>::infinity());

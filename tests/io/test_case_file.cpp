@@ -757,6 +757,45 @@ TEST(CaseFile, BuilderRejectsMemberBelowGroundWhenItHasGroundContact) {
   EXPECT_THROW(fq::build_model(def), fq::InputError);
 }
 
+// A column standing on the ground that leans (its top 1 mm off plumb over
+// 0.2 m, along x) dips the corners of its foot below the surface although
+// its node is on it: half its width (0.01 m along world x, cases/README.md,
+// "within 10 degrees of vertical") times sin(theta). The message says so and
+// names the trim that clears it, (w / 2) tan(theta) = 0.005 * 0.001 / 0.2
+// = 2.5e-5 m; with that trim the case builds, with 90 % of it not.
+TEST(CaseFile, ALeaningColumnOnTheGroundIsToldTheTrimThatClearsIt) {
+  fq::CaseDef def = one_column_case(0.0, 0.2, "col", 9);
+  def.nodes[1].xyz_m.x() = 0.001;
+  def.ground = fq::GroundDef{0.0};
+  def.contact = fq::ContactDef{};
+  def.contact->ground = fq::ContactParams{};
+  std::string message;
+  try {
+    fq::build_model(def);
+    FAIL() << "a leaning column dipping below the ground was accepted";
+  } catch (const fq::InputError& e) {
+    message = e.what();
+  }
+  EXPECT_NE(message.find("it leans, so the corners of its end at node 'a' dip below that node: trim that end by at "
+                         "least 2.5e-05 m (trim_m[0], now 0 m)"),
+            std::string::npos)
+      << message;
+  def.members[0].trim_a_m = 2.5e-5;
+  EXPECT_NO_THROW(fq::build_model(def));
+  def.members[0].trim_a_m = 0.9 * 2.5e-5;
+  EXPECT_THROW(fq::build_model(def), fq::InputError);
+  // A foot node under the surface is named as the mistake it is.
+  def.members[0].trim_a_m = 0.0;
+  def.nodes[0].xyz_m.z() = -0.002;
+  try {
+    fq::build_model(def);
+    FAIL();
+  } catch (const fq::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("its node 'a' is at z = -0.002 m, under the surface"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(CaseFile, BuilderRejectsUnknownReferenceInCodeBuiltCase) {
   const fq::CaseDef def = one_column_case(0.0, 1.0, "beam", 12);
   try {
