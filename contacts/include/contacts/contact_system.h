@@ -187,9 +187,20 @@ struct ContactSystemSettings {
   // the 10 mm members of seed 001 it is 4 mm: at collapse speeds (~1 m/s,
   // dt = 1e-5 s) a member then moves for ~200 steps between rebuilds.
   double skin_m = 0.0;
-  // Work below this many items (pairs, contacts, bodies) runs on one thread:
-  // a 16-member frame must not pay for starting threads.
-  int parallel_threshold = 128;
+  // Work below this many items (pairs, contacts, bodies) runs on one thread.
+  // A parallel region pays only when each thread gets tens of microseconds
+  // of work, and it costs far more than that whenever the host has no idle
+  // core for the second thread (its barrier then waits for a time slice).
+  // At 128, a 43-body house (about 150 contacts) ran 3.2 s on one thread
+  // and 24.1 s on two while another process used a core (geometry probe,
+  // 2026-11-27), and a falling pile of 1e3 boxes (617 contacts) was slower
+  // on two threads than on one even on an idle host (197 against 160 ns per
+  // body-step; validation/results/dev_2core/bench_contact_pile_default_
+  // policy_new_host_2026-11-26.txt), while 1e3 pressed columns (8 900
+  // contacts) gained 1.7x. 2048 is the joint system's threshold
+  // (JointSystemSettings::parallel_min_items); measured in
+  // docs/performance_history.md, change 49.
+  int parallel_threshold = 2048;
   // Scenes with at least this many bodies run the broad phase (skin check
   // every step, rebuilds) on threads (broad_phase.h). Its per-body work is
   // short, so it pays only for large scenes.
