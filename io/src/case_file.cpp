@@ -963,6 +963,12 @@ void parse_ground_motion(const Reader& r, const Field& f, CaseDef& def) {
         // Within half a sample of the end counts as at the end: the window
         // would hold no sample interval (a start written as the record's
         // last time, N*DT, lands just before or after the end).
+        // Further beyond it is simply after the end (a window_start_s of 60 s
+        // on a 53.71 s record read "within half a sample of the end").
+        if (gm.window_start_s > record_end_s + 0.5 * c.record.dt_s)
+          r.fail(start_field ? *start_field : file, "the window starts at " + fmt(gm.window_start_s) +
+                                                        " s, after the end of record " + c.resolved_file.string() +
+                                                        " (which ends at " + fmt(record_end_s) + " s)");
         if (gm.window_start_s >= record_end_s - 0.5 * c.record.dt_s)
           r.fail(start_field ? *start_field : file, "the window starts at " + fmt(gm.window_start_s) +
                                                         " s, at or within half a sample (" +

@@ -535,7 +535,7 @@ std::vector<BadCase> bad_cases() {
            "  window_start_s: 5.0\n  components:\n    - {file: rec.txt, format: two_column, axis: x}\n",
        6,
        "ground_motion.window_start_s",
-       {"of the end of record", "rec.txt"}},
+       {"the window starts at 5 s, after the end of record", "rec.txt (which ends at 1 s)"}},
       // Within half a sample of the record's end (rec.txt ends at 1 s, DT
       // 0.01 s): no sample interval left to run (records probe: a start
       // written as the last sample's time ran, or failed naming a key the
