@@ -899,17 +899,23 @@ EffectiveCase effective_case(const CaseDef& case_def, const CaseRunOptions& opti
 // estimate unless forced. An integrator chosen on the command line is named
 // as the option (no file or line); one chosen in the case file by its key's
 // line.
+// A refusal of the integrator, named where it was chosen: the option, or
+// the case file's key.
+InputError integrator_error(const CaseDef& def, bool integrator_from_command_line, const std::string& why) {
+  if (integrator_from_command_line) return InputError("", 0, "--integrator", why);
+  const int line = line_of(def, "time.integrator");
+  return InputError(def.source_file.string(), line ? line : line_of(def, "time"), "time.integrator", why);
+}
+
+// check_integrator = false skips the first check (describe_case reports it
+// as a line instead).
 void check_run_start(const CaseDef& def, const Scene& scene, const CaseRunOptions& options,
-                     bool integrator_from_command_line) {
+                     bool integrator_from_command_line, bool check_integrator = true) {
   const Simulation& sim = *scene.simulation;
   const double dt = sim.settings().dt_s;
   const Integrator method = sim.settings().integrator;
-  auto integrator_error = [&](const std::string& why) {
-    if (integrator_from_command_line) return InputError("", 0, "--integrator", why);
-    const int line = line_of(def, "time.integrator");
-    return InputError(def.source_file.string(), line ? line : line_of(def, "time"), "time.integrator", why);
-  };
-  if (const std::string why = sim.integrator_refusal(); !why.empty()) throw integrator_error(why);
+  if (const std::string why = sim.integrator_refusal(); check_integrator && !why.empty())
+    throw integrator_error(def, integrator_from_command_line, why);
   if (std::isnan(scene.stable_time_step.omega_max_radps)) {
     // Not overridable: no dt can be checked, and the run's arithmetic would
     // be meaningless. The masses and inertias are checked in build_model;
@@ -932,7 +938,7 @@ void check_run_start(const CaseDef& def, const Scene& scene, const CaseRunOption
              "it refuses forward_euler for a scene with a stiff mode: the stiffest here, "
           << scene.stable_time_step.omega_max_radps << " rad/s, is " << scene.stable_time_step.stiffest_element
           << "; choose another integrator (or run with --force to override)";
-      throw integrator_error(msg.str());
+      throw integrator_error(def, integrator_from_command_line, msg.str());
     }
     // omega_max is the undamped frequency that would set the same limit
     // (dem_core/linearised_network.h): dashpots included, not 2/omega of
@@ -1134,15 +1140,19 @@ CaseRunReport resume_case(const std::filesystem::path& folder, const CaseRunOpti
   return execute(scene, *writer, options, &meta, def, storeys);
 }
 
-void describe_case(const CaseDef& def, std::ostream& out) {
+void describe_case(const CaseDef& case_def, std::ostream& out, std::optional<Integrator> integrator) {
+  CaseRunOptions forced;
+  forced.integrator = integrator;
+  const EffectiveCase effective = effective_case(case_def, forced);
+  const CaseDef& def = *effective.def;
   Scene scene = build_scene(def);
-  {
-    // What run refuses whatever the options (an integrator the scene cannot
-    // serve) is an error here too; a dt above the limit is flagged below.
-    CaseRunOptions forced;
-    forced.allow_unstable_time_step = true;
-    check_run_start(def, scene, forced, false);
-  }
+  // The case is described whatever run would say of it; each reason run
+  // would refuse it (an integrator the scene's laws cannot serve, a dt above
+  // the stable limit without --force) is one line under the time step. Only
+  // a scene whose stable step cannot be estimated at all is an error here.
+  const std::string integrator_refused = scene.simulation->integrator_refusal();
+  forced.allow_unstable_time_step = true;
+  check_run_start(def, scene, forced, effective.integrator_from_command_line, false);
   const Simulation& sim = *scene.simulation;
   const BodyStore& bodies = sim.bodies();
   double total_mass = 0.0;
@@ -1202,12 +1212,25 @@ void describe_case(const CaseDef& def, std::ostream& out) {
     out << "warning     " << w << "\n";
   if (scene.contacts) {
     // Step 0's forces, as run evaluates them first: the contacts then know
-    // which pairs overlap at the start, which run warns of.
-    scene.simulation->initialize();
-    if (const std::string w = initial_overlap_warning(scene.contacts->initial_overlaps(), sim.bodies()); !w.empty())
+    // which pairs overlap at the start, which run warns of. An integrator
+    // the contacts refuse cannot start the scene: the overlaps are those of
+    // the same scene under central difference (the start's forces are the
+    // same).
+    Scene central_difference_scene;
+    Scene* start = &scene;
+    if (!integrator_refused.empty()) {
+      CaseDef copy = def;
+      copy.time.integrator = Integrator::CentralDifference;
+      central_difference_scene = build_scene(copy);
+      start = &central_difference_scene;
+    }
+    start->simulation->initialize();
+    if (const std::string w = initial_overlap_warning(start->contacts->initial_overlaps(), start->simulation->bodies());
+        !w.empty())
       out << "warning     " << w << "\n";
   }
-  out << "time step   " << s.dt_s << " s (" << integrator_name(s.integrator) << ")";
+  out << "time step   " << s.dt_s << " s (" << integrator_name(s.integrator)
+      << (effective.integrator_from_command_line ? ", from --integrator" : "") << ")";
   if (scene.stable_time_step.dt_crit_s == 0.0)  // forward Euler on an undamped mode
     out << "  (no stable time step with " << integrator_name(s.integrator)
         << ": it is stable only while dt < 2 zeta / omega on every mode, never on an undamped one, and no such "
@@ -1224,6 +1247,9 @@ void describe_case(const CaseDef& def, std::ostream& out) {
     out << "\n            NO ESTIMATED STABLE STEP: run refuses this integrator here unless --force is given";
   else if (s.dt_s > scene.stable_time_step.dt_crit_s)
     out << "\n            ABOVE THE STABLE LIMIT: run refuses this time step unless --force is given";
+  if (!integrator_refused.empty())
+    out << "\n            RUN WOULD REFUSE THIS INTEGRATOR (--force does not override it): "
+        << integrator_error(def, effective.integrator_from_command_line, integrator_refused).what();
   out << "\nduration    " << s.duration_s << " s = " << sim.total_steps() << " steps\n";
   const GroundMotion& gm = sim.ground_motion();
   if (gm.empty()) {

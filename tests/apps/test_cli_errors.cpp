@@ -407,16 +407,23 @@ TEST(CliErrors, IntegratorTheSceneCannotUseIsRefusedWhereItWasChosen) {
   const std::string rk4_case = (dir.path() / "rk4.yaml").string();
   const std::string cube_case = (dir.path() / "cube.yaml").string();
 
-  for (const std::string command : {"run", "info"}) {
-    SCOPED_TRACE(command);
-    std::vector<std::string> args = {command, rk4_case};
-    if (command == "run") args.insert(args.end(), {"--out", out.string(), "--quiet", "--force"});
-    const auto r = run_app(args, dir.path());
-    EXPECT_EQ(r.code, 2) << r.err;
-    EXPECT_NE(r.err.find("rk4.yaml:6: field 'time.integrator'"), std::string::npos) << r.err;
-    EXPECT_NE(r.err.find("evaluates forces at trial states"), std::string::npos) << r.err;
-    EXPECT_FALSE(fs::exists(out));
-  }
+  const auto refused = run_app({"run", rk4_case, "--out", out.string(), "--quiet", "--force"}, dir.path());
+  EXPECT_EQ(refused.code, 2) << refused.err;
+  EXPECT_NE(refused.err.find("rk4.yaml:6: field 'time.integrator'"), std::string::npos) << refused.err;
+  EXPECT_NE(refused.err.find("evaluates forces at trial states"), std::string::npos) << refused.err;
+  EXPECT_FALSE(fs::exists(out));
+  // info describes the case all the same (exit 0, as for a dt above the
+  // limit) and says on one line that run would refuse, and why, in run's
+  // words (it exited 2 with the refusal alone).
+  const auto described = run_app({"info", rk4_case}, dir.path());
+  EXPECT_EQ(described.code, 0) << described.err;
+  EXPECT_NE(described.out.find("bodies "), std::string::npos) << described.out;
+  EXPECT_NE(described.out.find("output "), std::string::npos) << described.out;
+  EXPECT_NE(described.out.find("RUN WOULD REFUSE THIS INTEGRATOR (--force does not override it): " + rk4_case +
+                               ":6: field 'time.integrator': integrator rk4 evaluates forces at trial states"),
+            std::string::npos)
+      << described.out;
+  EXPECT_TRUE(described.err.empty()) << described.err;
   const auto option = run_app({"run", cube_case, "--integrator", "gsl_rk8pd", "--out", out.string(), "--quiet"},
                               dir.path());
   EXPECT_EQ(option.code, 2) << option.err;
@@ -451,6 +458,55 @@ TEST(CliErrors, IntegratorTheSceneCannotUseIsRefusedWhereItWasChosen) {
   EXPECT_NE(euler_info.out.find("NO ESTIMATED STABLE STEP"), std::string::npos) << euler_info.out;
   EXPECT_EQ(euler_info.out.find("grows at every dt"), std::string::npos) << euler_info.out;
   EXPECT_EQ(euler_info.out.find("stable limit 0"), std::string::npos) << euler_info.out;
+}
+
+// info takes --integrator as run does, to preview another integrator's
+// stable limit and whether run would take it (it was an unknown option).
+// Every reason run would refuse is a line of the description, exit 0; the
+// integrator's own refusal is named as the option, not the case file.
+TEST(CliInfo, IntegratorOptionPreviewsWhatRunWouldDoWithIt) {
+  TempDir dir;
+  std::ofstream(dir.path() / "cube.yaml", std::ios::binary) << fq_test::kForcedCubeCase;
+  const std::string cube_case = (dir.path() / "cube.yaml").string();
+  const auto plain = run_app({"info", cube_case}, dir.path());
+  ASSERT_EQ(plain.code, 0) << plain.err;
+  EXPECT_EQ(plain.out.find("NO ESTIMATED STABLE STEP"), std::string::npos) << plain.out;
+  EXPECT_EQ(plain.out.find("from --integrator"), std::string::npos) << plain.out;
+
+  const auto euler = run_app({"info", cube_case, "--integrator", "forward_euler"}, dir.path());
+  EXPECT_EQ(euler.code, 0) << euler.err;
+  EXPECT_NE(euler.out.find("(forward_euler, from --integrator)"), std::string::npos) << euler.out;
+  EXPECT_NE(euler.out.find("NO ESTIMATED STABLE STEP: run refuses this integrator here unless --force is given"),
+            std::string::npos)
+      << euler.out;
+
+  // The cube's contacts keep history: rk4 is refused, whatever --force says;
+  // its dt is also above the limit (forced_cube_case.h): two lines.
+  const auto rk4 = run_app({"info", cube_case, "--integrator=rk4"}, dir.path());
+  EXPECT_EQ(rk4.code, 0) << rk4.err;
+  EXPECT_NE(rk4.out.find("(rk4, from --integrator)"), std::string::npos) << rk4.out;
+  EXPECT_NE(rk4.out.find("ABOVE THE STABLE LIMIT: run refuses this time step unless --force is given"),
+            std::string::npos)
+      << rk4.out;
+  EXPECT_NE(rk4.out.find("RUN WOULD REFUSE THIS INTEGRATOR (--force does not override it): option '--integrator': "
+                         "integrator rk4 evaluates forces at trial states"),
+            std::string::npos)
+      << rk4.out;
+  EXPECT_NE(rk4.out.find("contact shear springs and friction"), std::string::npos) << rk4.out;
+  EXPECT_EQ(rk4.out.find("cube.yaml:"), std::string::npos) << rk4.out;
+
+  // The trilinear springs of the breaking cantilever, as run names them.
+  const auto trilinear = run_app(
+      {"info", (fs::path(FQ_SOURCE_DIR) / "cases/demo_breaking_cantilever.yaml").string(), "--integrator", "rk4"},
+      dir.path());
+  EXPECT_EQ(trilinear.code, 0) << trilinear.err;
+  EXPECT_NE(trilinear.out.find("RUN WOULD REFUSE THIS INTEGRATOR"), std::string::npos) << trilinear.out;
+  EXPECT_NE(trilinear.out.find("springs of law trilinear"), std::string::npos) << trilinear.out;
+
+  const auto bad = run_app({"info", cube_case, "--integrator", "leapfrog"}, dir.path());
+  EXPECT_EQ(bad.code, 2) << bad.err;
+  EXPECT_NE(bad.err.find("--integrator expects one of"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("Usage: framequake info"), std::string::npos) << bad.err;
 }
 
 // Every option also takes the form --option=value (a value may contain

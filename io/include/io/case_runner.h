@@ -237,7 +237,12 @@ CaseRunReport run_case(const CaseDef& def, const CaseRunOptions& options);
 CaseRunReport resume_case(const std::filesystem::path& folder, const CaseRunOptions& options);
 
 // Human-readable description: bodies, total mass, time step and its stable
-// limit, duration, ground motion, output plan.
-void describe_case(const CaseDef& def, std::ostream& out);
+// limit, duration, ground motion, output plan; `integrator` replaces the
+// case's time.integrator as --integrator does for run. Every reason run
+// would refuse the case (an integrator the scene cannot serve, dt above the
+// stable limit without --force) is a line of the description, not an error;
+// InputError only when the case cannot be described (it does not load, or
+// no stable step can be estimated).
+void describe_case(const CaseDef& def, std::ostream& out, std::optional<Integrator> integrator = std::nullopt);
 
 }  // namespace fq
