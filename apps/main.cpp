@@ -381,6 +381,18 @@ int command_render(int argc, char** argv) {
   return code == kExitInterrupted ? interrupted_exit_code() : code;
 }
 
+// The usage a usage error of COMMAND prints: its own, or the top-level one
+// for an unknown command.
+const char* command_help(const std::string& command) {
+  if (command == "run") return kRunHelp;
+  if (command == "resume") return kResumeHelp;
+  if (command == "info") return kInfoHelp;
+  if (command == "compare") return fq_app::compare_help();
+  if (command == "sweep") return fq_app::sweep_help();
+  if (command == "render") return fq::render::kRenderHelp;
+  return kMainHelp;
+}
+
 }  // namespace
 
 static int dispatch(int argc, char** argv) {
@@ -405,7 +417,8 @@ static int dispatch(int argc, char** argv) {
       // Options that take no value (every command's flags).
       for (const char* flag : {"--help", "--quiet", "--force", "--no-figure", "--compare", "--png"})
         if (arg.compare(0, eq, flag) == 0)
-          usage_error(std::string("option ") + flag + " takes no value, got '" + arg + "'", kMainHelp);
+          usage_error(std::string("option ") + flag + " takes no value, got '" + arg + "'",
+                      command_help(argv[1]));
       words.push_back(arg.substr(0, eq));
       words.push_back(arg.substr(eq + 1));
     } else {

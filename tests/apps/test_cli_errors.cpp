@@ -527,6 +527,16 @@ TEST(CliUsage, OptionEqualsValueIsTheOptionFollowedByTheValue) {
   const auto flag = run_app({"run", (dir.path() / "case.yaml").string(), "--quiet=1"}, dir.path());
   EXPECT_EQ(flag.code, 2) << flag.err;
   EXPECT_NE(flag.err.find("option --quiet takes no value, got '--quiet=1'"), std::string::npos) << flag.err;
+  // ... followed by run's usage, as every other run option error is (it
+  // printed the top-level usage); each command's own.
+  EXPECT_NE(flag.err.find("Usage: framequake run CASE [options]"), std::string::npos) << flag.err;
+  EXPECT_EQ(flag.err.find("framequake --help               this text"), std::string::npos) << flag.err;
+  const auto resume = run_app({"resume", dir.path().string(), "--quiet=yes"}, dir.path());
+  EXPECT_EQ(resume.code, 2) << resume.err;
+  EXPECT_NE(resume.err.find("Usage: framequake resume DIR"), std::string::npos) << resume.err;
+  const auto compare = run_app({"compare", (dir.path() / "case.yaml").string(), "--no-figure=1"}, dir.path());
+  EXPECT_EQ(compare.code, 2) << compare.err;
+  EXPECT_NE(compare.err.find("Usage: framequake compare CASE..."), std::string::npos) << compare.err;
 }
 
 // "--" ends the options: a case file whose name starts with '-' is given
