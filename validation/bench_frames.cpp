@@ -54,6 +54,17 @@ namespace {
 
 double g_record_seconds = 0.0;  // 0: the case's own window
 
+// --help: these, then Google Benchmark's flags.
+constexpr const char* kOwnOptions =
+    "bench_frames: wall time of frames A, B and C (cases/frame_*.yaml; run from the repository root or set\n"
+    "FQ_SOURCE_DIR)\n"
+    "Options of this program:\n"
+    "  --record_seconds=S  use only S record seconds instead of the cases' 20 (a quick look; the per-step\n"
+    "                      figures stay comparable)\n"
+    "  --threads=N[,M..]   OpenMP threads of the no_output runs (default 1); --threads=1,2 runs both and\n"
+    "                      compares the final states (exit status 1 if they differ)\n"
+    "Google Benchmark's flags:\n";
+
 std::filesystem::path case_path(const std::string& frame) {
   const char* root = std::getenv("FQ_SOURCE_DIR");
   std::filesystem::path base = root ? std::filesystem::path(root) : std::filesystem::current_path();
@@ -174,5 +185,5 @@ int main(int argc, char** argv) {
         ->UseManualTime()
         ->Unit(benchmark::kSecond);
   }
-  return fq::bench::run_and_compare_threads(int(rest.size()), rest.data());
+  return fq::bench::run_and_compare_threads(int(rest.size()), rest.data(), kOwnOptions);
 }

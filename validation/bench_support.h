@@ -103,9 +103,24 @@ inline void large_scene_sizes(benchmark::internal::Benchmark* b) {
   b->Iterations(1)->UseManualTime()->Unit(benchmark::kMillisecond);
 }
 
+// The help text of a program's own options (before Google Benchmark's), or
+// null; printed by --help ahead of Google Benchmark's flags.
+inline const char*& own_options_help() {
+  static const char* text = nullptr;
+  return text;
+}
+
+inline void print_help() {
+  if (const char* own = own_options_help()) std::fputs(own, stdout);
+  benchmark::PrintDefaultHelp();
+}
+
 // Runs the benchmarks the command line selects; false for an unknown option.
-inline bool run_selected_benchmarks(int argc, char** argv) {
-  benchmark::Initialize(&argc, argv);
+// `own_options`: the help text of the program's own options, listed by
+// --help before Google Benchmark's (which --help alone would print).
+inline bool run_selected_benchmarks(int argc, char** argv, const char* own_options = nullptr) {
+  own_options_help() = own_options;
+  benchmark::Initialize(&argc, argv, print_help);
   // The SIMD form of the lane kernels every figure was measured with
   // (FRAMEQUAKE_SIMD=sse2 or avx2 to choose; dem_core/lane_isa.h).
   benchmark::AddCustomContext("simd_form", fq::lane_isa_name(fq::active_lane_isa()));
@@ -117,8 +132,8 @@ inline bool run_selected_benchmarks(int argc, char** argv) {
 
 // The body of main(): exit status 1 for an unknown option, else that of the
 // 1- vs 2-thread comparison.
-inline int run_and_compare_threads(int argc, char** argv) {
-  if (!run_selected_benchmarks(argc, argv)) return 1;
+inline int run_and_compare_threads(int argc, char** argv, const char* own_options = nullptr) {
+  if (!run_selected_benchmarks(argc, argv, own_options)) return 1;
   return thread_hashes().compare_with_one_thread();
 }
 

@@ -6,12 +6,13 @@
 # file.
 # The two study scripts check their arguments before anything starts: a
 # stray argument must not launch an hour of runs.
-#   study_cli_checks.sh STABILITY_LIMITS_BIN WORK_PRECISION_BIN SOURCE_DIR COMPARE_ROUNDS_BIN
+#   study_cli_checks.sh STABILITY_LIMITS_BIN WORK_PRECISION_BIN SOURCE_DIR COMPARE_ROUNDS_BIN BENCH_FRAMES_BIN
 set -u
 stability=$1
 precision=$2
 source_dir=$3
 compare=$4
+bench_frames=$5
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cd "$work"
@@ -103,6 +104,16 @@ rm cases/frame_B.yaml
 expect 2 "run from the repository root" err -- timeout 60 bash "$source_dir/validation/compare_builds.sh" fake/old fake/new
 rm -rf fake cases
 only_io_files "the comparison's argument checks"
+
+# bench_frames --help lists its own options beside Google Benchmark's flags
+# (validation/README.md documents --threads=1,2 and --record_seconds), and
+# runs no benchmark.
+expect 0 "--record_seconds=S" out -- "$bench_frames" --help
+expect 0 "--threads=N" out -- "$bench_frames" --help
+expect 0 "--benchmark_filter" out -- "$bench_frames" --help
+grep -qF "BM_Frame" out.txt && fail "bench_frames --help ran a benchmark"
+expect 2 "--threads expects a list like 1,2, got 'x'" err -- "$bench_frames" --threads=x
+only_io_files "bench_frames --help"
 
 if [ "$failures" -ne 0 ]; then echo "$failures check(s) failed"; exit 1; fi
 echo "all study command-line checks passed"
