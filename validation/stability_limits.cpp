@@ -32,9 +32,13 @@
 // and leave the rest settled, so this measures how conservative the
 // estimate is for them (docs/speed_accuracy.md).
 //
-// Usage: stability_limits [OUT_PREFIX]   (default validation/stability_limits)
-// writes OUT_PREFIX.csv and OUT_PREFIX.md and prints the markdown table;
-// --help prints the usage, any other option is refused (exit 2).
+// Usage: stability_limits [OUT_PREFIX]   (default stability_limits, in the
+// working folder) writes OUT_PREFIX.csv and OUT_PREFIX.md and prints the
+// markdown table; --help prints the usage, any other option is refused
+// (exit 2). The recorded sitting is validation/results/stability_limits: a
+// default there would overwrite it, and the former default,
+// validation/stability_limits, put the tables among the sources (and failed
+// outside the repository root).
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
@@ -52,8 +56,9 @@ namespace {
 
 constexpr const char* kUsage =
     "usage: stability_limits [OUT_PREFIX]\n"
-    "  writes OUT_PREFIX.csv and OUT_PREFIX.md (default validation/stability_limits; the folder must exist)\n"
-    "  and prints the markdown table\n";
+    "  writes OUT_PREFIX.csv and OUT_PREFIX.md (default stability_limits, in the working folder; the folder\n"
+    "  must exist) and prints the markdown table; validation/results/stability_limits is the recorded sitting,\n"
+    "  which that prefix overwrites\n";
 
 // Largest displacement (m) of any body over `steps` central-difference
 // steps of the case at dt, with gravity and ground motion removed and small
@@ -115,7 +120,7 @@ int usage_error(const std::string& msg) {
 int main(int argc, char** argv) {
   using namespace fq;
   using namespace fq::stability;
-  std::string prefix = "validation/stability_limits";
+  std::string prefix = "stability_limits";
   if (argc > 1) {
     const std::string a = argv[1];
     if (a == "-h" || a == "--help") {

@@ -53,6 +53,11 @@ only_io_files "stability_limits with an unwritable output"
 expect 0 "| cases/frame_B.yaml | " out -- "$stability" "$work/limits"
 grep -qF "not found" out.txt && fail "stability_limits run outside the repository did not find a case: $(grep -F 'not found' out.txt | head -c 300)"
 rm -f limits.csv limits.md
+# Without an argument it writes into the working folder, never into the
+# source tree (the recorded sitting is validation/results/stability_limits).
+expect 0 "| cases/frame_B.yaml | " out -- "$stability"
+[ -s stability_limits.csv ] && [ -s stability_limits.md ] || fail "stability_limits without argument did not write stability_limits.csv/.md in the working folder"
+rm -f stability_limits.csv stability_limits.md
 
 expect 0 "usage: work_precision" out -- "$precision" --help
 only_io_files "work_precision --help"
