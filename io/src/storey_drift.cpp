@@ -17,63 +17,198 @@ const char* storey_verdict_name(StoreyVerdict v) {
   return "unknown";
 }
 
+namespace {
+
+// A member of kind column as the storeys see it: its end nodes, low end
+// first, and their heights snapped to the floor levels (find_storeys).
+struct ColumnSegment {
+  std::size_t member = 0;
+  int low_node = -1, high_node = -1;  // node indices
+  Vec3 low_m = Vec3::Zero(), high_m = Vec3::Zero();  // node positions (m)
+  double low_z_m = 0.0, high_z_m = 0.0;               // snapped heights (m)
+  // The point on the member's axis at height z (m); beyond an end it lies
+  // on the axis extended, which a column end snapped a few mm to its
+  // floor level asks for.
+  Vec3 point_at(double z) const {
+    const double f = (z - low_m.z()) / (high_m.z() - low_m.z());
+    return low_m + f * (high_m - low_m);
+  }
+};
+
+// A height at which a floor may lie: a column top that is a floor (a beam
+// frames into it, or no column continues up from it) or the lowest column
+// foot, with the vertical extent of the deepest beam framing into its
+// node (m; 0 without one).
+struct LevelCandidate {
+  double z_m = 0.0;
+  double beam_height_m = 0.0;
+};
+
+// A floor level: the median height of the candidates merged into it and
+// the tolerance within which a column end belongs to it (m).
+struct Level {
+  double z_m = 0.0;
+  double tolerance_m = kStoreyLevelTolerance_m;
+};
+
+// Vertical extent of a member's section (m): of a horizontal beam, the
+// section's depth as rolled (width_m at a roll of 90 degrees).
+double section_height_m(const CaseDef& def, const MemberDef& m) {
+  const SectionDef& sec = def.sections[std::size_t(def.section_index(m.section))];
+  const Vec3 a = def.nodes[std::size_t(def.node_index(m.node_a))].xyz_m;
+  const Vec3 b = def.nodes[std::size_t(def.node_index(m.node_b))].xyz_m;
+  const Mat3 r = member_orientation(a, b, m.roll_rad).toRotationMatrix();
+  return std::abs(r(2, 1)) * sec.width_m + std::abs(r(2, 2)) * sec.depth_m;
+}
+
+}  // namespace
+
 std::vector<Storey> find_storeys(const Model& model) {
   const CaseDef& def = model.def;
-  struct ColumnSpan {
-    std::size_t member;
-    Vec3 low_m, high_m;  // node positions, low end first
-  };
-  std::vector<ColumnSpan> columns;
-  std::vector<double> levels;
+  const double tol = kStoreyLevelTolerance_m;
+  std::vector<ColumnSegment> segments;
+  std::vector<double> beam_height_m(def.nodes.size(), -1.0);  // deepest beam at each node; < 0: none
+  std::vector<char> column_goes_up(def.nodes.size(), 0);        // a column has its low end here
   for (std::size_t i = 0; i < def.members.size(); ++i) {
     const MemberDef& m = def.members[i];
+    const int na = def.node_index(m.node_a), nb = def.node_index(m.node_b);
+    if (m.kind == MemberKind::Beam) {
+      const double h = section_height_m(def, m);
+      for (const int n : {na, nb}) beam_height_m[std::size_t(n)] = std::max(beam_height_m[std::size_t(n)], h);
+      continue;
+    }
     if (m.kind != MemberKind::Column) continue;
-    Vec3 a = def.nodes[std::size_t(def.node_index(m.node_a))].xyz_m;
-    Vec3 b = def.nodes[std::size_t(def.node_index(m.node_b))].xyz_m;
-    if (std::abs(a.z() - b.z()) < kStoreyLevelTolerance_m) continue;  // a horizontal "column" spans no storey
-    if (a.z() > b.z()) std::swap(a, b);
-    columns.push_back({i, a, b});
-    levels.push_back(b.z());
+    ColumnSegment c;
+    c.member = i;
+    c.low_node = na;
+    c.high_node = nb;
+    c.low_m = def.nodes[std::size_t(na)].xyz_m;
+    c.high_m = def.nodes[std::size_t(nb)].xyz_m;
+    if (std::abs(c.low_m.z() - c.high_m.z()) < tol) continue;  // a horizontal "column" spans no storey
+    if (c.low_m.z() > c.high_m.z()) {
+      std::swap(c.low_m, c.high_m);
+      std::swap(c.low_node, c.high_node);
+    }
+    segments.push_back(c);
+    column_goes_up[std::size_t(c.low_node)] = 1;
   }
-  // Levels are the column tops and the lowest column foot. A foot higher
-  // up (a column on a hillside step, a post standing on a beam) is no
-  // level of its own: it made a storey between the two feet, of the longer
-  // column alone.
-  if (!columns.empty())
-    levels.push_back(std::min_element(columns.begin(), columns.end(), [](const ColumnSpan& p, const ColumnSpan& q) {
-                       return p.low_m.z() < q.low_m.z();
-                     })->low_m.z());
-  std::sort(levels.begin(), levels.end());
-  std::vector<double> merged;
-  for (double z : levels)
-    if (merged.empty() || z - merged.back() > kStoreyLevelTolerance_m) merged.push_back(z);
+  if (segments.empty()) return {};
+
+  // Floor levels. A column top is a floor when a beam frames into its node
+  // (the floor's beams carry the storey above and tie the columns
+  // together), or when no column continues up from it (a roof top, a free
+  // post top: the top of the structure there). A column top with only a
+  // brace or an `other` member at it, and a column continuing up, is a
+  // joint along one column line (a column split for a knee brace), not a
+  // floor: a level there cut the storey in two (geometry probe: a
+  // two-storey frame read as three). The lowest column foot is the lowest
+  // level; a foot higher up (a hillside step, a post on a beam) is none.
+  std::vector<LevelCandidate> candidates;
+  {
+    std::vector<char> seen(def.nodes.size(), 0);
+    auto add = [&](int node) {
+      if (seen[std::size_t(node)]) return;
+      seen[std::size_t(node)] = 1;
+      candidates.push_back({def.nodes[std::size_t(node)].xyz_m.z(), std::max(0.0, beam_height_m[std::size_t(node)])});
+    };
+    for (const ColumnSegment& c : segments)
+      if (beam_height_m[std::size_t(c.high_node)] >= 0.0 || !column_goes_up[std::size_t(c.high_node)]) add(c.high_node);
+    add(std::min_element(segments.begin(), segments.end(), [](const ColumnSegment& p, const ColumnSegment& q) {
+          return p.low_m.z() < q.low_m.z();
+        })->low_node);
+  }
+  std::sort(candidates.begin(), candidates.end(),
+            [](const LevelCandidate& p, const LevelCandidate& q) { return p.z_m < q.z_m; });
+  // Merging. The nodes of one floor may be typed anywhere on its beams'
+  // sections (a beam of vertical extent d occupies +-d/2 about its axis):
+  // on the axis, or on the top or bottom face, up to d apart; and two
+  // floors less than the depth of the deeper one's beams apart leave no
+  // clear height between them for a storey. So candidates closer than the
+  // depth of the deepest beam framing into either are one floor (a floor
+  // node typed 5 mm high on 10 mm beams made a storey 5 mm tall of its
+  // own, damaged, and renumbered the storey above; geometry probe), with
+  // kStoreyLevelTolerance_m as the least tolerance (levels without beams).
+  // Each candidate is compared with the lowest of its floor, so a floor
+  // spans at most one beam depth however many nodes lie a little apart.
+  // The floor's height is the median of its candidates' (one node typed
+  // off level among several does not move it).
+  std::vector<Level> levels;
+  {
+    std::size_t first = 0;
+    while (first < candidates.size()) {
+      double depth_m = candidates[first].beam_height_m;
+      std::size_t end = first + 1;
+      while (end < candidates.size() &&
+             candidates[end].z_m - candidates[first].z_m <
+                 std::max(tol, std::max(depth_m, candidates[end].beam_height_m))) {
+        depth_m = std::max(depth_m, candidates[end].beam_height_m);
+        ++end;
+      }
+      const std::size_t n = end - first, mid = first + n / 2;
+      const double median_m = n % 2 ? candidates[mid].z_m : 0.5 * (candidates[mid - 1].z_m + candidates[mid].z_m);
+      levels.push_back({median_m, std::max(tol, depth_m)});
+      first = end;
+    }
+  }
+  // Each column end within its floor's tolerance is taken at the floor's
+  // height: for which storeys the column belongs to and for its top and
+  // bottom points (a column ending 5 mm above its floor reaches it).
+  auto snapped = [&](double z) {
+    const Level* best = nullptr;
+    for (const Level& l : levels)
+      if (std::abs(z - l.z_m) < l.tolerance_m && (!best || std::abs(z - l.z_m) < std::abs(z - best->z_m))) best = &l;
+    return best ? best->z_m : z;
+  };
+  for (ColumnSegment& c : segments) {
+    c.low_z_m = snapped(c.low_m.z());
+    c.high_z_m = snapped(c.high_m.z());
+  }
+  // Column segments whose two ends snap to one floor span no storey.
+  segments.erase(std::remove_if(segments.begin(), segments.end(),
+                                [&](const ColumnSegment& c) { return c.high_z_m - c.low_z_m < tol; }),
+                 segments.end());
 
   std::vector<Storey> storeys;
-  for (std::size_t k = 1; k < merged.size(); ++k) {
+  for (std::size_t k = 1; k < levels.size(); ++k) {
     Storey s;
-    s.number = int(k);
-    s.bottom_z_m = merged[k - 1];
-    s.top_z_m = merged[k];
-    for (const ColumnSpan& c : columns) {
-      // A column of the band reaches its top level and starts at or below
-      // it; one whose foot lies inside the band counts from its foot.
-      if (c.low_m.z() > s.top_z_m - kStoreyLevelTolerance_m || c.high_m.z() < s.top_z_m - kStoreyLevelTolerance_m) continue;
-      const double foot_z = c.low_m.z() > s.bottom_z_m + kStoreyLevelTolerance_m ? c.low_m.z() : s.bottom_z_m;
-      const BodyId body = model.member_body[c.member];
-      auto point_at = [&](double z) {  // on the column axis at height z
-        const double f = (z - c.low_m.z()) / (c.high_m.z() - c.low_m.z());
-        return Vec3(c.low_m + f * (c.high_m - c.low_m));
-      };
+    s.bottom_z_m = levels[k - 1].z_m;
+    s.top_z_m = levels[k].z_m;
+    for (std::size_t t = 0; t < segments.size(); ++t) {
+      // A column line of the band: a segment reaching the band's top level
+      // from below it, followed down through the joints along its line
+      // (nodes inside the band where another column segment ends) to the
+      // segment at the band's bottom level, or to a foot inside the band
+      // (a column on a hillside step, a post on a beam), which it counts
+      // from. Where two segments end at one joint from below, the first in
+      // the file is taken.
+      const ColumnSegment& top = segments[t];
+      if (top.low_z_m > s.top_z_m - tol || top.high_z_m < s.top_z_m - tol) continue;
+      std::vector<std::size_t> line{t};
+      while (segments[line.back()].low_z_m > s.bottom_z_m + tol) {
+        const int joint = segments[line.back()].low_node;
+        std::size_t below = segments.size();
+        for (std::size_t b = 0; b < segments.size() && below == segments.size(); ++b)
+          if (segments[b].high_node == joint && segments[b].low_z_m < segments[line.back()].low_z_m) below = b;
+        if (below == segments.size()) break;
+        line.push_back(below);
+      }
+      const ColumnSegment& bottom = segments[line.back()];
+      const double foot_z = bottom.low_z_m > s.bottom_z_m + tol ? bottom.low_z_m : s.bottom_z_m;
       StoreyColumn sc;
-      sc.body = body;
-      sc.bottom_start_m = point_at(foot_z);
-      sc.top_start_m = point_at(s.top_z_m);
-      const Mat3& r = model.bodies.rotation[body];
-      const Vec3& x = model.bodies.position_m[body];
-      sc.bottom_local_m = r.transpose() * (sc.bottom_start_m - x);
-      sc.top_local_m = r.transpose() * (sc.top_start_m - x);
+      sc.bottom_body = model.member_body[bottom.member];
+      sc.top_body = model.member_body[top.member];
+      sc.bottom_start_m = bottom.point_at(foot_z);
+      sc.top_start_m = top.point_at(s.top_z_m);
+      sc.bottom_local_m = model.bodies.rotation[sc.bottom_body].transpose() *
+                          (sc.bottom_start_m - model.bodies.position_m[sc.bottom_body]);
+      sc.top_local_m =
+          model.bodies.rotation[sc.top_body].transpose() * (sc.top_start_m - model.bodies.position_m[sc.top_body]);
       s.columns.push_back(sc);
-      s.column_names.push_back(def.members[c.member].id);
+      // Named after its segments, lowest first ("c1a+c1b").
+      std::string name;
+      for (auto it = line.rbegin(); it != line.rend(); ++it)
+        name += (name.empty() ? "" : "+") + def.members[segments[*it].member].id;
+      s.column_names.push_back(name);
     }
     if (!s.columns.empty()) storeys.push_back(std::move(s));
   }
@@ -85,8 +220,8 @@ Eigen::Vector2d storey_drift_m(const Storey& storey, const BodyStore& bodies, st
   Vec3 sum = Vec3::Zero();
   if (per_column) per_column->clear();
   for (const StoreyColumn& c : storey.columns) {
-    const Vec3 top = bodies.to_world(c.body, c.top_local_m) - c.top_start_m;
-    const Vec3 bottom = bodies.to_world(c.body, c.bottom_local_m) - c.bottom_start_m;
+    const Vec3 top = bodies.to_world(c.top_body, c.top_local_m) - c.top_start_m;
+    const Vec3 bottom = bodies.to_world(c.bottom_body, c.bottom_local_m) - c.bottom_start_m;
     const Vec3 drift = top - bottom;
     if (per_column) per_column->emplace_back(drift.x(), drift.y());
     sum += drift;

@@ -1,5 +1,7 @@
 // Storeys and inter-storey drift (io/storey_drift.h): which columns make a
-// storey, and the drift of known rigid motions against their closed forms
+// storey (a column split at mid-height is one column line, a floor node
+// typed a few mm off level is of its floor), and the drift of known rigid
+// motions against their closed forms
 // (a column turned by theta about its bottom point drifts h sin(theta); a
 // rigid translation of a whole storey does not drift), plus the verdict
 // thresholds and the drift columns and summary of a real run.
@@ -112,6 +114,175 @@ TEST(StoreyDrift, AColumnOnAHillsideStepCountsFromItsFoot) {
   const Eigen::Vector2d d = storey_drift_m(storeys[0], model.bodies);
   EXPECT_NEAR(d.x(), 0.5 * (0.39 + 0.29) * std::sin(theta), 1e-12);
   EXPECT_NEAR(d.y(), 0.0, 1e-12);
+}
+
+// Turns every member of `model` by `angle` about world y through the
+// origin: a rigid sway of the whole frame, under which every point at
+// height z moves z sin(angle) along x, so every storey whose columns are
+// vertical drifts its height times sin(angle): drift ratio sin(angle).
+void sway_whole_frame(Model& model, double angle) {
+  for (const BodyId b : model.member_body) turn_about_y(model.bodies, b, Vec3::Zero(), angle);
+}
+
+// kFrame with col_a1 split at mid-height (node am, z = 0.145) into two
+// column members for a knee brace (the brace from am to b0): no beam
+// frames into am and a column continues up from it, so it is a joint along
+// one column line, not a floor. The geometry probe got three storeys
+// (0-0.145, 0.145-0.29, 0.29-0.58), the split column's drift taken from
+// its upper half alone.
+std::string knee_split_frame() {
+  std::string text = kFrame;
+  const std::string a1 = "  - {id: col_a1, kind: column, nodes: [a0, a1], section: col, material: wood}\n";
+  text.replace(text.find(a1), a1.size(),
+               "  - {id: col_a1a, kind: column, nodes: [a0, am], section: col, material: wood}\n"
+               "  - {id: col_a1b, kind: column, nodes: [am, a1], section: col, material: wood}\n"
+               "  - {id: knee, kind: brace, nodes: [am, b0], section: beam, material: wood}\n");
+  const std::string a0 = "  - {id: a0, xyz_m: [0, 0, 0]}\n";
+  text.replace(text.find(a0), a0.size(), a0 + "  - {id: am, xyz_m: [0, 0, 0.145]}\n");
+  return text;
+}
+
+TEST(StoreyDrift, AColumnSplitAtMidHeightIsOneColumnLineOfItsStorey) {
+  TempDir dir;
+  Model split = build_model(load_case_file(dir.write("split.yaml", knee_split_frame())));
+  Model whole = frame_model();
+  const std::vector<Storey> s = find_storeys(split), w = find_storeys(whole);
+  ASSERT_EQ(s.size(), 2u);
+  ASSERT_EQ(w.size(), 2u);
+  for (std::size_t k = 0; k < 2; ++k) {
+    EXPECT_DOUBLE_EQ(s[k].bottom_z_m, w[k].bottom_z_m);
+    EXPECT_DOUBLE_EQ(s[k].top_z_m, w[k].top_z_m);
+    EXPECT_EQ(s[k].columns.size(), w[k].columns.size());
+  }
+  EXPECT_EQ(s[0].column_names, (std::vector<std::string>{"col_a1a+col_a1b", "col_b1", "col_c"}));
+  EXPECT_EQ(s[1].column_names, w[1].column_names);
+  // The line's points lie on its two segments: its foot on the lower, its
+  // top on the upper.
+  EXPECT_EQ(s[0].columns[0].bottom_body, split.member_body[0]);
+  EXPECT_EQ(s[0].columns[0].top_body, split.member_body[1]);
+  EXPECT_TRUE(s[0].columns[0].bottom_start_m.isApprox(Vec3(0, 0, 0)));
+  EXPECT_TRUE(s[0].columns[0].top_start_m.isApprox(Vec3(0, 0, 0.29)));
+  // A rigid sway of the whole frame by theta: every storey of both frames
+  // drifts its height times sin(theta).
+  const double theta = 0.03;
+  sway_whole_frame(split, theta);
+  sway_whole_frame(whole, theta);
+  for (std::size_t k = 0; k < 2; ++k) {
+    const Eigen::Vector2d ds = storey_drift_m(s[k], split.bodies), dw = storey_drift_m(w[k], whole.bodies);
+    EXPECT_NEAR(ds.x() / s[k].height_m(), std::sin(theta), 1e-12) << k;
+    EXPECT_NEAR(ds.y(), 0.0, 1e-12) << k;
+    EXPECT_NEAR(ds.x(), dw.x(), 1e-12) << k;
+  }
+  // The upper half moved sideways by (u, v) alone (its joint with the
+  // lower half slipped): the line drifts (u, v), which its upper half on
+  // its own does not show (a translation turns no body), and storey 1, the
+  // mean of its three lines, drifts a third of it.
+  Model slipped = build_model(load_case_file(dir.write("slip.yaml", knee_split_frame())));
+  const Vec3 slip(0.012, -0.006, 0.0);
+  slipped.bodies.position_m[slipped.member_body[1]] += slip;
+  std::vector<Eigen::Vector2d> per_column;
+  const Eigen::Vector2d d = storey_drift_m(s[0], slipped.bodies, &per_column);
+  EXPECT_NEAR(per_column[0].x(), slip.x(), 1e-15);
+  EXPECT_NEAR(per_column[0].y(), slip.y(), 1e-15);
+  EXPECT_NEAR(d.x(), slip.x() / 3.0, 1e-15);
+  EXPECT_NEAR(d.y(), slip.y() / 3.0, 1e-15);
+}
+
+// Three column lines (x = 0, 0.5, 1) of two storeys of 0.29 m, beams of
+// section `beam_depth_m` deep (roll 0: depth_m is vertical) joining each
+// floor; node b1, where the middle line's floor beams meet, typed at
+// `b1_z_m`.
+std::string three_bay_frame(double b1_z_m, double beam_depth_m) {
+  std::ostringstream t;
+  t << "framequake_case: 1\n"
+       "time: {dt_s: 1.0e-5, duration_s: 0.01}\n"
+       "materials: [{name: wood, density_kg_per_m3: 450}]\n"
+       "sections: [{name: col, width_m: 0.010, depth_m: 0.020}, {name: beam, width_m: 0.010, depth_m: "
+    << beam_depth_m << "}]\n"
+       "nodes:\n"
+       "  - {id: a0, xyz_m: [0, 0, 0]}\n"
+       "  - {id: a1, xyz_m: [0, 0, 0.29]}\n"
+       "  - {id: a2, xyz_m: [0, 0, 0.58]}\n"
+       "  - {id: b0, xyz_m: [0.5, 0, 0]}\n"
+       "  - {id: b1, xyz_m: [0.5, 0, "
+    << b1_z_m << "]}\n"
+       "  - {id: b2, xyz_m: [0.5, 0, 0.58]}\n"
+       "  - {id: c0, xyz_m: [1.0, 0, 0]}\n"
+       "  - {id: c1, xyz_m: [1.0, 0, 0.29]}\n"
+       "  - {id: c2, xyz_m: [1.0, 0, 0.58]}\n"
+       "members:\n"
+       "  - {id: col_a1, kind: column, nodes: [a0, a1], section: col, material: wood}\n"
+       "  - {id: col_b1, kind: column, nodes: [b0, b1], section: col, material: wood}\n"
+       "  - {id: col_c1, kind: column, nodes: [c0, c1], section: col, material: wood}\n"
+       "  - {id: col_a2, kind: column, nodes: [a1, a2], section: col, material: wood}\n"
+       "  - {id: col_b2, kind: column, nodes: [b1, b2], section: col, material: wood}\n"
+       "  - {id: col_c2, kind: column, nodes: [c1, c2], section: col, material: wood}\n"
+       "  - {id: beam_ab1, kind: beam, nodes: [a1, b1], section: beam, material: wood}\n"
+       "  - {id: beam_bc1, kind: beam, nodes: [b1, c1], section: beam, material: wood}\n"
+       "  - {id: beam_ab2, kind: beam, nodes: [a2, b2], section: beam, material: wood}\n"
+       "  - {id: beam_bc2, kind: beam, nodes: [b2, c2], section: beam, material: wood}\n";
+  return t.str();
+}
+
+// A floor node typed 5 mm high on beams 10 mm deep (the geometry probe:
+// a storey 5 mm tall of its own, damaged, and the storey above renumbered
+// 3) lies within its floor's beams: one floor, at the median height of its
+// nodes (0.29), two storeys of 0.29 m, the middle line's column ends taken
+// at 0.29 (on their axes, 5 mm below and above the node), so a rigid sway
+// by theta drifts both storeys by exactly sin(theta). Typed 12 mm high it
+// lies beyond the 10 mm beams' depth: a level of its own (three storeys);
+// on beams 30 mm deep it is one floor again.
+TEST(StoreyDrift, AFloorNodeTypedOffLevelWithinItsBeamsDepthIsOfThatFloor) {
+  TempDir dir;
+  Model model = build_model(load_case_file(dir.write("5mm.yaml", three_bay_frame(0.295, 0.010))));
+  const std::vector<Storey> storeys = find_storeys(model);
+  ASSERT_EQ(storeys.size(), 2u);
+  EXPECT_DOUBLE_EQ(storeys[0].bottom_z_m, 0.0);
+  EXPECT_DOUBLE_EQ(storeys[0].top_z_m, 0.29);
+  EXPECT_DOUBLE_EQ(storeys[1].top_z_m, 0.58);
+  EXPECT_EQ(storeys[0].column_names, (std::vector<std::string>{"col_a1", "col_b1", "col_c1"}));
+  EXPECT_EQ(storeys[1].column_names, (std::vector<std::string>{"col_a2", "col_b2", "col_c2"}));
+  EXPECT_NEAR(storeys[0].columns[1].top_start_m.z(), 0.29, 1e-15);
+  EXPECT_NEAR(storeys[1].columns[1].bottom_start_m.z(), 0.29, 1e-15);
+  const double theta = 0.04;
+  sway_whole_frame(model, theta);
+  for (const Storey& s : storeys) {
+    std::vector<Eigen::Vector2d> per_column;
+    const Eigen::Vector2d d = storey_drift_m(s, model.bodies, &per_column);
+    EXPECT_NEAR(d.x() / s.height_m(), std::sin(theta), 1e-12) << s.number;
+    for (const Eigen::Vector2d& c : per_column) EXPECT_NEAR(c.x() / s.height_m(), std::sin(theta), 1e-12) << s.number;
+  }
+
+  const std::vector<Storey> apart = find_storeys(build_model(load_case_file(dir.write("12mm.yaml", three_bay_frame(0.302, 0.010)))));
+  ASSERT_EQ(apart.size(), 3u);
+  EXPECT_DOUBLE_EQ(apart[1].bottom_z_m, 0.29);
+  EXPECT_DOUBLE_EQ(apart[1].top_z_m, 0.302);
+  const std::vector<Storey> deep = find_storeys(build_model(load_case_file(dir.write("deep.yaml", three_bay_frame(0.302, 0.030)))));
+  ASSERT_EQ(deep.size(), 2u);
+  EXPECT_DOUBLE_EQ(deep[0].top_z_m, 0.29);
+}
+
+// A column whose top is typed 3 mm above its floor on its own node, with
+// no beam framing into it and no column continuing up from it (the
+// geometry probe's col_top_3mm: a storey 3 mm tall of five columns), is a
+// level of its own (a free top) within the 10 mm depth of the floor's
+// beams at 0.29: one floor, and the column reaches it.
+TEST(StoreyDrift, AColumnTopTypedAboveItsFloorWithoutABeamReachesTheFloor) {
+  TempDir dir;
+  std::string text = three_bay_frame(0.29, 0.010);
+  const std::string b1 = "  - {id: col_b1, kind: column, nodes: [b0, b1], section: col, material: wood}\n";
+  text.replace(text.find(b1), b1.size(), "  - {id: col_b1, kind: column, nodes: [b0, b1x], section: col, material: wood}\n");
+  const std::string c0 = "  - {id: c0, xyz_m: [1.0, 0, 0]}\n";
+  text.replace(text.find(c0), c0.size(), c0 + "  - {id: b1x, xyz_m: [0.5, 0, 0.293]}\n");
+  Model model = build_model(load_case_file(dir.write("3mm.yaml", text)));
+  const std::vector<Storey> storeys = find_storeys(model);
+  ASSERT_EQ(storeys.size(), 2u);
+  EXPECT_DOUBLE_EQ(storeys[0].top_z_m, 0.29);
+  EXPECT_EQ(storeys[0].column_names, (std::vector<std::string>{"col_a1", "col_b1", "col_c1"}));
+  EXPECT_EQ(storeys[1].column_names, (std::vector<std::string>{"col_a2", "col_b2", "col_c2"}));
+  sway_whole_frame(model, 0.02);
+  for (const Storey& s : storeys)
+    EXPECT_NEAR(storey_drift_m(s, model.bodies).x() / s.height_m(), std::sin(0.02), 1e-12) << s.number;
 }
 
 TEST(StoreyDrift, TurnedColumnDriftsHeightTimesSine) {

@@ -1,16 +1,26 @@
 // Storeys of a framed structure, their inter-storey drift and the verdict on
 // each (cases/README.md, `assessment`).
 //
-// Storey levels are the distinct heights (z) at which columns end at their
-// top, and the lowest column foot. Storey k (1-based) is the band between
-// level k-1 and level k; its columns are the column members reaching its
-// top level from at or below it. Each column contributes two material
-// points on its axis, at the band's top height and at its bottom height (or
-// the column's own foot where that lies inside the band: a column on a
-// hillside step, a post on a beam), fixed in the column's body frame. The
-// drift of the storey (m) is the mean over its columns of the horizontal
-// displacement of the top point relative to the bottom point; the drift
-// ratio (rad) is drift / height. While the joints
+// Storey levels are the floors: the heights of the column tops that a beam
+// frames into or that no column continues up from (a roof top, a free post
+// top), and the lowest column foot. A column top with a column continuing
+// up and no beam (a column split at mid-height for a knee brace; a brace or
+// an `other` member there does not make a floor) is a joint along one
+// column line, not a level. Levels closer than the depth of the deepest
+// beam framing into either (at least kStoreyLevelTolerance_m) are one floor,
+// at their median height, and a column end within that depth of a floor is
+// taken at the floor's height (a floor node typed 5 mm off level). Storey k
+// (1-based) is the band between level k-1 and level k; its columns are the
+// column lines reaching its top level from at or below it: a column segment
+// reaching the top level, followed down through the joints along its line
+// to the segment at the band's bottom level. Each line contributes two
+// material points on its axis, at the band's top height on the top segment
+// and at its bottom height on the bottom segment (or the line's own foot
+// where that lies inside the band: a column on a hillside step, a post on
+// a beam), each fixed in its segment's body frame. The drift of the storey
+// (m) is the mean over its column lines of the horizontal displacement of
+// the top point relative to the bottom point; the drift ratio (rad) is
+// drift / height. While the joints
 // hold, these points coincide with the nodes and this is the usual relative
 // displacement of two floors (displacements are relative to the ground,
 // DESIGN.md). After the joints fail the points follow the columns that
@@ -29,10 +39,14 @@
 
 namespace fq {
 
+// One column line of a storey: one column member, or several joined end to
+// end at joints that are no floor level (find_storeys). Its two points lie
+// on the bodies of its bottom and top segments (one body for one member).
 struct StoreyColumn {
-  BodyId body = kNoBody;
-  Vec3 bottom_local_m = Vec3::Zero();  // point at the band's bottom, body frame (m)
-  Vec3 top_local_m = Vec3::Zero();     // point at the band's top, body frame (m)
+  BodyId bottom_body = kNoBody;
+  BodyId top_body = kNoBody;
+  Vec3 bottom_local_m = Vec3::Zero();  // point at the band's bottom, bottom_body's frame (m)
+  Vec3 top_local_m = Vec3::Zero();     // point at the band's top, top_body's frame (m)
   Vec3 bottom_start_m = Vec3::Zero();  // its world position at t = 0 (m)
   Vec3 top_start_m = Vec3::Zero();
 };
@@ -43,15 +57,18 @@ struct Storey {
   double top_z_m = 0.0;
   double height_m() const { return top_z_m - bottom_z_m; }
   std::vector<StoreyColumn> columns;
+  // Per column line, its members' ids from the lowest up, joined by '+'
+  // ("c1a+c1b"); one member's line is its id.
   std::vector<std::string> column_names;
 };
 
-// Levels closer than this are one level, and a column whose ends lie
-// closer than this in height spans no storey (m).
+// The least distance between two floor levels (where no beam frames into
+// either: the tolerance is otherwise the deepest beam's depth), and a
+// column whose ends lie closer than this in height spans no storey (m).
 inline constexpr double kStoreyLevelTolerance_m = 1e-3;
 
-// Storeys of a built model; empty when it has no (non-horizontal) columns.
-// Levels closer than kStoreyLevelTolerance_m are merged.
+// Storeys of a built model (header); empty when it has no (non-horizontal)
+// columns.
 std::vector<Storey> find_storeys(const Model& model);
 
 // Current drift of a storey along world x and y (m); with `per_column`,
@@ -87,8 +104,8 @@ struct StoreyDriftRecord {
   double residual_ratio_y_rad = 0.0;
   double residual_window_s = 0.0;
   double collapse_time_s = -1.0;  // first step at or beyond the collapse limit; < 0: never
-  // The largest drift ratio magnitude any one column of the storey reached
-  // (rad), and which column (index into Storey::columns; -1: none yet).
+  // The largest drift ratio magnitude any one column line of the storey
+  // reached (rad), and which (index into Storey::columns; -1: none yet).
   // The storey's drift is the mean of its columns', so a storey that twists
   // (one side braced, the other not) has a column well past it; the verdict
   // uses the mean, and the run warns when a column's own peak would have
