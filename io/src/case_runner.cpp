@@ -434,6 +434,7 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
   if (const std::string w = slender_members_warning(def); !w.empty()) warn(w);
   if (const std::string w = unjoined_members_warning(def, scene); !w.empty()) warn(w);
   if (const std::string w = horizontal_columns_warning(def); !w.empty()) warn(w);
+  if (const std::string w = no_columns_warning(def); !w.empty()) warn(w);
   for (const std::string& w : ground_motion_direction_warnings(sim.ground_motion())) warn(w);
   // Step 0's forces (run() would do it first): the contacts then know which
   // pairs overlap at the start.
@@ -703,6 +704,17 @@ std::string horizontal_columns_warning(const CaseDef& def) {
   if (flat.size() > 3) w << ", ...";
   w << "): a horizontal column spans no storey and is left out of the drift assessment, and a slightly sloping one "
        "makes a storey as tall as its rise; give it kind: beam, or check its nodes' heights";
+  return w.str();
+}
+
+std::string no_columns_warning(const CaseDef& def) {
+  if (def.members.empty()) return {};  // blocks only: no frame to assess
+  for (const MemberDef& m : def.members)
+    if (m.kind == MemberKind::Column) return {};
+  std::ostringstream w;
+  w << def.source_file.string() << ": no member is of kind column, so the case has no storeys and the run gives no "
+    << "storey drift and no verdict (storeys are the bands between the floors its columns reach: cases/README.md, "
+       "assessment); give the posts that carry the floors kind: column";
   return w.str();
 }
 
@@ -1202,12 +1214,17 @@ void describe_case(const CaseDef& case_def, std::ostream& out, std::optional<Int
     }
     out << "            verdicts: damaged above " << def.assessment.safety_drift_ratio_rad
         << " rad, collapsed from " << def.assessment.collapse_drift_ratio_rad << " rad of peak drift ratio (assessment)\n";
+  } else if (!def.members.empty()) {
+    // A frame without storeys: said here, not left out silently (geometry
+    // probe); the warnings below say why.
+    out << "storeys     none: no column spans a storey, so a run gives no storey drift and no verdict\n";
   }
   if (const std::string w = nodes_inside_members_warning(def); !w.empty()) out << "warning     " << w << "\n";
   if (const std::string w = near_nodes_warning(def); !w.empty()) out << "warning     " << w << "\n";
   if (const std::string w = slender_members_warning(def); !w.empty()) out << "warning     " << w << "\n";
   if (const std::string w = unjoined_members_warning(def, scene); !w.empty()) out << "warning     " << w << "\n";
   if (const std::string w = horizontal_columns_warning(def); !w.empty()) out << "warning     " << w << "\n";
+  if (const std::string w = no_columns_warning(def); !w.empty()) out << "warning     " << w << "\n";
   for (const std::string& w : ground_motion_direction_warnings(sim.ground_motion()))
     out << "warning     " << w << "\n";
   if (scene.contacts) {

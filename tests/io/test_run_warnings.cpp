@@ -1,7 +1,7 @@
 // The warnings of a run that ran but may not mean what it seems
 // (io/case_runner.h, kWarn*): a time step forced above the stable estimate,
 // an energy ledger that does not close, dashpots that gained energy, bodies
-// that overlap at the start.
+// that overlap at the start, a frame without columns.
 //
 // The dashpot check is tested against a closed form. A 0.1 m cube resting
 // flat on the ground sits on four corner contacts (k_n each, dashpot c =
@@ -451,6 +451,45 @@ TEST(RunWarnings, AHorizontalColumnIsNamed) {
   for (const auto& e : std::filesystem::directory_iterator(std::filesystem::path(FQ_SOURCE_DIR) / "cases")) {
     if (e.path().extension() != ".yaml") continue;
     EXPECT_EQ(horizontal_columns_warning(load_case_file(e.path())), "") << e.path();
+  }
+}
+
+// A frame without a member of kind column has no storeys, so a run gives
+// no storey drift and no verdict; it said nothing (geometry probe: posts
+// given kind other). The portal with its columns given kind other is
+// warned of, by run (summary.json's warnings) and by info, which says it
+// has no storeys; the portal as it is, a case of blocks only (no frame to
+// assess) and the shipped cases are not.
+TEST(RunWarnings, AFrameWithoutColumnsIsToldItGetsNoStoreys) {
+  test::TempDir dir;
+  std::string posts = portal_case(0.3, 0.3);
+  for (const char* id : {"col_a", "col_b"}) {
+    const std::string from = std::string("{id: ") + id + ", kind: column,";
+    posts.replace(posts.find(from), from.size(), std::string("{id: ") + id + ", kind: other,");
+  }
+  const CaseDef def = load_case_file(dir.write("posts.yaml", posts));
+  const std::string w = no_columns_warning(def);
+  EXPECT_NE(w.find("posts.yaml: no member is of kind column, so the case has no storeys and the run gives no storey "
+                   "drift and no verdict"),
+            std::string::npos)
+      << w;
+  CaseRunOptions options;
+  options.output_folder = dir.path() / "posts";
+  const CaseRunReport report = run_case(def, options);
+  EXPECT_TRUE(report.storeys.empty());
+  EXPECT_TRUE(mentions(report.warnings, "no member is of kind column")) << report.warnings.size();
+  std::ostringstream info;
+  describe_case(def, info);
+  EXPECT_NE(info.str().find("storeys     none: no column spans a storey"), std::string::npos) << info.str();
+  EXPECT_NE(info.str().find("warning     " + w), std::string::npos) << info.str();
+
+  EXPECT_EQ(no_columns_warning(load_case_file(dir.write("portal.yaml", portal_case(0.3, 0.3)))), "");
+  EXPECT_EQ(no_columns_warning(load_case_file(dir.write("cube.yaml", cube_case(1e-5)))), "");
+  for (const auto& e : std::filesystem::directory_iterator(std::filesystem::path(FQ_SOURCE_DIR) / "cases")) {
+    if (e.path().extension() != ".yaml") continue;
+    const CaseDef shipped = load_case_file(e.path());
+    if (shipped.members.empty()) continue;
+    EXPECT_EQ(no_columns_warning(shipped), "") << e.path();
   }
 }
 

@@ -110,6 +110,8 @@ struct CaseRunReport {
 //    (unjoined_members_warning);
 //  - a member of kind column is horizontal, so it spans no storey
 //    (horizontal_columns_warning);
+//  - a case with members has none of kind column, so it has no storeys,
+//    no storey drift and no verdict (no_columns_warning);
 //  - a member is more than kSlenderMemberRatio times longer than its
 //    section is thin, as when coordinates are typed in mm
 //    (slender_members_warning);
@@ -197,6 +199,12 @@ std::string slender_members_warning(const CaseDef& def);
 // slightly sloping one makes a storey as tall as its rise.
 // Names the first three; empty when there are none.
 std::string horizontal_columns_warning(const CaseDef& def);
+
+// The warning for a case with members but none of kind column: it has no
+// storeys, so a run gives no storey drift and no verdict, which it did
+// silently (geometry probe: posts given kind other). A case of blocks
+// only has no frame to assess and gets none. Empty otherwise.
+std::string no_columns_warning(const CaseDef& def);
 
 // The warning for members that no joint holds, in a case that has joints (a
 // beam drawn 10 mm above the columns it should sit on): they stand only on
