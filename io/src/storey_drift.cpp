@@ -294,6 +294,14 @@ void StoreyDriftMonitor::save_state(StateWriter& out) const {
 }
 
 void StoreyDriftMonitor::load_state(StateReader& in) {
+  // The storeys themselves are not stored: a resume rebuilds them from the
+  // case (find_storeys) and reads only what was recorded of them. Where the
+  // storey rules have changed since the checkpoint was written (2026-11-27:
+  // floors only where a beam frames in or no column continues up, levels
+  // merged within a beam's depth), the change removed levels or moved a
+  // level by less than 1 mm (the median of heights within 1 mm, not the
+  // lowest): such a case has fewer storeys than its checkpoint, which the
+  // count below refuses, or the same storeys with the same columns.
   in.section("storeys");
   const std::uint64_t n = in.u64("storey count");
   if (n != records_.size())
@@ -390,7 +398,8 @@ std::string StoreyDriftMonitor::twist_warning(std::size_t i) const {
   w << std::setprecision(3);
   // A mean of zero with a column drifting is a pure twist (columns on
   // opposite sides drifting opposite ways).
-  const bool twists = !(r.peak_ratio_rad > 0.0) || r.peak_column_ratio_rad > (1.0 + kTwistColumnExcess) * r.peak_ratio_rad;
+  const bool twists =
+      !(r.peak_ratio_rad > 0.0) || r.peak_column_ratio_rad > (1.0 + kTwistColumnExcess) * r.peak_ratio_rad;
   if (twists) {
     w << "storey " << s.number << " twists: its drift, the mean of its " << s.columns.size() << " columns, peaked at "
       << r.peak_ratio_rad << " rad (" << storey_verdict_name(storey) << "), but column '" << name << "' alone drifted "
@@ -405,7 +414,8 @@ std::string StoreyDriftMonitor::twist_warning(std::size_t i) const {
     w << "storey " << s.number << "'s drift, the mean of its " << s.columns.size() << " columns, peaked at "
       << r.peak_ratio_rad << " rad (" << storey_verdict_name(storey) << "), under the "
       << (collapse ? "collapse" : "safety") << " limit of "
-      << (collapse ? limits_.collapse_drift_ratio_rad : limits_.safety_drift_ratio_rad) << " rad, which its largest column, '"
+      << (collapse ? limits_.collapse_drift_ratio_rad : limits_.safety_drift_ratio_rad)
+      << " rad, which its largest column, '"
       << name << "', passes alone at " << r.peak_column_ratio_rad << " rad, "
       << std::setprecision(2) << 100.0 * (r.peak_column_ratio_rad / r.peak_ratio_rad - 1.0)
       << " % above the mean: its columns drifted alike (no twist), and the verdict, which uses the mean, lies within "

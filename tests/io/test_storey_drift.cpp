@@ -253,11 +253,13 @@ TEST(StoreyDrift, AFloorNodeTypedOffLevelWithinItsBeamsDepthIsOfThatFloor) {
     for (const Eigen::Vector2d& c : per_column) EXPECT_NEAR(c.x() / s.height_m(), std::sin(theta), 1e-12) << s.number;
   }
 
-  const std::vector<Storey> apart = find_storeys(build_model(load_case_file(dir.write("12mm.yaml", three_bay_frame(0.302, 0.010)))));
+  const std::vector<Storey> apart =
+      find_storeys(build_model(load_case_file(dir.write("12mm.yaml", three_bay_frame(0.302, 0.010)))));
   ASSERT_EQ(apart.size(), 3u);
   EXPECT_DOUBLE_EQ(apart[1].bottom_z_m, 0.29);
   EXPECT_DOUBLE_EQ(apart[1].top_z_m, 0.302);
-  const std::vector<Storey> deep = find_storeys(build_model(load_case_file(dir.write("deep.yaml", three_bay_frame(0.302, 0.030)))));
+  const std::vector<Storey> deep =
+      find_storeys(build_model(load_case_file(dir.write("deep.yaml", three_bay_frame(0.302, 0.030)))));
   ASSERT_EQ(deep.size(), 2u);
   EXPECT_DOUBLE_EQ(deep[0].top_z_m, 0.29);
 }
@@ -271,7 +273,8 @@ TEST(StoreyDrift, AColumnTopTypedAboveItsFloorWithoutABeamReachesTheFloor) {
   TempDir dir;
   std::string text = three_bay_frame(0.29, 0.010);
   const std::string b1 = "  - {id: col_b1, kind: column, nodes: [b0, b1], section: col, material: wood}\n";
-  text.replace(text.find(b1), b1.size(), "  - {id: col_b1, kind: column, nodes: [b0, b1x], section: col, material: wood}\n");
+  text.replace(text.find(b1), b1.size(),
+               "  - {id: col_b1, kind: column, nodes: [b0, b1x], section: col, material: wood}\n");
   const std::string c0 = "  - {id: c0, xyz_m: [1.0, 0, 0]}\n";
   text.replace(text.find(c0), c0.size(), c0 + "  - {id: b1x, xyz_m: [0.5, 0, 0.293]}\n");
   Model model = build_model(load_case_file(dir.write("3mm.yaml", text)));
