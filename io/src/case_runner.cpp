@@ -431,6 +431,7 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
   if (!writer.folder_lock_warning().empty()) warn(writer.folder_lock_warning());
   if (const std::string w = nodes_inside_members_warning(def); !w.empty()) warn(w);
   if (const std::string w = near_nodes_warning(def); !w.empty()) warn(w);
+  if (const std::string w = unused_nodes_warning(def); !w.empty()) warn(w);
   if (const std::string w = slender_members_warning(def); !w.empty()) warn(w);
   if (const std::string w = unjoined_members_warning(def, scene); !w.empty()) warn(w);
   if (const std::string w = horizontal_columns_warning(def); !w.empty()) warn(w);
@@ -591,6 +592,26 @@ std::string nodes_inside_members_warning(const CaseDef& def) {
   if (count > found.size()) w << "; ...";
   w << "): joints join members only where they end, so the members ending at such a node are not held to the "
        "member it lies in; split that member at the node if they should be joined";
+  return w.str();
+}
+
+std::string unused_nodes_warning(const CaseDef& def) {
+  std::set<std::string> used;
+  for (const MemberDef& m : def.members) {
+    used.insert(m.node_a);
+    used.insert(m.node_b);
+  }
+  std::vector<const NodeDef*> unused;
+  for (const NodeDef& n : def.nodes)
+    if (!used.count(n.id)) unused.push_back(&n);
+  if (unused.empty()) return "";
+  std::ostringstream w;
+  w << def.source_file.string() << ": " << unused.size() << (unused.size() == 1 ? " node is" : " nodes are")
+    << " the end of no member (";
+  for (std::size_t k = 0; k < unused.size() && k < 3; ++k)
+    w << (k ? ", " : "") << "'" << unused[k]->id << "' (line " << unused[k]->line << ")";
+  if (unused.size() > 3) w << ", ...";
+  w << "): a member meant to end there names another node, or the node is a leftover";
   return w.str();
 }
 
@@ -1221,6 +1242,7 @@ void describe_case(const CaseDef& case_def, std::ostream& out, std::optional<Int
   }
   if (const std::string w = nodes_inside_members_warning(def); !w.empty()) out << "warning     " << w << "\n";
   if (const std::string w = near_nodes_warning(def); !w.empty()) out << "warning     " << w << "\n";
+  if (const std::string w = unused_nodes_warning(def); !w.empty()) out << "warning     " << w << "\n";
   if (const std::string w = slender_members_warning(def); !w.empty()) out << "warning     " << w << "\n";
   if (const std::string w = unjoined_members_warning(def, scene); !w.empty()) out << "warning     " << w << "\n";
   if (const std::string w = horizontal_columns_warning(def); !w.empty()) out << "warning     " << w << "\n";

@@ -380,6 +380,32 @@ std::string portal_case(double beam_a_z_m, double beam_b_z_m) {
   return text.str();
 }
 
+// A node no member ends at (a leftover, or the end a member was meant to
+// have) is named with its line; the shipped cases use every node.
+TEST(RunWarnings, NodesNoMemberEndsAtAreNamed) {
+  test::TempDir dir;
+  auto post = [](bool spare_node) {
+    return std::string("framequake_case: 1\n"
+                       "time: {dt_s: 1.0e-5, duration_s: 0.001}\n"
+                       "materials: [{name: wood, density_kg_per_m3: 450}]\n"
+                       "sections: [{name: s, width_m: 0.010, depth_m: 0.020}]\n"
+                       "nodes:\n"
+                       "  - {id: a0, xyz_m: [0, 0, 0]}\n"
+                       "  - {id: a1, xyz_m: [0, 0, 0.3]}\n") +
+           (spare_node ? "  - {id: spare, xyz_m: [0.5, 0, 0.3]}\n" : "") +
+           "members: [{id: post, kind: column, nodes: [a0, a1], section: s, material: wood}]\n";
+  };
+  const std::string w = unused_nodes_warning(load_case_file(dir.write("spare.yaml", post(true))));
+  EXPECT_NE(w.find("1 node is the end of no member ('spare' (line 8))"), std::string::npos) << w;
+  EXPECT_NE(w.find("spare.yaml"), std::string::npos) << w;
+  EXPECT_EQ(unused_nodes_warning(load_case_file(dir.write("all_used.yaml", post(false)))), "");
+  for (const char* name : {"frame_A.yaml", "frame_B.yaml", "frame_C.yaml", "demo_portal_frame.yaml",
+                           "demo_breaking_cantilever.yaml", "demo_falling_block.yaml"}) {
+    const CaseDef shipped = load_case_file(std::filesystem::path(FQ_SOURCE_DIR) / "cases" / name);
+    EXPECT_EQ(unused_nodes_warning(shipped), "") << name;
+  }
+}
+
 TEST(RunWarnings, NearlyCoincidentEndNodesAreNamed) {
   test::TempDir dir;
   // Beam end b 2 mm above the column top: closer than half the thinner

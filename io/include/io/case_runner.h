@@ -106,6 +106,7 @@ struct CaseRunReport {
 //    (nodes_inside_members_warning);
 //  - two members' end nodes lie closer than half the thinner section of
 //    their members without being one node (near_nodes_warning);
+//  - a node is the end of no member (unused_nodes_warning);
 //  - a member is held by no joint in a case that has joints
 //    (unjoined_members_warning);
 //  - a member of kind column is horizontal, so it spans no storey
@@ -183,6 +184,12 @@ std::string nodes_inside_members_warning(const CaseDef& def);
 // ends of one member are left out. Names the first three pairs with their
 // lines and distance; empty when there are none.
 std::string near_nodes_warning(const CaseDef& def);
+
+// The warning for nodes that are the end of no member: a node is only a
+// place where members end and are joined, so one no member names is a
+// leftover, or the end a member was meant to have (its nodes name another).
+// Names the first three with their lines; empty when every node is used.
+std::string unused_nodes_warning(const CaseDef& def);
 
 // The warning for members more than kSlenderMemberRatio times longer than
 // the thinner side of their section: no timber member is (a 4 m brace of
