@@ -123,6 +123,17 @@ TEST(LayoutStiffness, SeedLinkSystemEqs19To27) {
               tol * (4 * k + 4 * kd * c * c));
   def.with_shear_links = true;
   expect_matrix_near(finite_difference_stiffness(layout, 1e-7, 1e-6), km, 1e-5);
+  // Bending with the shear free (joint_layout.h): the x-z diagonals cross at
+  // mid-gap, n = -l/2, and a rotation phi about t2 through that point (at P
+  // the translation phi l/2 along t1 and the rotation phi) stretches none of
+  // them, so u^T K u / phi^2 = a^2 (k + k_s cos^2(theta)); condensing the
+  // shear out of the (t1, phi2) block gives the same.
+  Eigen::Matrix<double, 6, 1> u = Eigen::Matrix<double, 6, 1>::Zero();
+  u(0) = 0.5 * l;
+  u(4) = 1.0;
+  const double free_bending = a * a * (k + ksh * c * c);
+  EXPECT_NEAR(u.dot(km * u), free_bending, tol * free_bending);
+  EXPECT_NEAR(km(4, 4) - km(4, 0) * km(4, 0) / km(0, 0), free_bending, tol * free_bending);
 }
 
 TEST(LayoutStiffness, BeamCalibrationGivesBeamStiffnesses) {
