@@ -395,7 +395,7 @@ bool separates(const SatFrame& f, int k) {
 // The search; `shortcuts` enables the remembered separating axis and the
 // root-free pass over the edge axes, which never change its result.
 int collide_box_box_(const OrientedBoxRef& a, const OrientedBoxRef& b, ContactManifold& out, std::int8_t* io_separating_axis,
-                     bool shortcuts);
+                     bool shortcuts, bool prefer_b_faces);
 
 }  // namespace
 
@@ -403,20 +403,21 @@ int collide_box_box(const OrientedBoxRef& a, const OrientedBoxRef& b, ContactMan
   return collide_box_box(a, b, out, nullptr);
 }
 
-int collide_box_box(const OrientedBoxRef& a, const OrientedBoxRef& b, ContactManifold& out, std::int8_t* io_separating_axis) {
-  return collide_box_box_(a, b, out, io_separating_axis, true);
+int collide_box_box(const OrientedBoxRef& a, const OrientedBoxRef& b, ContactManifold& out, std::int8_t* io_separating_axis,
+                    bool prefer_b_faces) {
+  return collide_box_box_(a, b, out, io_separating_axis, true, prefer_b_faces);
 }
 
 int collide_box_box_full_search(const OrientedBoxRef& a, const OrientedBoxRef& b, ContactManifold& out,
-                                std::int8_t* out_separating_axis) {
+                                std::int8_t* out_separating_axis, bool prefer_b_faces) {
   if (out_separating_axis) *out_separating_axis = -1;
-  return collide_box_box_(a, b, out, out_separating_axis, false);
+  return collide_box_box_(a, b, out, out_separating_axis, false, prefer_b_faces);
 }
 
 namespace {
 
 int collide_box_box_(const OrientedBoxRef& a, const OrientedBoxRef& b, ContactManifold& out, std::int8_t* io_separating_axis,
-                     bool shortcuts) {
+                     bool shortcuts, bool prefer_b_faces) {
   out.count = 0;
   const Mat3& ra = a.rotation;
   const Mat3& rb = b.rotation;
@@ -467,7 +468,9 @@ int collide_box_box_(const OrientedBoxRef& a, const OrientedBoxRef& b, ContactMa
   // load, alternating with the face's points as the box rocked; a probe,
   // 2026-11-26). Edges that really cross overlap the face axes by a good
   // part of the boxes' size.
-  const bool use_b_face = best_b < kRelativeTolerance * best_a;
+  // The preferred box's face wins unless the other's is better by the
+  // tolerance: a's by default, b's when the caller asks (b fixed, a free).
+  const bool use_b_face = prefer_b_faces ? !(best_a < kRelativeTolerance * best_b) : best_b < kRelativeTolerance * best_a;
   const double best_face = use_b_face ? best_b : best_a;
   const double scale = ha.maxCoeff() + hb.maxCoeff();
   const double margin = kEdgeMarginFraction * 2.0 * std::min(ha.minCoeff(), hb.minCoeff());

@@ -191,7 +191,10 @@ std::size_t ContactSystem::process_item(const BodyStore& bodies, std::size_t ite
     const double reach = bounding_radius_m_[std::size_t(a)] + bounding_radius_m_[std::size_t(b)];
     if ((bodies.position_m[b] - bodies.position_m[a]).squaredNorm() > reach * reach) return 0;
     ++box_tests;
-    if (collide_box_box(box_of(bodies, a), box_of(bodies, b), manifold, &pair_separating_axis_[item]) == 0) return 0;
+    // A fixed body's faces are preferred as the reference (collide_box_box.h).
+    if (collide_box_box(box_of(bodies, a), box_of(bodies, b), manifold, &pair_separating_axis_[item],
+                        bodies.is_fixed[b] && !bodies.is_fixed[a]) == 0)
+      return 0;
     key = pair_key(a, b);
     coeff = pair_coeff_[item];
     const double ma = bodies.mass_kg[a], mb = bodies.mass_kg[b];

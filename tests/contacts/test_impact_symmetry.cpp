@@ -93,3 +93,53 @@ TEST(ImpactSymmetry, VertexOnFaceBouncesStraightAndMirrors) {
 }
 
 }  // namespace
+
+namespace {
+
+// A 0.1 m cube tilted by 10 degrees about y, standing on one edge on a
+// fixed plate, falls over and rocks on it without friction; returns the
+// cube's velocity after 0.25 s. `cube_first` lists the cube before the
+// plate (the pair's box a), else after it.
+Vec3 rock_without_friction_on_fixed_plate(bool cube_first) {
+  fq::BodyStore store;
+  const Quat tilt = about(10.0 * std::numbers::pi / 180.0, Vec3::UnitY());
+  // Centre height with the lowest edge on the plate's top face (z = 0):
+  // half the cube's diagonal in the xz plane times cos(45 deg - 10 deg).
+  const double centre_z = 0.05 * std::sqrt(2.0) * std::cos((45.0 - 10.0) * std::numbers::pi / 180.0);
+  auto add_cube = [&] { return fq::test::add_box(store, Vec3::Constant(0.1), 450.0, Vec3(0, 0, centre_z), tilt); };
+  auto add_plate = [&] {
+    fq::test::add_box(store, Vec3(0.1, 0.1, 0.05), 450.0, Vec3(0, 0, -0.025), Quat::Identity(), true);
+  };
+  fq::BodyId cube;
+  if (cube_first) {
+    cube = add_cube();
+    add_plate();
+  } else {
+    add_plate();
+    cube = add_cube();
+  }
+  fq::SimulationSettings s;
+  s.dt_s = 1e-5;
+  s.duration_s = 0.25;
+  auto scene = fq::test::make_scene(std::move(store), s, [](fq::ContactSystem& c) {
+    c.set_pair_params(0, 0, fq::test::params(1e6, 0.5, 0.0));
+  });
+  scene.sim->run();
+  return scene.sim->bodies().velocity_mps[cube];
+}
+
+// Without friction a fixed plate's horizontal top face pushes only
+// vertically, so the cube's horizontal momentum stays exactly zero
+// (Newton's second law: no horizontal force), whichever body the case lists
+// first. With the cube listed first its own face was the contact's
+// reference, tilted by the rocking, and it gained 2.5e-4 m/s (contacts
+// probe, 2026-11-27); now the fixed body's face is preferred.
+TEST(ImpactSymmetry, ARockingCubeOnAFixedPlateGainsNoHorizontalVelocityWhicheverIsListedFirst) {
+  for (const bool cube_first : {true, false}) {
+    const Vec3 v = rock_without_friction_on_fixed_plate(cube_first);
+    EXPECT_EQ(v.x(), 0.0) << (cube_first ? "cube listed first" : "plate listed first");
+    EXPECT_EQ(v.y(), 0.0) << (cube_first ? "cube listed first" : "plate listed first");
+  }
+}
+
+}  // namespace
