@@ -434,6 +434,7 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
   if (const std::string w = unused_nodes_warning(def); !w.empty()) warn(w);
   if (const std::string w = slender_members_warning(def); !w.empty()) warn(w);
   if (const std::string w = unjoined_members_warning(def, scene); !w.empty()) warn(w);
+  if (const std::string w = brace_free_ends_warning(def, scene); !w.empty()) warn(w);
   if (const std::string w = horizontal_columns_warning(def); !w.empty()) warn(w);
   if (const std::string w = no_columns_warning(def); !w.empty()) warn(w);
   for (const std::string& w : ground_motion_direction_warnings(sim.ground_motion())) warn(w);
@@ -765,6 +766,43 @@ std::string unjoined_members_warning(const CaseDef& def, const Scene& scene) {
   if (count > found.size()) w << ", ...";
   w << "): such a member stands only on its contacts, or falls where it has none; if it should be joined, end it "
        "at the nodes of the members it meets";
+  return w.str();
+}
+
+std::string brace_free_ends_warning(const CaseDef& def, const Scene& scene) {
+  if (scene.joints == nullptr || scene.joints->joint_count() == 0) return {};
+  // Members ending at each node, and the supported nodes: joints form only
+  // there (cases/README.md, "Joints").
+  std::unordered_map<std::string, int> members_at;
+  for (const MemberDef& m : def.members) {
+    ++members_at[m.node_a];
+    ++members_at[m.node_b];
+  }
+  std::set<std::string> supported;
+  for (const SupportDef& sp : def.supports) supported.insert(sp.node);
+  std::unordered_map<std::string, int> node_line;
+  for (const NodeDef& n : def.nodes) node_line.emplace(n.id, n.line);
+  auto joins_something = [&](const std::string& node) { return members_at[node] > 1 || supported.count(node) > 0; };
+  std::vector<std::string> found;
+  std::size_t count = 0;
+  for (const MemberDef& m : def.members) {
+    if (m.kind != MemberKind::Brace) continue;
+    const bool a = joins_something(m.node_a), b = joins_something(m.node_b);
+    if (a == b) continue;  // joined at both ends, or at neither (unjoined_members_warning)
+    const std::string& free_node = a ? m.node_b : m.node_a;
+    ++count;
+    if (found.size() < 3)
+      found.push_back("'" + m.id + "' (line " + std::to_string(m.line) + ") at node '" + free_node + "' (line " +
+                      std::to_string(node_line[free_node]) + ")");
+  }
+  if (count == 0) return {};
+  std::ostringstream w;
+  w << def.source_file.string() << ": " << count << (count == 1 ? " brace is" : " braces are")
+    << " joined at one end only (";
+  for (std::size_t k = 0; k < found.size(); ++k) w << (k ? ", " : "") << found[k];
+  if (count > found.size()) w << ", ...";
+  w << "): no other member ends at that node and no support holds it, so the brace hangs from its other end and "
+       "braces nothing; end it at the node of the corner it should reach";
   return w.str();
 }
 
@@ -1245,6 +1283,7 @@ void describe_case(const CaseDef& case_def, std::ostream& out, std::optional<Int
   if (const std::string w = unused_nodes_warning(def); !w.empty()) out << "warning     " << w << "\n";
   if (const std::string w = slender_members_warning(def); !w.empty()) out << "warning     " << w << "\n";
   if (const std::string w = unjoined_members_warning(def, scene); !w.empty()) out << "warning     " << w << "\n";
+  if (const std::string w = brace_free_ends_warning(def, scene); !w.empty()) out << "warning     " << w << "\n";
   if (const std::string w = horizontal_columns_warning(def); !w.empty()) out << "warning     " << w << "\n";
   if (const std::string w = no_columns_warning(def); !w.empty()) out << "warning     " << w << "\n";
   for (const std::string& w : ground_motion_direction_warnings(sim.ground_motion()))

@@ -535,6 +535,41 @@ TEST(RunWarnings, AMemberNoJointHoldsIsNamed) {
   }
 }
 
+// Frame C with its East brace's head node moved 12 mm off the corner it
+// should reach (acceptance probe): that node is the end of the brace alone
+// and no support holds it, so the brace is joined at its foot only. The
+// shipped frame C, whose braces end at a column node and at a supported
+// foot node, gets no warning.
+TEST(RunWarnings, ABraceJoinedAtOneEndOnlyIsNamed) {
+  test::TempDir dir;
+  const std::filesystem::path shipped_c = std::filesystem::path(FQ_SOURCE_DIR) / "cases" / "frame_C.yaml";
+  std::string text;
+  {
+    std::ifstream in(shipped_c);
+    std::stringstream all;
+    all << in.rdbuf();
+    text = all.str();
+  }
+  // The record named relative to the case's folder, which the copy leaves.
+  for (std::size_t r = text.find("file: ground_motions/"); r != std::string::npos;
+       r = text.find("file: ground_motions/", r + 1))
+    text.replace(r, 6, "file: " + (shipped_c.parent_path() / "").string());
+  const std::string brace = "{id: brace_e, kind: brace, nodes: [brace_e0, ne1],";
+  const std::size_t at = text.find(brace);
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, brace.size(), "{id: brace_e, kind: brace, nodes: [brace_e0, brace_e1],");
+  const std::string nodes_key = "\nnodes:\n";
+  const std::size_t nodes_at = text.find(nodes_key);
+  ASSERT_NE(nodes_at, std::string::npos);
+  text.insert(nodes_at + nodes_key.size(), "  - {id: brace_e1, xyz_m: [0.51, -0.012, 0.29]}\n");
+  const CaseDef off = load_case_file(dir.write("frame_C_off.yaml", text));
+  const std::string w = brace_free_ends_warning(off, build_scene(off));
+  EXPECT_NE(w.find("frame_C_off.yaml: 1 brace is joined at one end only ('brace_e' (line "), std::string::npos) << w;
+  EXPECT_NE(w.find("at node 'brace_e1'"), std::string::npos) << w;
+  const CaseDef c = load_case_file(shipped_c);
+  EXPECT_EQ(brace_free_ends_warning(c, build_scene(c)), "");
+}
+
 TEST(RunWarnings, AVerticalRecordAppliedHorizontallyAndTheReverseAreNamed) {
   // Two PEER records whose headers name their components, "UP" and "090",
   // applied along x and along z: the vertical one along x and the

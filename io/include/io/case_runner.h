@@ -108,7 +108,8 @@ struct CaseRunReport {
 //    their members without being one node (near_nodes_warning);
 //  - a node is the end of no member (unused_nodes_warning);
 //  - a member is held by no joint in a case that has joints
-//    (unjoined_members_warning);
+//    (unjoined_members_warning), or a brace at one of its ends
+//    (brace_free_ends_warning);
 //  - a member of kind column is horizontal, so it spans no storey
 //    (horizontal_columns_warning);
 //  - a case with members has none of kind column, so it has no storeys,
@@ -218,6 +219,16 @@ std::string no_columns_warning(const CaseDef& def);
 // their contacts, or fall through where there are none. Blocks are meant to
 // be free and are left out. Names the first three; empty when there are none.
 std::string unjoined_members_warning(const CaseDef& def, const Scene& scene);
+
+// The warning for braces joined at one end only, in a case with joints: a
+// brace end whose node no other member ends at and no support holds joins
+// nothing (a head node typed a few mm off the corner), so the brace hangs
+// from its other end and braces nothing, while the run looks like that of a
+// braced frame (acceptance probe: frame C with one brace head 12 mm off its
+// corner stood "standing" with one column twice the storey's mean). Beams
+// and columns may end free (a cantilever, a free post top); a brace is a
+// diagonal between two points of the frame. Names the first three.
+std::string brace_free_ends_warning(const CaseDef& def, const Scene& scene);
 
 // Warnings for ground-motion components whose record's header names a
 // component at odds with the direction it is applied in: a vertical one
