@@ -471,7 +471,8 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
     // side braced, the other not; workflow probe: a storey 'damaged' at
     // 0.044 rad whose West columns had passed 0.1 rad).
     for (std::size_t i = 0; i < storeys.storeys().size(); ++i)
-      if (const std::string w = storeys.twist_warning(i); !w.empty()) warn(w);
+      for (const std::string& w : {storeys.twist_warning(i), storeys.slip_warning(i)})
+        if (!w.empty()) warn(w);
   }
   try {
     {

@@ -199,6 +199,12 @@ void add_storey_summary(RunOutput& output, const StoreyDriftMonitor& monitor, bo
         .value(r.peak_ratio_y_rad)
         .key("peak_time_s")
         .value(r.peak_time_s)
+        .key("peak_floor_drift_ratio_rad")
+        .value(r.peak_floor_ratio_rad)
+        .key("peak_base_slip_m")
+        .value(r.peak_base_slip_m)
+        .key("peak_twist_ratio_rad")
+        .value(r.peak_twist_ratio_rad)
         .key("peak_column_drift_ratio_rad")
         .value(r.peak_column_ratio_rad)
         .key("peak_column");

@@ -374,9 +374,14 @@ TEST(StoreyDrift, AColumnPastAWorseVerdictThanItsStoreysMeanIsWarnedOf) {
   EXPECT_NEAR(r.peak_column_ratio_rad, std::sin(0.05), 1e-12);
   ASSERT_GE(r.peak_column, 0);
   EXPECT_EQ(monitor.storeys()[0].column_names[std::size_t(r.peak_column)], "col_a1");
+  // The frame lies in one plane (its columns at y = 0): a lean along x
+  // turns no floor about z, so this is no twist but one column leaning
+  // while the others stand.
+  EXPECT_NEAR(r.peak_twist_ratio_rad, 0.0, 1e-12);
   const std::string w = monitor.twist_warning(0);
-  EXPECT_NE(w.find("storey 1 twists: its drift, the mean of its 3 columns, peaked at 0.0167 rad (standing), but "
-                   "column 'col_a1' alone drifted 0.05 rad, which would make it damaged"),
+  EXPECT_NE(w.find("storey 1's columns did not move alike: its drift, the mean of its 3 columns, peaked at 0.0167 rad "
+                   "(standing), but column 'col_a1' alone drifted 0.05 rad, which would make it damaged, while the "
+                   "floor did not turn"),
             std::string::npos)
       << w;
 
@@ -398,7 +403,8 @@ TEST(StoreyDrift, AColumnPastAWorseVerdictThanItsStoreysMeanIsWarnedOf) {
 // (turned by their arcsines) drift 0.0335 on the mean, under a safety
 // limit of 0.034 that the third passes alone, 3.0 % above the mean: said,
 // without "twists". Leaning 0.030, 0.030 and 0.040, the third is 20 %
-// above the mean of 0.0333: a twist (kTwistColumnExcess = 10 %).
+// above the mean of 0.0333 (kTwistColumnExcess = 10 %), but in this plane
+// frame its floor does not turn: columns that did not move alike, no twist.
 TEST(StoreyDrift, AColumnJustAboveItsStoreysMeanIsNoTwist) {
   AssessmentDef limits;
   limits.safety_drift_ratio_rad = 0.034;
@@ -426,10 +432,101 @@ TEST(StoreyDrift, AColumnJustAboveItsStoreysMeanIsNoTwist) {
   const StoreyDriftMonitor apart = lean({0.030, 0.030, 0.040});
   EXPECT_EQ(apart.verdict(0), StoreyVerdict::Standing);
   const std::string twist = apart.twist_warning(0);
-  EXPECT_NE(twist.find("storey 1 twists: its drift, the mean of its 3 columns, peaked at 0.0333 rad (standing), but "
-                       "column 'col_c' alone drifted 0.04 rad, which would make it damaged"),
+  EXPECT_NE(twist.find("storey 1's columns did not move alike: its drift, the mean of its 3 columns, peaked at 0.0333 "
+                       "rad (standing), but column 'col_c' alone drifted 0.04 rad, which would make it damaged, while "
+                       "the floor did not turn"),
             std::string::npos)
       << twist;
+}
+
+// A square storey (columns at (+-0.25, +-0.25) m, 0.29 m tall) whose four
+// columns each lean by theta tangentially, so their tops move by
+// d = h sin(theta) at right angles to their arm r from the centre: the
+// floor turns by d / r about z, the mean drift is zero, and the turn gives
+// the farthest column the drift ratio (d / r) r / h = sin(theta)
+// (StoreyDriftRecord::peak_twist_ratio_rad). That is a twist.
+TEST(StoreyDrift, AFloorThatTurnsIsATwist) {
+  TempDir dir;
+  const Model model0 = build_model(load_case_file(dir.write("square.yaml",
+      "framequake_case: 1\n"
+      "time: {dt_s: 1.0e-5, duration_s: 0.01}\n"
+      "materials: [{name: wood, density_kg_per_m3: 450}]\n"
+      "sections: [{name: col, width_m: 0.010, depth_m: 0.010}]\n"
+      "nodes:\n"
+      "  - {id: a0, xyz_m: [0.25, 0.25, 0]}\n  - {id: a1, xyz_m: [0.25, 0.25, 0.29]}\n"
+      "  - {id: b0, xyz_m: [-0.25, 0.25, 0]}\n  - {id: b1, xyz_m: [-0.25, 0.25, 0.29]}\n"
+      "  - {id: c0, xyz_m: [-0.25, -0.25, 0]}\n  - {id: c1, xyz_m: [-0.25, -0.25, 0.29]}\n"
+      "  - {id: d0, xyz_m: [0.25, -0.25, 0]}\n  - {id: d1, xyz_m: [0.25, -0.25, 0.29]}\n"
+      "members:\n"
+      "  - {id: ca, kind: column, nodes: [a0, a1], section: col, material: wood}\n"
+      "  - {id: cb, kind: column, nodes: [b0, b1], section: col, material: wood}\n"
+      "  - {id: cc, kind: column, nodes: [c0, c1], section: col, material: wood}\n"
+      "  - {id: cd, kind: column, nodes: [d0, d1], section: col, material: wood}\n")));
+  Model model = model0;
+  StoreyDriftMonitor monitor(find_storeys(model), AssessmentDef{}, 1e-5);
+  monitor.track(model.bodies, 0.0);
+  const double theta = 0.05;
+  for (std::size_t m = 0; m < 4; ++m) {
+    const BodyId b = model.member_body[m];
+    const Vec3 foot(model0.def.nodes[2 * m].xyz_m);
+    // Tangent to the turn about z: z x r, normalised; the column turns
+    // about the horizontal axis at right angles to it, through its foot.
+    const Vec3 tangent = Vec3::UnitZ().cross(Vec3(foot.x(), foot.y(), 0.0)).normalized();
+    const Vec3 axis = Vec3::UnitZ().cross(tangent);
+    const Quat q(Eigen::AngleAxisd(-theta, axis));
+    model.bodies.position_m[b] = foot + q * (model.bodies.position_m[b] - foot);
+    model.bodies.orientation[b] = (q * model.bodies.orientation[b]).normalized();
+  }
+  model.bodies.update_rotations();
+  monitor.track(model.bodies, 0.1);
+  const StoreyDriftRecord& r = monitor.records()[0];
+  EXPECT_NEAR(r.peak_ratio_rad, 0.0, 1e-12);
+  EXPECT_NEAR(r.peak_column_ratio_rad, std::sin(theta), 1e-12);
+  EXPECT_NEAR(r.peak_twist_ratio_rad, std::sin(theta), 1e-12);
+  const std::string w = monitor.twist_warning(0);
+  // (The mean's peak is round-off, 1e-16 rad.)
+  EXPECT_NE(w.find("storey 1 twists: its drift, the mean of its 4 columns, peaked at "), std::string::npos) << w;
+  EXPECT_NE(w.find("(standing), but column 'ca' alone drifted 0.05 rad, which would make it damaged"),
+            std::string::npos)
+      << w;
+}
+
+// Storey 1 of the plane frame slides by d = 0.05 m along x without leaning
+// (its three columns translated, feet and all): its columns' drift is zero
+// (standing), but its floor moved d / h = 0.05 / 0.29 = 0.172 rad relative to
+// the foundation (collapsed by the 0.1 rad limit), with a base slip of d;
+// the run warns. Storey 2's floor (its columns: two unmoved, the through-
+// column's upper band moved by d) moved d/3 - d relative to the floor below.
+TEST(StoreyDrift, AStoreyThatSlidOffItsFoundationIsWarnedOf) {
+  Model model = frame_model();
+  StoreyDriftMonitor monitor(find_storeys(model), AssessmentDef{}, 1e-5);
+  monitor.track(model.bodies, 0.0);
+  const double d = 0.05, h = 0.29;
+  for (std::size_t m : {0, 2, 4}) model.bodies.position_m[model.member_body[m]] += Vec3(d, 0, 0);
+  monitor.track(model.bodies, 0.1);
+  const StoreyDriftRecord& r = monitor.records()[0];
+  EXPECT_NEAR(r.peak_ratio_rad, 0.0, 1e-12);
+  EXPECT_EQ(monitor.verdict(0), StoreyVerdict::Standing);
+  EXPECT_NEAR(r.peak_floor_ratio_rad, d / h, 1e-12);
+  EXPECT_NEAR(r.peak_base_slip_m, d, 1e-12);
+  EXPECT_NEAR(monitor.records()[1].peak_floor_ratio_rad, (2.0 / 3.0) * d / h, 1e-12);
+  const std::string w = monitor.slip_warning(0);
+  EXPECT_NE(w.find("storey 1's floor moved 0.172 rad of its height relative to the foundation, which would make it "
+                   "collapsed, while its columns tilted 0 rad (standing): its columns' bottoms slid up to 50 mm off "
+                   "the foundation"),
+            std::string::npos)
+      << w;
+  // A rigid sway (columns turned about their feet) slides nothing: no warning.
+  Model swayed = frame_model();
+  StoreyDriftMonitor sway(find_storeys(swayed), AssessmentDef{}, 1e-5);
+  sway.track(swayed.bodies, 0.0);
+  turn_about_y(swayed.bodies, swayed.member_body[0], Vec3(0, 0, 0), 0.05);
+  turn_about_y(swayed.bodies, swayed.member_body[2], Vec3(0.5, 0, 0), 0.05);
+  turn_about_y(swayed.bodies, swayed.member_body[4], Vec3(1.0, 0, 0), 0.05);
+  sway.track(swayed.bodies, 0.1);
+  EXPECT_NEAR(sway.records()[0].peak_base_slip_m, 0.0, 1e-12);
+  EXPECT_NEAR(sway.records()[0].peak_floor_ratio_rad, sway.records()[0].peak_ratio_rad, 1e-12);
+  EXPECT_EQ(sway.slip_warning(0), "");
 }
 
 TEST(StoreyDrift, AssessmentLimitsAreReadAndChecked) {

@@ -36,7 +36,9 @@ namespace fq {
 // Version 2: a CUREE spring's state holds whether it has passed delta_p.
 // Version 3: the storeys' peaks and residual, taken at every step, follow
 // the output section.
-inline constexpr std::uint32_t kCheckpointFormatVersion = 3;
+// Version 4: each storey's record adds its peak floor drift, base slip and
+// twist.
+inline constexpr std::uint32_t kCheckpointFormatVersion = 4;
 inline constexpr const char* kCheckpointFileName = "checkpoint.bin";
 
 // A checkpoint file that cannot be used: missing, damaged, truncated,
