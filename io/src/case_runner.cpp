@@ -473,6 +473,10 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
     for (std::size_t i = 0; i < storeys.storeys().size(); ++i)
       for (const std::string& w : {storeys.twist_warning(i), storeys.slip_warning(i)})
         if (!w.empty()) warn(w);
+    // A stopped run's verdicts are already "so far".
+    if (report.result.status == RunStatus::Completed)
+      for (std::size_t i = 0; i < storeys.storeys().size(); ++i)
+        if (const std::string w = storeys.peak_at_end_warning(i, sim.time_s()); !w.empty()) warn(w);
   }
   try {
     {

@@ -441,6 +441,22 @@ StoreyVerdict StoreyDriftMonitor::verdict(std::size_t i) const {
   return verdict_for_peak(records_[i].peak_ratio_rad, limits_);
 }
 
+std::string StoreyDriftMonitor::peak_at_end_warning(std::size_t i, double end_time_s) const {
+  const StoreyDriftRecord& r = records_[i];
+  const StoreyVerdict v = verdict(i);
+  if (v == StoreyVerdict::Collapsed || !(r.peak_ratio_rad >= 0.5 * limits_.safety_drift_ratio_rad) ||
+      !(end_time_s > 0.0) || r.peak_time_s < (1.0 - kPeakAtEndFraction) * end_time_s)
+    return "";
+  std::ostringstream w;
+  w << std::setprecision(4) << "storey " << storeys_[i].number << "'s drift peaked at " << r.peak_ratio_rad
+    << " rad at t = " << r.peak_time_s << " s, in the last " << 100.0 * kPeakAtEndFraction
+    << " % of the run (which ended at " << end_time_s << " s): it may still have been growing, so its verdict ("
+    << storey_verdict_name(v)
+    << ") holds for this window only; a longer one (ground_motion.window_length_s, time.duration_s) would show "
+       "where it goes";
+  return w.str();
+}
+
 std::string StoreyDriftMonitor::slip_warning(std::size_t i) const {
   const StoreyDriftRecord& r = records_[i];
   const StoreyVerdict storey = verdict(i), floor = verdict_for_peak(r.peak_floor_ratio_rad, limits_);
