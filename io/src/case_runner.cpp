@@ -435,6 +435,7 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
   if (const std::string w = slender_members_warning(def); !w.empty()) warn(w);
   if (const std::string w = unjoined_members_warning(def, scene); !w.empty()) warn(w);
   if (const std::string w = brace_free_ends_warning(def, scene); !w.empty()) warn(w);
+  if (const std::string w = unused_joint_rules_warning(def); !w.empty()) warn(w);
   if (const std::string w = horizontal_columns_warning(def); !w.empty()) warn(w);
   if (const std::string w = no_columns_warning(def); !w.empty()) warn(w);
   for (const std::string& w : ground_motion_direction_warnings(sim.ground_motion())) warn(w);
@@ -808,6 +809,29 @@ std::string brace_free_ends_warning(const CaseDef& def, const Scene& scene) {
   if (count > found.size()) w << ", ...";
   w << "): no other member ends at that node and no support holds it, so the brace hangs from its other end and "
        "braces nothing; end it at the node of the corner it should reach";
+  return w.str();
+}
+
+std::string unused_joint_rules_warning(const CaseDef& def) {
+  if (def.joints.rules.empty()) return {};
+  // Every planned joint carries the line of the rule, override, support or
+  // node that gave it its type.
+  std::set<int> lines;
+  for (const PlannedJoint& p : plan_joints(build_model(def))) lines.insert(p.line);
+  std::ostringstream list;
+  std::size_t unused = 0;
+  for (const JointRuleDef& r : def.joints.rules)
+    if (!lines.count(r.line))
+      list << (unused++ ? ", " : "") << "[" << member_kind_name(r.kind_1) << ", " << member_kind_name(r.kind_2)
+           << "] (line " << r.line << ")";
+  if (unused == 0) return {};
+  std::ostringstream w;
+  w << def.source_file.string() << ": " << unused << (unused == 1 ? " joint rule makes" : " joint rules make")
+    << " no joint (" << list.str();
+  w << "): no two members of those kinds are joined to each other at any node (each member is joined to the node's "
+       "hub, the first member of kind "
+    << member_kind_name(def.joints.hub_kind)
+    << " there: joints.hub_kind), or an override gives every such pair its type";
   return w.str();
 }
 
@@ -1289,6 +1313,7 @@ void describe_case(const CaseDef& case_def, std::ostream& out, std::optional<Int
   if (const std::string w = slender_members_warning(def); !w.empty()) out << "warning     " << w << "\n";
   if (const std::string w = unjoined_members_warning(def, scene); !w.empty()) out << "warning     " << w << "\n";
   if (const std::string w = brace_free_ends_warning(def, scene); !w.empty()) out << "warning     " << w << "\n";
+  if (const std::string w = unused_joint_rules_warning(def); !w.empty()) out << "warning     " << w << "\n";
   if (const std::string w = horizontal_columns_warning(def); !w.empty()) out << "warning     " << w << "\n";
   if (const std::string w = no_columns_warning(def); !w.empty()) out << "warning     " << w << "\n";
   for (const std::string& w : ground_motion_direction_warnings(sim.ground_motion()))

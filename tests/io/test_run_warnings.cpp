@@ -19,6 +19,7 @@
 // before, which has the other sign, gain energy.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -568,6 +569,37 @@ TEST(RunWarnings, ABraceJoinedAtOneEndOnlyIsNamed) {
   EXPECT_NE(w.find("at node 'brace_e1'"), std::string::npos) << w;
   const CaseDef c = load_case_file(shipped_c);
   EXPECT_EQ(brace_free_ends_warning(c, build_scene(c)), "");
+}
+
+// Frame C joins its members to the floor beams (hub_kind: beam), so a brace
+// head at a node meets the beam as its hub and a rule for [column, brace]
+// makes no joint (retrofit probe: such a rule was silently ignored). The
+// shipped frame C's rules all make joints.
+TEST(RunWarnings, AJointRuleThatMakesNoJointIsNamed) {
+  test::TempDir dir;
+  const std::filesystem::path shipped_c = std::filesystem::path(FQ_SOURCE_DIR) / "cases" / "frame_C.yaml";
+  std::string text;
+  {
+    std::ifstream in(shipped_c);
+    std::stringstream all;
+    all << in.rdbuf();
+    text = all.str();
+  }
+  for (std::size_t r = text.find("file: ground_motions/"); r != std::string::npos;
+       r = text.find("file: ground_motions/", r + 1))
+    text.replace(r, 6, "file: " + (shipped_c.parent_path() / "").string());
+  const std::string rules = "  rules:\n";
+  const std::size_t at = text.find(rules);
+  ASSERT_NE(at, std::string::npos);
+  text.insert(at + rules.size(), "    - {kinds: [column, brace], type: brace_end}\n");
+  const int rule_line = int(std::count(text.begin(), text.begin() + long(at + rules.size()), '\n')) + 1;
+  const std::string w = unused_joint_rules_warning(load_case_file(dir.write("frame_C_rule.yaml", text)));
+  EXPECT_NE(w.find("frame_C_rule.yaml: 1 joint rule makes no joint ([column, brace] (line " +
+                   std::to_string(rule_line) + "))"),
+            std::string::npos)
+      << w;
+  EXPECT_NE(w.find("the first member of kind beam there"), std::string::npos) << w;
+  EXPECT_EQ(unused_joint_rules_warning(load_case_file(shipped_c)), "");
 }
 
 TEST(RunWarnings, AVerticalRecordAppliedHorizontallyAndTheReverseAreNamed) {

@@ -110,6 +110,7 @@ struct CaseRunReport {
 //  - a member is held by no joint in a case that has joints
 //    (unjoined_members_warning), or a brace at one of its ends
 //    (brace_free_ends_warning);
+//  - a joint rule makes no joint (unused_joint_rules_warning);
 //  - a member of kind column is horizontal, so it spans no storey
 //    (horizontal_columns_warning);
 //  - a case with members has none of kind column, so it has no storeys,
@@ -229,6 +230,13 @@ std::string unjoined_members_warning(const CaseDef& def, const Scene& scene);
 // and columns may end free (a cantilever, a free post top); a brace is a
 // diagonal between two points of the frame. Names the first three.
 std::string brace_free_ends_warning(const CaseDef& def, const Scene& scene);
+
+// The warning for joint rules (joints.rules) that make no joint: no pair of
+// members of the rule's kinds is joined under the hub rule (with hub_kind
+// beam, braces join the beam at a node, so a [column, brace] rule never
+// applies; retrofit probe), or every such pair has an override. Names each
+// with its line; empty when every rule is used or there are none.
+std::string unused_joint_rules_warning(const CaseDef& def);
 
 // Warnings for ground-motion components whose record's header names a
 // component at odds with the direction it is applied in: a vertical one
