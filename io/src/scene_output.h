@@ -12,7 +12,8 @@ namespace fq {
 // Springs as VTK line cells (ends on body a and body b at the frame's
 // poses; the arrays are the last force evaluation's, one step before) with arrays
 // spring_force_N, strain_ratio (|delta| / ultimate, 1 = deletion),
-// spring_state (0 elastic, 1 yielded, 2 deleted), spring_role (0 normal,
+// spring_state (0 elastic, 1 yielded, 2 deleted, 3 gone with its broken
+// joint without failing itself: SpringStatus), spring_role (0 normal,
 // 1 shear, 2 link), joint_id and joint_broken (0/1); history columns
 // joints_intact_count, joints_yielded_count, joints_broken_count. Also sets
 // damage_state on the body cells from the members' joints (0 intact,

@@ -336,7 +336,7 @@ double JointSystem::spring_elastic_J(std::size_t s) const {
     if (has_prev_[s]) plastic_J_[s] += stored_energy_J_(s, law_force_prev, delta_prev);
     alive_[s] = 0;
     law_force_N_[s] = 0.0;
-    has_prev_[s] = 0;
+    has_prev_[s] = 0;  // also tells spring_status a deletion from a joint's break
     any_event = true;
     return false;
   }
@@ -620,6 +620,7 @@ const std::vector<Vec3>& JointSystem::spring_end_b_m() const {
 
 void JointSystem::kill_spring_(std::size_t s) {
   if (!alive_[s]) return;
+  // has_prev_ stays set: spring_status reports the spring as JointBroken.
   plastic_J_[s] += spring_elastic_J(s);
   alive_[s] = 0;
   law_force_N_[s] = 0.0;
@@ -804,7 +805,15 @@ std::string JointSystem::trial_state_obstacle() const {
 
 SpringStatus JointSystem::spring_status(std::size_t s) const {
   if (alive_.empty()) return SpringStatus::Elastic;
-  if (!alive_[s]) return SpringStatus::Deleted;
+  if (!alive_[s]) {
+    // Deleted by its own law, or taken out with its broken joint (kill_spring_)?
+    // A law's deletion clears has_prev_ (evaluate_spring_), and nothing sets
+    // it again; kill_spring_ leaves it set, and every spring alive at a break
+    // has been evaluated (has_prev_ 1) in the pass that broke the joint.
+    // has_prev_ is in the checkpoint, so the distinction survives a resume.
+    if (joint_broken_[std::size_t(spring_joint_[s])] && has_prev_[s]) return SpringStatus::JointBroken;
+    return SpringStatus::Deleted;
+  }
   return yielded_[s] ? SpringStatus::Yielded : SpringStatus::Elastic;
 }
 

@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "dem_core/simulation.h"
+#include "dem_core/state_io.h"
 #include "joint_test_util.h"
 
 namespace fq {
@@ -127,6 +128,63 @@ TEST(JointFracture, AJointThatSlidOutBreaksWithTheShearMode) {
     }
   }
   EXPECT_STREQ(log.all().back().mode, "shear_spring_deleted");
+}
+
+TEST(JointFracture, SpringsOfABrokenJointAreNotReportedAsDeleted) {
+  // As above, a slip of 6 mm along x (past the shear springs' 5 mm) and 2 mm
+  // along y (inside it): the four shear springs along x are deleted and
+  // break the joint (any_spring_deleted). The joint's other eight springs
+  // (four linear normal springs, four shear springs along y) were not
+  // deleted: they report JointBroken, not Deleted (retrofit probe: the
+  // frames showed all 12 springs "deleted" where events.csv had 2), with
+  // the strain ratio of their last evaluation: 2 mm / 5 mm for the shear
+  // springs along y, 0 for the linear normal springs. A checkpoint keeps it.
+  BondedPairs bonded;
+  BodyStore store = test::two_boxes();
+  JointSystem js(&bonded);
+  const TrilinearParams t = breaking_law(0.05, 0.05);  // 5 mm over 0.1 m
+  JointDef d;
+  d.body_a = 0;
+  d.body_b = 1;
+  d.layout = four_corner_layout(0.04, 0.04, 1.0, linear_spring(1e6), trilinear_spring(t, 0.1));
+  d.fracture.criterion = BreakCriterion::AnySpringDeleted;
+  js.add_joint(store, d);
+  js.prepare(store);
+  EventLog log;
+  test::drive(js, store, 1, store.position_m[1], store.orientation[1], Vec3(0.006, 0.002, 0), Vec3::Zero(),
+              Vec3::Zero(), 0);
+  js.finish_step(store, StepInfo{0, 0.0, 1e-3}, log);
+  ASSERT_EQ(log.count(EventKind::JointBroken), 1u);
+  ASSERT_EQ(log.count(EventKind::SpringDeleted), 4u);
+  ASSERT_EQ(js.spring_count(), 12u);
+  auto check = [&](const JointSystem& j, const char* when) {
+    for (std::size_t s = 0; s < 12; ++s) {
+      // Each point: normal, shear along t1 (x), shear along t2 (y).
+      const std::size_t within = s % 3;
+      if (within == 1) {
+        EXPECT_EQ(j.spring_status(s), SpringStatus::Deleted) << when << " spring " << s;
+      } else {
+        EXPECT_EQ(j.spring_status(s), SpringStatus::JointBroken) << when << " spring " << s;
+        EXPECT_NEAR(j.spring_strain_ratio(s), within == 2 ? 0.4 : 0.0, 1e-9) << when << " spring " << s;
+      }
+    }
+  };
+  check(js, "after the break");
+  for (const Event& e : log.all()) {
+    if (e.kind == EventKind::SpringDeleted) {
+      EXPECT_EQ(e.spring_index % 3, 1) << "deleted: shear along x";
+    }
+  }
+  StateWriter out;
+  js.save_state(out);
+  BondedPairs bonded2;
+  BodyStore store2 = test::two_boxes();
+  JointSystem js2(&bonded2);
+  js2.add_joint(store2, d);
+  js2.prepare(store2);
+  StateReader in(out.bytes());
+  js2.load_state(in);
+  check(js2, "after a checkpoint");
 }
 
 TEST(JointDashpot, DampingRatioGivesLogarithmicDecrement) {

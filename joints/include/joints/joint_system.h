@@ -92,7 +92,10 @@ struct JointDef {
   JointBreakDef fracture;
 };
 
-enum class SpringStatus : std::uint8_t { Elastic = 0, Yielded = 1, Deleted = 2 };
+// Deleted: the spring's own law failed it (a spring_deleted event);
+// JointBroken: it was alive when its joint broke and went with the joint
+// (no spring_deleted event of its own).
+enum class SpringStatus : std::uint8_t { Elastic = 0, Yielded = 1, Deleted = 2, JointBroken = 3 };
 enum class JointStatus : std::uint8_t { Intact = 0, Yielded = 1, Broken = 2 };
 enum class SpringRole : std::uint8_t { Normal = 0, Shear = 1, Link = 2 };
 
@@ -160,7 +163,10 @@ class JointSystem final : public ForceProvider {
   const std::vector<std::int32_t>& spring_joint() const { return spring_joint_; }
   const std::vector<SpringRole>& spring_role() const { return spring_role_; }
   SpringStatus spring_status(std::size_t s) const;
-  // |delta| / ultimate deformation on the side of delta (0 for laws that never fail).
+  // |delta| / ultimate deformation on the side of delta (0 for laws that never fail),
+  // at the spring's last evaluation: for a deleted spring that of its
+  // deletion (1 or a little more), for a spring of a broken joint that of
+  // the step the joint broke.
   double spring_strain_ratio(std::size_t s) const;
   JointStatus joint_status(std::size_t j) const;
   BodyId joint_body_a(std::size_t j) const { return joint_body_a_[j]; }
