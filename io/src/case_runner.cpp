@@ -291,7 +291,7 @@ class OutputSizeCheck final : public StepObserver {
 // empty springs block, so a ParaView threshold on 2 finds its contacts.
 void attach_provider_output(RunOutput& writer, const Scene& scene) {
   if (scene.joints)
-    attach_joint_output(writer, *scene.joints);
+    attach_joint_output(writer, *scene.joints, scene.joint_nodes, scene.joint_names);
   else if (scene.contacts)
     writer.add_cell_block("springs", [](const Simulation&, VtkFrameBuilder&) {});
   if (scene.contacts) attach_contact_output(writer, *scene.contacts);
@@ -487,7 +487,7 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
       writer.add_summary_field("warnings", list.end_array().str());
     }
     writer.add_summary_field("ground_motion", ground_motion_summary(sim));
-    if (scene.joints) add_joint_summary(writer, *scene.joints, sim.events(), scene.joint_labels);
+    if (scene.joints) add_joint_summary(writer, *scene.joints, sim.events(), scene.joint_labels, scene.joint_names);
     if (!scene.storeys.empty())
       add_storey_summary(writer, storeys, report.result.status != RunStatus::Unstable);
     char hash[19];
@@ -948,6 +948,8 @@ Scene build_scene(const CaseDef& def) {
       }
       scene.joint_labels.push_back(p.label);
       scene.joint_types.push_back(p.type);
+      scene.joint_names.push_back(p.name);
+      scene.joint_nodes.push_back(p.node);
     }
     scene.joints = joints.get();
     sim.add_force_provider(std::move(joints));

@@ -13,7 +13,7 @@ namespace fq::detail {
 void EventCsvWriter::open(const std::filesystem::path& file) {
   auto out = std::make_unique<std::ofstream>(file, std::ios::binary | std::ios::trunc);
   if (!*out) throw std::runtime_error("cannot create '" + file.string() + "': " + last_system_error());
-  *out << "time_s,step,kind,joint_id,body_a,body_b,spring_index,mode,force_N,x_m,y_m,z_m,body_a_name,body_b_name\n";
+  *out << "time_s,step,kind,joint_id,body_a,body_b,spring_index,mode,force_N,x_m,y_m,z_m,body_a_name,body_b_name,node,joint_name\n";
   if (!*out) throw std::runtime_error("cannot write '" + file.string() + "'");
   out_ = std::move(out);
   file_ = file;
@@ -78,6 +78,11 @@ void EventCsvWriter::write_new(const EventLog& log) {
       line_.push_back(',');
       if (b >= 0 && std::size_t(b) < body_names_.size()) line_ += csv_text(body_names_[std::size_t(b)]);
     }
+    const bool named = e.joint_id >= 0 && std::size_t(e.joint_id) < joint_names_.size();
+    line_.push_back(',');
+    if (named) line_ += csv_text(joint_nodes_[std::size_t(e.joint_id)]);
+    line_.push_back(',');
+    if (named) line_ += csv_text(joint_names_[std::size_t(e.joint_id)]);
     line_.push_back('\n');
     out_->write(line_.data(), std::streamsize(line_.size()));
     ++rows_;

@@ -77,6 +77,10 @@ JointDef joint_for_member_end(const Model& model, BodyId body_a, int m, const Me
 
 }  // namespace
 
+std::string joint_name(const std::string& node, const std::string& member_a, const std::string& member_b) {
+  return node + ":" + member_a + "-" + member_b;
+}
+
 std::vector<PlannedJoint> plan_joints(const Model& model) {
   const CaseDef& def = model.def;
   const std::string file = def.source_file.string();
@@ -174,6 +178,7 @@ std::vector<PlannedJoint> plan_joints(const Model& model) {
       p.member_a = ma.id;
       p.member_b = mb.id;
       p.line = line;
+      p.name = joint_name(p.node, p.member_a, p.member_b);
       p.label = "node " + node.id + ": " + member_kind_name(ma.kind) + " " + ma.id + " - " +
                 member_kind_name(mb.kind) + " " + mb.id + " (type " + type + ")";
       out.push_back(std::move(p));
@@ -196,6 +201,7 @@ std::vector<PlannedJoint> plan_joints(const Model& model) {
       p.member_a = "ground";
       p.member_b = m.id;
       p.line = s.line;
+      p.name = joint_name(p.node, p.member_a, p.member_b);
       p.label = "support " + node.id + ": ground - " + member_kind_name(m.kind) + " " + m.id + " (type " + type + ")";
       out.push_back(std::move(p));
     }

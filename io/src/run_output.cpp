@@ -395,6 +395,10 @@ void RunOutput::add_cell_block(std::string name, VtkCellBlock block) {
   impl_->frames.add_cell_block(std::move(name), std::move(block));
 }
 
+void RunOutput::set_joint_names(std::vector<std::string> nodes, std::vector<std::string> names) {
+  impl_->events.set_joint_names(std::move(nodes), std::move(names));
+}
+
 void RunOutput::add_history_column(std::string header, HistoryColumn value) {
   impl_->history.add_column(std::move(header), std::move(value));
 }

@@ -46,10 +46,15 @@ void add_member_damage(const Simulation& sim, const JointSystem& js, VtkFrameBui
 
 }  // namespace
 
-void attach_joint_output(RunOutput& output, const JointSystem& joints) {
+void attach_joint_output(RunOutput& output, const JointSystem& joints, const std::vector<std::string>& nodes,
+                         const std::vector<std::string>& names) {
   const JointSystem* js = &joints;
-  output.add_cell_block("springs", [js](const Simulation& sim, VtkFrameBuilder& frame) {
+  output.set_joint_names(nodes, names);
+  output.add_cell_block("springs", [js, nodes, names](const Simulation& sim, VtkFrameBuilder& frame) {
     add_member_damage(sim, *js, frame);
+    // Indexed by joint_id: what a spring's joint_id stands for in the case.
+    frame.add_field("joint_names", names);
+    frame.add_field("joint_nodes", nodes);
     const std::size_t n = js->spring_count();
     const auto force = frame.cell_array("spring_force_N", VtkArrayType::Float64, 1, std::nan(""));
     const auto ratio = frame.cell_array("strain_ratio", VtkArrayType::Float64, 1, std::nan(""));
@@ -120,7 +125,7 @@ void attach_base_force_output(RunOutput& output, const JointSystem* joints, cons
 }
 
 void add_joint_summary(RunOutput& output, const JointSystem& joints, const EventLog& events,
-                       const std::vector<std::string>& labels) {
+                       const std::vector<std::string>& labels, const std::vector<std::string>& names) {
   const JointCounts c = joints.counts();
   std::ostringstream counts;
   counts << "{\"total\": " << joints.joint_count() << ", \"intact\": " << c.intact << ", \"yielded\": " << c.yielded
@@ -129,6 +134,20 @@ void add_joint_summary(RunOutput& output, const JointSystem& joints, const Event
   output.add_summary_field("first_joint_failure_time_s", JsonWriter::number(first_joint_failure_time_s(events)));
   const std::string first = first_joint_failure_label(events, labels);
   output.add_summary_field("first_joint_failure", first.empty() ? std::string("null") : JsonWriter::quote(first));
+  // The same joint's id (joint_id of events.csv and the frames) and name
+  // (their joint_name and joint_names), so that the weak point found here
+  // can be followed into the other outputs.
+  const std::int32_t id = first_joint_failure_id(events);
+  output.add_summary_field("first_joint_failure_joint_id", id >= 0 ? std::to_string(id) : std::string("null"));
+  output.add_summary_field("first_joint_failure_joint_name", id >= 0 && std::size_t(id) < names.size()
+                                                                 ? JsonWriter::quote(names[std::size_t(id)])
+                                                                 : std::string("null"));
+}
+
+std::int32_t first_joint_failure_id(const EventLog& events) {
+  for (const Event& e : events.all())
+    if (e.kind == EventKind::SpringDeleted || e.kind == EventKind::JointBroken) return e.joint_id;
+  return -1;
 }
 
 std::string first_joint_failure_label(const EventLog& events, const std::vector<std::string>& labels) {

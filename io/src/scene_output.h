@@ -18,15 +18,24 @@ namespace fq {
 // joints_intact_count, joints_yielded_count, joints_broken_count. Also sets
 // damage_state on the body cells from the members' joints (0 intact,
 // 1 yielded, 2 damaged: some joint broken, 3 detached: all joints broken).
-void attach_joint_output(RunOutput& output, const JointSystem& joints);
+// Field data joint_names and joint_nodes (strings, one per joint id: the
+// joint's name "node:member_a-member_b" and its node id, io/joint_builder.h)
+// say which joint a joint_id is; `nodes` and `names` (Scene::joint_nodes,
+// joint_names) also fill events.csv's node and joint_name columns.
+void attach_joint_output(RunOutput& output, const JointSystem& joints, const std::vector<std::string>& nodes,
+                         const std::vector<std::string>& names);
 
 // Summary fields: joint counts at the end and the time of the first joint
 // failure (first spring deletion or joint break; null when none).
 // `labels`: each joint's label (Scene::joint_labels), for naming the first
-// joint to fail.
+// joint to fail (first_joint_failure); `names`: each joint's name
+// (Scene::joint_names) for first_joint_failure_joint_name, with its id in
+// first_joint_failure_joint_id (both null when no joint failed).
 void add_joint_summary(RunOutput& output, const JointSystem& joints, const EventLog& events,
-                       const std::vector<std::string>& labels);
+                       const std::vector<std::string>& labels, const std::vector<std::string>& names);
 
+// Joint id of the first spring deletion or joint break (-1 when none).
+std::int32_t first_joint_failure_id(const EventLog& events);
 // Time of the first spring deletion or joint break (NaN when none).
 double first_joint_failure_time_s(const EventLog& events);
 // The label of the first joint to fail (a spring deleted or the joint

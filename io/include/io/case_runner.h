@@ -67,6 +67,8 @@ struct Scene {
   ContactSystem* contacts = nullptr;  // owned by the simulation; null without a contact section
   std::vector<std::string> joint_labels;  // per joint id: where it is and its type
   std::vector<std::string> joint_types;   // per joint id: its joint type's name
+  std::vector<std::string> joint_names;   // per joint id: "node:member_a-member_b" (io/joint_builder.h)
+  std::vector<std::string> joint_nodes;   // per joint id: its node's id
   StableTimeStep stable_time_step;
   std::vector<Storey> storeys;  // from the columns; empty without columns (io/storey_drift.h)
 };

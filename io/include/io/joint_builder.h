@@ -15,12 +15,21 @@ namespace fq {
 struct PlannedJoint {
   JointDef def;
   std::string label;     // e.g. "node n5: column c1 - beam b2 (type tenon_weak)"
+  std::string name;      // e.g. "n5:c1-b2", "se0:ground-c3" (joint_name below)
   std::string node;      // node id
   std::string type;      // joint type name
   std::string member_a;  // member id on side a ("ground" for supports)
   std::string member_b;  // member id on side b
   int line = 0;          // line of the rule, override, support or node that made it
 };
+
+// A joint's name in the outputs (events.csv joint_name, the frames'
+// joint_names and joint_name, summary.json, info --joints): its node id and
+// the ids of its two members, side a first ("ground" for a support), as
+// "node:member_a-member_b". Built from the case file's own ids, so it stays
+// the same when joints are added or removed elsewhere in the case, unlike
+// the joint id (the joint's place in the order the joints are planned).
+std::string joint_name(const std::string& node, const std::string& member_a, const std::string& member_b);
 
 // Plans every joint of the case; throws InputError when members meet at a
 // node and no joint type applies, or a support has no joint type.

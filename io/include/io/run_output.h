@@ -28,6 +28,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "dem_core/simulation.h"
 #include "io/history_writer.h"
@@ -114,6 +115,9 @@ class RunOutput {
 
   void add_cell_block(std::string name, VtkCellBlock block);
   void add_history_column(std::string header, HistoryColumn value);
+  // The joints' node ids and names by joint id, for events.csv's node and
+  // joint_name columns (before attach(); without it they stay empty).
+  void set_joint_names(std::vector<std::string> nodes, std::vector<std::string> names);
   // Extra summary field; `json_value` is an already formatted JSON value
   // (checked). Keys must not repeat built-in ones; a repeated extra key
   // replaces the earlier value.
