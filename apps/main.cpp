@@ -3,7 +3,7 @@
 //   framequake run CASE [--out DIR] [--quiet] [--force] [--threads N] [--integrator NAME]
 //                       [--checkpoint-every S]
 //   framequake resume DIR [--quiet] [--threads N]
-//   framequake info CASE [--integrator NAME]
+//   framequake info CASE [--integrator NAME] [--joints]
 //   framequake compare CASE... [--out DIR] [--jobs N] [--window-length S]
 //   framequake sweep CASE... [--scales LIST] [--record FILE]... [--out DIR]
 //   framequake render OUT_DIR [--compare ...]   (render/render_command.h)
@@ -146,7 +146,7 @@ const char* kResumeHelp =
     "truncated, of another format version, or the case changed since.\n";
 
 const char* kInfoHelp =
-    "Usage: framequake info CASE [--integrator NAME]\n"
+    "Usage: framequake info CASE [--integrator NAME] [--joints]\n"
     "\n"
     "Loads and checks the case without running it, and prints the bodies, total\n"
     "mass, joints, storeys (over which drifts and verdicts are taken), time step\n"
@@ -162,6 +162,8 @@ const char* kInfoHelp =
     "Options:\n"
     "  --integrator NAME  describe the case as `run --integrator NAME` would run it\n"
     "                 (its stable limit, whether run would refuse it)\n"
+    "  --joints       end with a list of the joints: id, name (as in events.csv's\n"
+    "                 joint_name and the frames' joint_names), node, members, type\n"
     "  --help         this text\n";
 
 struct RunArgs {
@@ -172,6 +174,7 @@ struct RunArgs {
   int threads = 0;
   std::optional<fq::Integrator> integrator;
   std::optional<double> checkpoint_every_s;
+  bool list_joints = false;  // info --joints
 };
 
 [[noreturn]] void usage_error(const std::string& message, const char* help) {
@@ -180,9 +183,9 @@ struct RunArgs {
 }
 
 // run_options: run's options (--out, --quiet, --force, --threads,
-// --checkpoint-every); --integrator is also info's.
+// --checkpoint-every); --integrator is also info's; info_options: info's --joints.
 RunArgs parse_run_args(int argc, char** argv, int first, const char* help, bool run_options,
-                       bool integrator_option) {
+                       bool integrator_option, bool info_options = false) {
   RunArgs a;
   std::vector<std::string> seen;  // options that take a value, given once each
   for (int i = first; i < argc; ++i) {
@@ -219,6 +222,8 @@ RunArgs parse_run_args(int argc, char** argv, int first, const char* help, bool 
       if (!fq::parse_integrator(v, m))
         usage_error("--integrator expects one of " + fq::integrator_names_list() + ", got '" + v + "'", help);
       a.integrator = m;
+    } else if (info_options && arg == "--joints") {
+      a.list_joints = true;
     } else if (run_options && arg == "--checkpoint-every") {
       const std::string v = need_value("--checkpoint-every");
       char* end = nullptr;
@@ -363,10 +368,10 @@ int command_resume(int argc, char** argv) {
 }
 
 int command_info(int argc, char** argv) {
-  const RunArgs args = parse_run_args(argc, argv, 2, kInfoHelp, false, true);
+  const RunArgs args = parse_run_args(argc, argv, 2, kInfoHelp, false, true, true);
   try {
     const fq::CaseDef def = fq::load_case_file(args.case_file);
-    fq::describe_case(def, std::cout, args.integrator);
+    fq::describe_case(def, std::cout, args.integrator, args.list_joints);
   } catch (const fq::InputError& e) {
     std::cerr << "framequake: error: " << e.what() << "\n";
     return kExitBadInput;

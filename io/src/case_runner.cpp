@@ -1242,7 +1242,8 @@ CaseRunReport resume_case(const std::filesystem::path& folder, const CaseRunOpti
   return execute(scene, *writer, options, &meta, def, storeys);
 }
 
-void describe_case(const CaseDef& case_def, std::ostream& out, std::optional<Integrator> integrator) {
+void describe_case(const CaseDef& case_def, std::ostream& out, std::optional<Integrator> integrator,
+                   bool list_joints) {
   CaseRunOptions forced;
   forced.integrator = integrator;
   const EffectiveCase effective = effective_case(case_def, forced);
@@ -1289,6 +1290,7 @@ void describe_case(const CaseDef& case_def, std::ostream& out, std::optional<Int
         out << (k ? ", " : " ") << by_type[k].first << " " << by_type[k].second;
       out << "\n";
     }
+    if (!list_joints) out << "            (--joints lists them with their ids, nodes, members and types)\n";
   }
   if (!scene.storeys.empty()) {
     // What the run's drifts and verdicts will be taken over (io/storey_drift.h).
@@ -1405,6 +1407,18 @@ void describe_case(const CaseDef& case_def, std::ostream& out, std::optional<Int
                                   ground_motion_end_note(sim)})
     if (!note.empty()) out << "note        " << note << "\n";
   for (const std::string& note : planar_link_system_notes(def, scene)) out << "note        " << note << "\n";
+  if (list_joints && scene.joints) {
+    // One line per joint id: its name (events.csv's joint_name, the frames'
+    // joint_names) and where it is, so that a joint that never yielded can
+    // be found as well as one an event names.
+    std::size_t width = 4;
+    for (const std::string& name : scene.joint_names) width = std::max(width, name.size());
+    out << "joint list  id  " << std::left << std::setw(int(width)) << "name" << "  node, members and type\n";
+    for (std::size_t j = 0; j < scene.joint_names.size(); ++j)
+      out << "            " << std::right << std::setw(2) << j << "  " << std::left << std::setw(int(width))
+          << scene.joint_names[j] << "  " << scene.joint_labels[j] << "\n";
+    out << std::right;
+  }
 }
 
 }  // namespace fq

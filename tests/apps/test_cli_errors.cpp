@@ -509,6 +509,29 @@ TEST(CliInfo, IntegratorOptionPreviewsWhatRunWouldDoWithIt) {
   EXPECT_NE(bad.err.find("Usage: framequake info"), std::string::npos) << bad.err;
 }
 
+// info --joints ends with one line per joint (id, name, node, members,
+// type): the breaking cantilever's joints from its case file's ids, the
+// column-arm joint at node top (planned first) and the support at base.
+// Without it, a pointer to the option; run does not take it.
+TEST(CliInfo, JointsOptionListsTheJoints) {
+  TempDir dir;
+  const std::string cantilever = (fs::path(FQ_SOURCE_DIR) / "cases/demo_breaking_cantilever.yaml").string();
+  const auto listed = run_app({"info", cantilever, "--joints"}, dir.path());
+  EXPECT_EQ(listed.code, 0) << listed.err;
+  EXPECT_NE(listed.out.find(" 0  top:column-arm      node top: column column - beam arm (type weak_tenon)"),
+            std::string::npos)
+      << listed.out;
+  EXPECT_NE(listed.out.find(" 1  base:ground-column  support base: ground - column column (type stiff_support)"),
+            std::string::npos)
+      << listed.out;
+  const auto plain = run_app({"info", cantilever}, dir.path());
+  EXPECT_EQ(plain.code, 0) << plain.err;
+  EXPECT_EQ(plain.out.find("top:column-arm"), std::string::npos) << plain.out;
+  const auto run = run_app({"run", cantilever, "--joints"}, dir.path());
+  EXPECT_EQ(run.code, 2) << run.err;
+  EXPECT_NE(run.err.find("unknown option '--joints'"), std::string::npos) << run.err;
+}
+
 // Every option also takes the form --option=value (a value may contain
 // '='); the run then goes where --out= says.
 TEST(CliUsage, OptionEqualsValueIsTheOptionFollowedByTheValue) {

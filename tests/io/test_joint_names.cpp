@@ -214,5 +214,21 @@ TEST(JointNames, FramesNameEveryJointIdAndTellBrokenFromDeletedSprings) {
   EXPECT_EQ(states[support][0], 12);
 }
 
+TEST(JointNames, InfoListsTheJointsOnRequest) {
+  std::ostringstream plain, listed;
+  describe_case(load_case_file(kCase), plain);
+  describe_case(load_case_file(kCase), listed, std::nullopt, true);
+  EXPECT_EQ(plain.str().find("top:column-arm"), std::string::npos) << plain.str();
+  EXPECT_NE(plain.str().find("--joints lists them"), std::string::npos) << plain.str();
+  const std::string text = listed.str();
+  // Node joints come first (the column at `top` is the hub), then supports.
+  EXPECT_NE(text.find("             0  top:column-arm      node top: column column - beam arm (type weak_tenon)\n"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("             1  base:ground-column  support base: ground - column column (type stiff_support)\n"),
+            std::string::npos)
+      << text;
+}
+
 }  // namespace
 }  // namespace fq

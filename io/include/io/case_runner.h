@@ -279,6 +279,9 @@ CaseRunReport resume_case(const std::filesystem::path& folder, const CaseRunOpti
 // stable limit without --force) is a line of the description, not an error;
 // InputError only when the case cannot be described (it does not load, or
 // no stable step can be estimated).
-void describe_case(const CaseDef& def, std::ostream& out, std::optional<Integrator> integrator = std::nullopt);
+// list_joints (info --joints): ends with one line per joint, its id, name
+// (io/joint_builder.h), node, members and type.
+void describe_case(const CaseDef& def, std::ostream& out, std::optional<Integrator> integrator = std::nullopt,
+                   bool list_joints = false);
 
 }  // namespace fq
