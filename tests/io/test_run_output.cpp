@@ -535,7 +535,7 @@ TEST(RunOutput, EventsFileHasHeaderAndNoRowsWithoutEvents) {
   const MainRun& run = main_run();
   const std::vector<std::string> lines = read_lines(run.folder / "events.csv");
   ASSERT_EQ(lines.size(), 1u);
-  EXPECT_EQ(lines[0], "time_s,step,kind,joint_id,body_a,body_b,spring_index,mode,force_N,x_m,y_m,z_m,body_a_name,body_b_name");
+  EXPECT_EQ(lines[0], "time_s,step,kind,joint_id,body_a,body_b,spring_index,mode,force_N,x_m,y_m,z_m,body_a_name,body_b_name,node,joint_name");
 }
 
 TEST(RunOutput, SummaryIsValidJsonWithStatusAndExtraFields) {
