@@ -2,6 +2,8 @@
 
 #include <cerrno>
 #include <stdexcept>
+#include <string>
+#include <string_view>
 
 #include "io/atomic_file.h"
 #include "io/csv_text.h"
@@ -10,10 +12,16 @@
 
 namespace fq::detail {
 
+namespace {
+constexpr std::string_view kHeader =
+    "time_s,step,kind,joint_id,body_a,body_b,spring_index,mode,force_N,x_m,y_m,z_m,body_a_name,body_b_name,node,"
+    "joint_name";
+}  // namespace
+
 void EventCsvWriter::open(const std::filesystem::path& file) {
   auto out = std::make_unique<std::ofstream>(file, std::ios::binary | std::ios::trunc);
   if (!*out) throw std::runtime_error("cannot create '" + file.string() + "': " + last_system_error());
-  *out << "time_s,step,kind,joint_id,body_a,body_b,spring_index,mode,force_N,x_m,y_m,z_m,body_a_name,body_b_name,node,joint_name\n";
+  *out << kHeader << '\n';
   if (!*out) throw std::runtime_error("cannot write '" + file.string() + "'");
   out_ = std::move(out);
   file_ = file;
@@ -28,6 +36,17 @@ void EventCsvWriter::reopen(const std::filesystem::path& file, std::uint64_t byt
   if (ec || size < bytes)
     throw std::runtime_error("'" + file.string() + "' is missing or shorter than at the checkpoint (" +
                              std::to_string(bytes) + " bytes expected); the output folder was changed since");
+  {
+    // A run begun by a framequake that wrote other columns (before node
+    // and joint_name) would get rows that do not match its header.
+    std::ifstream in(file, std::ios::binary);
+    std::string header;
+    std::getline(in, header);
+    if (header != kHeader)
+      throw std::runtime_error("'" + file.string() + "' has the columns of another framequake version (" +
+                               header.substr(0, 200) + "; this one writes " + std::string(kHeader) +
+                               "): resume the run with the framequake that started it");
+  }
   std::filesystem::resize_file(file, bytes, ec);
   if (ec) throw std::runtime_error("cannot cut '" + file.string() + "' back to the checkpoint: " + ec.message());
   auto out = std::make_unique<std::ofstream>(file, std::ios::binary | std::ios::app);

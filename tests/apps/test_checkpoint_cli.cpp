@@ -223,6 +223,28 @@ TEST(CheckpointCli, BadCheckpointOrChangedCaseIsRefusedWithExitCode2) {
   EXPECT_NE(e.err.find("was stopped before its first step, so it left no checkpoint"), std::string::npos) << e.err;
 }
 
+// A run begun by the framequake before events.csv's node and joint_name
+// columns (its header ends with body_b_name) is not resumed into rows of
+// two more columns: refused, naming events.csv. The old file is made here
+// by renaming the two columns within the same length (the length must
+// match the checkpoint's).
+TEST(CheckpointCli, ResumeRefusesAnEventsFileWithOtherColumns) {
+  Fixture f;
+  const fs::path out = f.dir.path() / "out";
+  ASSERT_EQ(f.run_and_kill(out), 128 + SIGKILL);
+  std::string events = read_text(out / "events.csv");
+  const std::string columns = ",node,joint_name\n";
+  const std::size_t at = events.find(columns);
+  ASSERT_NE(at, std::string::npos) << events.substr(0, 200);
+  ASSERT_EQ(at, events.find('\n') + 1 - columns.size()) << "the last columns of the header";
+  events.replace(at, columns.size(), ",xxxx,yyyyyyyyyy\n");
+  write_text(out / "events.csv", events);
+  const auto r = run_app({"resume", out.string(), "--quiet"}, f.dir.path());
+  EXPECT_EQ(r.code, 3) << r.err;  // an output error, as for a file cut shorter than the checkpoint
+  EXPECT_NE(r.err.find("events.csv' has the columns of another framequake version"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out / "summary.json") && read_text(out / "summary.json").find("completed") != std::string::npos);
+}
+
 // A folder another process holds (its lock, as a running run or resume
 // holds it) is an output error for resume, exit 3 and "error:", as it is
 // for run; it was an "internal error" with the undocumented exit 4
