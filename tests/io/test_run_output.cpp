@@ -1097,7 +1097,7 @@ TEST(RunOutput, UnstableRunKeepsGoodFramesAndWritesSummaryAndEvent) {
   const std::vector<std::string> events = read_lines(def.folder / "events.csv");
   ASSERT_EQ(events.size(), 2u);
   const std::vector<std::string> cols = split(events[1], ',');
-  ASSERT_EQ(cols.size(), 14u);
+  ASSERT_EQ(cols.size(), 16u);
   EXPECT_EQ(cols[1], "7");
   EXPECT_EQ(cols[2], "instability");
   EXPECT_EQ(cols[4], "1");  // the poisoned body
@@ -1106,6 +1106,10 @@ TEST(RunOutput, UnstableRunKeepsGoodFramesAndWritesSummaryAndEvent) {
   EXPECT_EQ(cols[5], "-1");
   EXPECT_EQ(cols[12], "column");
   EXPECT_EQ(cols[13], "");
+  // An instability belongs to no joint (joint_id -1): no node, no joint name.
+  EXPECT_EQ(cols[3], "-1");
+  EXPECT_EQ(cols[14], "");
+  EXPECT_EQ(cols[15], "");
   const std::string summary = read_text(def.folder / "summary.json");
   EXPECT_TRUE(fq::json_is_valid(summary));
   EXPECT_NE(summary.find("\"status\": \"unstable\""), std::string::npos);
