@@ -341,6 +341,19 @@ std::string ground_motion_summary(const Simulation& sim) {
     // output probe).
     const double used_s = std::max(
         0.0, std::min({c.window_length_s, c.record.duration_s() - c.window_start_s, duration_s / c.time_scale}));
+    // The component's own peak over those seconds, |amplitude_scale a(t)|
+    // at its samples and at the ends of the span: the figure draws each
+    // case along its strongest horizontal component (scripts/plot/fq_plot.py),
+    // which the summed peaks per world axis cannot tell when components
+    // are oblique.
+    double peak_mps2 =
+        std::max(std::abs(c.record.at(c.window_start_s)), std::abs(c.record.at(c.window_start_s + used_s)));
+    for (std::size_t k = 0; k < c.record.acceleration_mps2.size(); ++k) {
+      const double t_rec = c.record.time_of(k);
+      if (t_rec > c.window_start_s + used_s) break;  // sample times increase
+      if (t_rec >= c.window_start_s) peak_mps2 = std::max(peak_mps2, std::abs(c.record.acceleration_mps2[k]));
+    }
+    peak_mps2 *= std::abs(c.amplitude_scale);
     std::error_code ec;
     const std::filesystem::path record = c.record.source.empty()
                                              ? std::filesystem::path()
@@ -356,6 +369,8 @@ std::string ground_motion_summary(const Simulation& sim) {
         .end_array()
         .key("amplitude_scale")
         .value(c.amplitude_scale)
+        .key("peak_mps2")
+        .value(peak_mps2)
         .key("time_scale")
         .value(c.time_scale)
         .key("window_start_s")

@@ -256,6 +256,9 @@ TEST(StudyCommands, SweepPgaIsThatOfThePartOfTheWindowTheRunFelt) {
       << summary;
   EXPECT_NE(summary.find("\"window_length_s\":0.25}"), std::string::npos) << summary;  // the run's 0.25 s of it
   EXPECT_NE(summary.find("\"peak_horizontal_mps2\":2.5,"), std::string::npos) << summary;
+  // The component's own peak over the same 0.25 s (the figure draws a case
+  // along its strongest horizontal component by it).
+  EXPECT_NE(summary.find("\"amplitude_scale\":1,\"peak_mps2\":2.5,"), std::string::npos) << summary;
   const auto info = run_app({"info", (dir.path() / "short.yaml").string()}, dir.path());
   ASSERT_EQ(info.code, 0) << info.err;
   EXPECT_NE(info.out.find("horizontal |(a_x, a_y)| 2.5 m/s^2 over the run's 0.25 s"), std::string::npos) << info.out;
