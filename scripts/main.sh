@@ -13,5 +13,5 @@ echo "[framequake] running frames A, B and C (cases/frame_*.yaml) side by side"
 echo "[framequake] rendering the three runs side by side (out/compare/abc.gif)"
 ./build/apps/framequake render --compare out/compare/frame_A out/compare/frame_B out/compare/frame_C \
   --to out/compare/abc.gif --every 2 --size 480x480
-echo "[framequake] done: table out/compare/comparison.md, figure out/compare/first_storey_drift.png,"
+echo "[framequake] done: table out/compare/comparison.md, figure out/compare/first_storey_drift.png (every storey),"
 echo "[framequake] animation out/compare/abc.gif; open out/compare/frame_A/case.pvd (and B, C) in ParaView"

@@ -2,9 +2,12 @@
 """framequake's one plotting path: every figure the commands and validation
 programs produce is drawn here, with one style and units on every axis.
 
-    fq_plot.py compare DIR   DIR/comparison.csv + DIR/<case>/history.csv
-                             -> DIR/first_storey_drift.png
-    fq_plot.py sweep DIR     DIR/sweep.csv -> DIR/sweep.png
+    fq_plot.py compare DIR   DIR/comparison.csv + each case's history.csv and
+                             summary.json -> DIR/first_storey_drift.png (every
+                             storey, one panel each; the name is kept for the
+                             scripts and pages that open it)
+    fq_plot.py sweep DIR     DIR/sweep.csv (+ each run's summary.json for its
+                             drift limits) -> DIR/sweep.png
     fq_plot.py stability CSV stability_limits' CSV -> CSV with .png (bisected
                              omega*dt per integrator against theory)
     fq_plot.py work-precision DIR_OR_CSV
@@ -123,90 +126,194 @@ def read_history_columns(path, names):
     return columns
 
 
-def drift_limits(summary_path):
-    """(damage limit, collapse limit) of a run's assessment (rad), or None."""
+def read_summary(path):
+    """A run's summary.json as a dict, or None when it is missing or unreadable."""
     import json
 
     try:
-        with open(summary_path) as f:
-            a = json.load(f)["assessment"]
-            return float(a["safety_drift_ratio_rad"]), float(a["collapse_drift_ratio_rad"])
-    except (OSError, KeyError, ValueError, TypeError):
+        with open(path) as f:
+            summary = json.load(f)
+        return summary if isinstance(summary, dict) else None
+    except (OSError, ValueError):
         return None
 
 
+def drift_limits(summary):
+    """(damage limit, collapse limit) of a run's assessment (rad), or None."""
+    try:
+        a = summary["assessment"]
+        return float(a["safety_drift_ratio_rad"]), float(a["collapse_drift_ratio_rad"])
+    except (KeyError, ValueError, TypeError):
+        return None
+
+
+def motion_direction(summary):
+    """The unit horizontal direction (ux, uy) of a run's strongest horizontal
+    ground-motion component, or None without one. Strength is the
+    component's own peak (summary.json, ground_motion.components[].peak_mps2;
+    |amplitude_scale| in a summary older than that key) times the length of
+    its direction's horizontal part; the first of equals wins."""
+    try:
+        components = summary["ground_motion"]["components"]
+    except (KeyError, TypeError):
+        return None
+    best = None
+    for c in components or []:
+        try:
+            dx, dy = float(c["direction"][0]), float(c["direction"][1])
+            peak = abs(float(c["peak_mps2"] if "peak_mps2" in c else c.get("amplitude_scale", 1.0)))
+        except (KeyError, IndexError, ValueError, TypeError):
+            continue
+        h = math.hypot(dx, dy)
+        if not h > 1e-9:
+            continue  # a vertical component drives no drift
+        if best is None or peak * h > best[0]:
+            best = (peak * h, dx / h, dy / h)
+    return None if best is None else (best[1], best[2])
+
+
+def direction_name(u):
+    """x, -x, y, -y, or the unit vector's components."""
+    for name, axis in (("x", (1.0, 0.0)), ("-x", (-1.0, 0.0)), ("y", (0.0, 1.0)), ("-y", (0.0, -1.0))):
+        if abs(u[0] - axis[0]) < 1e-9 and abs(u[1] - axis[1]) < 1e-9:
+            return name
+    return "(%.3g, %.3g)" % (u[0], u[1])
+
+
 def main_axis(row):
-    """The direction a case's first storey drifted further along: x, or y."""
+    """The direction a case's first storey drifted further along: x, or y.
+    Used only for a case without a horizontal ground motion."""
     def peak(axis):
         value = row.get("storey1_peak_drift_ratio_%s_rad" % axis)
         return abs(number(value)) if value else 0.0
     return "y" if peak("y") > peak("x") else "x"
 
 
-def plot_compare(folder):
+def storey_count(row):
+    """How many storeys a comparison.csv row has a verdict for."""
+    k = 0
+    while row.get("storey%d_verdict" % (k + 1)):
+        k += 1
+    return k
+
+
+def limit_lines(ax, limits, positive_only=False):
+    """Each distinct (damage, collapse) pair once, both signs unless
+    positive_only, labelled at the axes' right edge (legends sit outside the
+    axes, on the right: the two cannot overlap). limits: {(damage,
+    collapse): [cases]}. Returns the labels written."""
+    labels = []
+    edge = ax.get_yaxis_transform()  # x in axes fractions, y in data
+    for (damage, collapse), cases in sorted(limits.items()):
+        who = "" if len(limits) == 1 else " (%s)" % ", ".join(cases)
+        for sign in ((1,) if positive_only else (1, -1)):
+            ax.axhline(sign * collapse, color="0.4", ls="--", lw=0.8)
+            ax.axhline(sign * damage, color="0.6", ls=":", lw=0.8)
+        for kind, value, colour in (("collapse", collapse, "0.3"), ("damage", damage, "0.45")):
+            text = "%s limit %.3g rad%s" % (kind, value, who)
+            ax.text(0.995, value, text, transform=edge, va="bottom", ha="right", fontsize=7, color=colour)
+            labels.append(text)
+    return labels
+
+
+def limits_description(limits):
+    """The limit pairs drawn, for the PNG's Limits text (read by the tests)."""
+    return "; ".join("damage %.6g rad, collapse %.6g rad: %s" % (d, c, ", ".join(cases))
+                     for (d, c), cases in sorted(limits.items()))
+
+
+def draw_compare(folder):
+    """The comparison figure: one panel per storey, stacked on one time
+    axis, each case's drift ratio projected on the horizontal direction of
+    its strongest ground-motion component (motion_direction). Before, only
+    storey 1 was drawn (a retrofit that moved the damage up showed in the
+    table alone), and each case along the axis its first storey drifted
+    further along, so a wrecked frame with a larger x peak under an EW
+    (y) motion was drawn along x beside the others along y (acceptance
+    probe). Returns the figure and its PNG texts."""
     rows = read_csv(os.path.join(folder, "comparison.csv"))
-    # Each trace along its own case's main direction (the one its first
-    # storey drifted further along): a frame turned with its record, or one
-    # shaken across its plane, drifts along y, and drawn along x it would lie
-    # flat on zero beside a verdict that says otherwise.
     drawn = []
     for row in rows:
         if row.get("status") == "failed" or not row.get("output") or not row.get("storey1_verdict"):
             continue  # failed, or a case without columns: no storeys to draw
-        drawn.append((row, main_axis(row)))
-    axes_used = sorted(set(axis for _, axis in drawn))
-    fig, ax = plt.subplots()
+        summary = read_summary(os.path.join(row["output"], "summary.json"))
+        u = motion_direction(summary)
+        if u is None:  # no horizontal ground motion: the axis it drifted further along
+            u = (1.0, 0.0) if main_axis(row) == "x" else (0.0, 1.0)
+        drawn.append({"row": row, "u": u, "direction": direction_name(u), "storeys": storey_count(row),
+                      "limits": drift_limits(summary), "colour": COLOURS[len(drawn) % len(COLOURS)]})
+    if not drawn:
+        fail("no case with storeys in " + os.path.join(folder, "comparison.csv"))
+    directions = sorted(set(d["direction"] for d in drawn))
+    one_direction = len(directions) == 1
+    storeys = max(d["storeys"] for d in drawn)
+    fig, axes = plt.subplots(storeys, 1, sharex=True, squeeze=False, figsize=(10.0, 1.2 + 2.6 * storeys))
+    axes = [a[0] for a in axes]
     # Each case's own limits: the first case's were drawn for all, so a case
     # with stricter ones was labelled collapsed beside a line its trace never
-    # reached; the damage limit was not drawn (workflow probe).
+    # reached (workflow probe).
     limits = {}  # (damage, collapse) -> cases that use them
-    peak = 0.0
-    for k, (row, axis) in enumerate(drawn):
-        out = row["output"]
-        t, drift = read_history_columns(os.path.join(out, "history.csv"),
-                                        ["time_s", "storey1_drift_ratio_%s_rad" % axis])
-        peak = max([peak] + [abs(d) for d in drift])
-        verdict = row.get("storey1_verdict", "?")
-        if row.get("status") == "unstable":
-            verdict = "not assessed (unstable)"
-        elif row.get("status") != "completed" and verdict != "collapsed":
-            verdict += " so far"  # stopped before the end of its record
-        if len(axes_used) > 1:
-            label = "%s, along %s (storey 1: %s)" % (row["case"], axis, verdict)
-        else:
-            label = "%s (storey 1: %s)" % (row["case"], verdict)
-        ax.plot(t, drift, color=COLOURS[k % len(COLOURS)], lw=1.0, label=label)
-        case_limits = drift_limits(os.path.join(out, "summary.json"))
-        if case_limits:
-            limits.setdefault(case_limits, []).append(row["case"])
-    for (damage, collapse), cases in sorted(limits.items()):
-        who = "" if len(limits) == 1 else " (%s)" % ", ".join(cases)
-        for sign in (1, -1):
-            ax.axhline(sign * collapse, color="0.4", ls="--", lw=0.8)
-            ax.axhline(sign * damage, color="0.6", ls=":", lw=0.8)
-        # At the right end: the legend sits at the upper left.
-        ax.text(ax.get_xlim()[1], collapse, "collapse limit %.3g rad%s " % (collapse, who), va="bottom", ha="right",
-                fontsize=8, color="0.3")
-        ax.text(ax.get_xlim()[1], damage, "damage limit %.3g rad%s " % (damage, who), va="bottom", ha="right",
-                fontsize=8, color="0.45")
-    limit = max([c for _, c in limits] or [0.0])
-    if limit and peak > 3 * limit:
-        ax.set_ylim(-3 * limit, 3 * limit)  # a fallen storey would flatten the others' traces
-        ax.text(0.99, 0.02, "clipped at +/- %.2f rad" % (3 * limit), transform=ax.transAxes, ha="right",
-                fontsize=8, color="0.3")
-    ax.set_xlabel("simulated time t (s)")
-    if len(axes_used) == 1:
-        ax.set_ylabel("first-storey drift ratio, %s (rad)" % axes_used[0])
-        ax.set_title("First-storey drift ratio, main shaking direction (%s)" % axes_used[0])
+    for d in drawn:
+        if d["limits"]:
+            limits.setdefault(d["limits"], []).append(d["row"]["case"])
+    panels = []
+    for d in drawn:
+        names = ["time_s"]
+        for k in range(1, d["storeys"] + 1):
+            names += ["storey%d_drift_ratio_x_rad" % k, "storey%d_drift_ratio_y_rad" % k]
+        d["columns"] = read_history_columns(os.path.join(d["row"]["output"], "history.csv"), names)
+    for k in range(1, storeys + 1):
+        ax = axes[k - 1]
+        peak = 0.0
+        cases = []
+        for d in drawn:
+            if d["storeys"] < k:
+                continue
+            row = d["row"]
+            t, rx, ry = d["columns"][0], d["columns"][2 * k - 1], d["columns"][2 * k]
+            ux, uy = d["u"]
+            drift = [x * ux + y * uy for x, y in zip(rx, ry)]
+            peak = max([peak] + [abs(v) for v in drift if not math.isnan(v)])
+            verdict = row.get("storey%d_verdict" % k, "?")
+            if row.get("status") == "unstable":
+                verdict = "not assessed (unstable)"
+            elif row.get("status") != "completed" and verdict != "collapsed":
+                verdict += " so far"  # stopped before the end of its record
+            label = "%s: %s" % (row["case"], verdict)
+            if not one_direction:
+                label = "%s, along %s: %s" % (row["case"], d["direction"], verdict)
+            ax.plot(t, drift, color=d["colour"], lw=1.0, label=label)
+            cases.append(row["case"])
+        limit_lines(ax, limits)
+        limit = max([c for _, c in limits] or [0.0])
+        if limit and peak > 3 * limit:
+            ax.set_ylim(-3 * limit, 3 * limit)  # a fallen storey would flatten the others' traces
+            ax.text(0.005, 0.02, "clipped at +/- %.2f rad" % (3 * limit), transform=ax.transAxes, ha="left",
+                    fontsize=7, color="0.3")
+        along = ("along %s" % directions[0]) if one_direction else "along each case's motion"
+        ax.set_ylabel("storey %d drift ratio\n%s (rad)" % (k, along), fontsize=9)
+        # Beside the axes: the limit labels sit at the right edge inside
+        # them, where the legend covered the collapse limit's (acceptance
+        # probe).
+        ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8, borderaxespad=0.0,
+                  title="storey %d" % k, title_fontsize=8)
+        panels.append("storey %d: %s" % (k, ", ".join(cases)))
+    axes[-1].set_xlabel("simulated time t (s)")
+    if one_direction:
+        axes[0].set_title("Storey drift ratio along the ground motion's direction (%s)" % directions[0])
     else:
-        ax.set_ylabel("first-storey drift ratio (rad)")
-        ax.set_title("First-storey drift ratio, each case along its main direction")
-    ax.legend(loc="upper left", fontsize=8)
+        axes[0].set_title("Storey drift ratio, each case along its ground motion's direction")
     fig.tight_layout()
-    target = os.path.join(folder, "first_storey_drift.png")
-    # What each trace shows, in the PNG's Description text (read by the tests).
-    save_figure(fig, target,
-                metadata={"Description": "; ".join("%s along %s" % (row["case"], axis) for row, axis in drawn)})
+    # What each trace shows, in the PNG's texts (read by the tests): the
+    # Description keeps its "<case> along <direction>" form.
+    texts = {"Description": "; ".join("%s along %s" % (d["row"]["case"], d["direction"]) for d in drawn),
+             "Panels": "; ".join(panels), "Limits": limits_description(limits)}
+    return fig, texts
+
+
+def plot_compare(folder):
+    fig, texts = draw_compare(folder)
+    save_figure(fig, os.path.join(folder, "first_storey_drift.png"), metadata=texts)
 
 
 def largest_storey_peak(row):
@@ -226,9 +333,11 @@ def largest_storey_peak(row):
 RECORD_STYLES = ["-", "--", ":", "-."]
 
 
-def plot_sweep(folder):
+def draw_sweep(folder):
+    """The sweep figure and its PNG texts (plot_sweep)."""
     rows = read_csv(os.path.join(folder, "sweep.csv"))
     series = {}
+    limits = {}  # (damage, collapse) -> cases that use them
     for row in rows:
         # An unstable run is not assessed: its drifts are the blow-up's.
         if row.get("status") in ("failed", "unstable", None, ""):
@@ -238,6 +347,11 @@ def plot_sweep(folder):
         # moves the damage up, which a first-storey plot hid (workflow probe).
         series.setdefault(key, []).append(
             (number(row["pga_mps2"]), largest_storey_peak(row)[0], row["collapsed"] == "1"))
+        # Each run's own limits, as in the compare figure: the sweep figure
+        # had none (acceptance probe).
+        pair = drift_limits(read_summary(os.path.join(row.get("output") or "", "summary.json")))
+        if pair and row["case"] not in limits.setdefault(pair, []):
+            limits[pair].append(row["case"])
     if not series:
         fail("no completed runs in sweep.csv")
     cases = sorted(set(case for case, _ in series))
@@ -255,6 +369,7 @@ def plot_sweep(folder):
         ax.scatter([xi for xi, p in zip(x, points) if not p[2]], [yi for yi, p in zip(y, points) if not p[2]],
                    facecolors="none", edgecolors=colour, marker="o", s=30, zorder=3)
     ax.set_yscale("log")
+    limit_lines(ax, limits, positive_only=True)
     ax.set_xlabel("peak ground acceleration (g)")
     ax.set_ylabel("peak storey drift ratio, largest storey (rad)")
     ax.set_title("Amplitude sweep: x = a storey collapsed, o = none collapsed", fontsize=11)
@@ -262,11 +377,16 @@ def plot_sweep(folder):
     # points; workflow probe).
     ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8, borderaxespad=0.0)
     fig.tight_layout()
-    target = os.path.join(folder, "sweep.png")
-    # What each series shows, in the PNG's Description text (read by the tests).
-    save_figure(fig, target, metadata={"Description": "; ".join(
+    # What each series shows, in the PNG's texts (read by the tests).
+    texts = {"Description": "; ".join(
         "%s, %s: %s" % (key[0], key[1], " ".join("%.4g" % p[1] for p in sorted(points)))
-        for key, points in sorted(series.items()))})
+        for key, points in sorted(series.items())), "Limits": limits_description(limits)}
+    return fig, texts
+
+
+def plot_sweep(folder):
+    fig, texts = draw_sweep(folder)
+    save_figure(fig, os.path.join(folder, "sweep.png"), metadata=texts)
 
 
 def plot_stability(csv_path):

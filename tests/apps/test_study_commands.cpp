@@ -97,6 +97,25 @@ bool is_png(const fs::path& file) {
   return head == std::string("\x89PNG\r\n\x1a\n", 8);
 }
 
+// The text of a PNG's tEXt chunk `key` ("" when there is none).
+std::string png_text(const fs::path& file, const std::string& key) {
+  const std::string bytes = read_text(file);
+  std::size_t at = 8;  // after the signature
+  while (at + 12 <= bytes.size()) {
+    const auto byte = [&](std::size_t i) { return std::uint32_t(static_cast<unsigned char>(bytes[i])); };
+    const std::uint32_t length = byte(at) << 24 | byte(at + 1) << 16 | byte(at + 2) << 8 | byte(at + 3);
+    const std::string type = bytes.substr(at + 4, 4);
+    if (at + 12 + length > bytes.size()) break;
+    if (type == "tEXt") {
+      const std::string data = bytes.substr(at + 8, length);
+      const std::size_t nul = data.find('\0');
+      if (nul != std::string::npos && data.substr(0, nul) == key) return data.substr(nul + 1);
+    }
+    at += 12 + length;
+  }
+  return "";
+}
+
 TEST(StudyCommands, CompareWritesEachRunTheTableAndTheFigure) {
   TempDir dir;
   const fs::path out = dir.path() / "cmp";
@@ -290,6 +309,9 @@ TEST(StudyCommands, SweepScalesTheMotionAndFindsNoCollapseInTheDemoPortal) {
   EXPECT_EQ(scales[0].at("smallest_scale_with_collapse").empty(), !(collapsed_at_1 || rows[0].at("collapsed") == "1"));
   EXPECT_TRUE(fs::exists(out / "collapse_scales.md"));
   EXPECT_TRUE(is_png(out / "sweep.png"));
+  // The runs' drift limits are drawn, once (the figure had none; acceptance
+  // probe): fq_plot.py says which in the PNG's Limits text.
+  EXPECT_EQ(png_text(out / "sweep.png", "Limits"), "damage 0.0333333 rad, collapse 0.1 rad: demo_portal_frame");
 }
 
 // Every run of a sweep gets a folder of its own: scales that differ only in
@@ -669,31 +691,15 @@ TEST(StudyCommands, AFigureTheDiskRefusesIsOneLineAndLeavesNoTemporaryFile) {
   EXPECT_EQ(m.err.find("Traceback"), std::string::npos) << m.err;
 }
 
-// The text of a PNG's tEXt chunk `key` ("" when there is none).
-std::string png_text(const fs::path& file, const std::string& key) {
-  const std::string bytes = read_text(file);
-  std::size_t at = 8;  // after the signature
-  while (at + 12 <= bytes.size()) {
-    const auto byte = [&](std::size_t i) { return std::uint32_t(static_cast<unsigned char>(bytes[i])); };
-    const std::uint32_t length = byte(at) << 24 | byte(at + 1) << 16 | byte(at + 2) << 8 | byte(at + 3);
-    const std::string type = bytes.substr(at + 4, 4);
-    if (at + 12 + length > bytes.size()) break;
-    if (type == "tEXt") {
-      const std::string data = bytes.substr(at + 8, length);
-      const std::size_t nul = data.find('\0');
-      if (nul != std::string::npos && data.substr(0, nul) == key) return data.substr(nul + 1);
-    }
-    at += 12 + length;
-  }
-  return "";
-}
-
 // The comparison gives the peak drift along y as well as x, and the figure
-// draws each case along the direction it drifted most in: the demo portal
+// draws each case along its ground motion's direction: the demo portal
 // shaken along y (out of its plane) drifts along y only, which an x-only
 // table and figure showed as no drift at all (geometry probe); compared
 // with the same portal shaken along x, one figure drew both along one axis,
-// so one of them lay flat on zero (a user probe).
+// so one of them lay flat on zero (a user probe). The direction is the
+// motion's, not the one the case drifted further along: a wrecked frame
+// with a larger x peak under a y motion was drawn along x (acceptance
+// probe; tests/apps/test_fq_plot.py draws that case).
 TEST(StudyCommands, CompareReportsDriftAlongYForAMotionAlongY) {
   TempDir dir;
   std::string portal = read_text(kSource / "cases/demo_portal_frame.yaml");
@@ -726,6 +732,8 @@ TEST(StudyCommands, CompareReportsDriftAlongYForAMotionAlongY) {
   EXPECT_EQ(x_case.substr(x_case.size() - 8), "_along_x");
   EXPECT_EQ(png_text(cmp / "first_storey_drift.png", "Description"),
             rows[0].at("case") + " along y; " + x_case + " along x");
+  // One panel per storey (the portal has one), each case in it.
+  EXPECT_EQ(png_text(cmp / "first_storey_drift.png", "Panels"), "storey 1: " + rows[0].at("case") + ", " + x_case);
 }
 
 // Every run's folder is checked before the first run starts: a folder a
