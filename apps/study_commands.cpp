@@ -25,6 +25,7 @@
 #include <sys/wait.h>
 #include <vector>
 
+#include "collapse_bracket.h"
 #include "fq_config.h"
 #include "io/accelerogram.h"
 #include "io/atomic_file.h"
@@ -84,7 +85,8 @@ const char* kSweepHelp =
     "                                  peak drift ratio and verdict per storey, first\n"
     "                                  failure, broken joints\n"
     "  DIR/collapse_scales.csv, .md    per case and record: the smallest scale at which a\n"
-    "                                  storey collapsed (from the runs that completed)\n"
+    "                                  storey collapsed (from the runs that completed), and\n"
+    "                                  the scales above it that stood (not monotonic)\n"
     "  DIR/sweep.png                   peak drift ratio of the largest storey against PGA,\n"
     "                                  with the runs' damage and collapse drift limits\n"
     "An earlier study's tables and figure in DIR are removed before the runs start;\n"
@@ -266,6 +268,11 @@ std::string sweep_csv_header(std::size_t storeys) {
 }
 
 const char* const kCollapseCsvHeader =
+    "case,record,largest_scale_without_collapse,smallest_scale_with_collapse,pga_at_collapse_mps2,"
+    "collapsed_storeys_at_that_scale,stood_above_collapse";
+// The header before stood_above_collapse: an earlier study's table of that
+// form is still ours to replace.
+const char* const kCollapseCsvHeaderWithoutStoodAbove =
     "case,record,largest_scale_without_collapse,smallest_scale_with_collapse,pga_at_collapse_mps2,"
     "collapsed_storeys_at_that_scale";
 
@@ -547,6 +554,7 @@ bool is_our_csv_field(const std::string& column, const std::string& value) {
   if (column == "collapsed") return one_of({"", "0", "1"});
   if (column == "broken_joints" || column == "joints") return digits_only("");
   if (column == "collapsed_storeys_at_that_scale") return digits_only(" ");
+  if (column == "stood_above_collapse") return digits_only(" .e+-");
   if (value.empty()) return true;  // csv_number of a value not known
   char* end = nullptr;
   const double v = std::strtod(value.c_str(), &end);
@@ -567,7 +575,7 @@ bool is_our_csv_table(const std::string& name, const std::string& text) {
   else if (name == "sweep.csv" && header.size() >= 13 && (header.size() - 13) % 2 == 0)
     expected = sweep_csv_header((header.size() - 13) / 2);
   else if (name == "collapse_scales.csv")
-    expected = kCollapseCsvHeader;
+    expected = header.size() == 6 ? kCollapseCsvHeaderWithoutStoodAbove : kCollapseCsvHeader;
   const auto expected_rows = parse_csv(expected + "\n");
   if (expected.empty() || !expected_rows || expected_rows->front() != header) return false;
   for (std::size_t r = 1; r < rows->size(); ++r) {
@@ -1037,42 +1045,44 @@ int command_sweep(int argc, char** argv, const std::atomic<bool>* stop_requested
   // PGA in m/s² and in g: the figure's axis is in g (workflow probe).
   md << "| case | record | largest scale without collapse | smallest scale with collapse | PGA there (m/s², g) | "
         "storeys collapsed there |\n|---|---|---|---|---|---|\n";
+  std::string not_monotonic;
   for (const std::string& record : record_order)
     for (const std::string& name : case_order) {
-      double stood = NAN, fell = NAN, pga = NAN, largest_completed = NAN;
-      std::string which;
+      bool ran = false;
+      std::vector<ScaleRun> completed;
       for (std::size_t i = 0; i < jobs.size(); ++i) {
-        if (keys[i].case_name != name || keys[i].record != record || !outcomes[i].ok) continue;
+        if (keys[i].case_name != name || keys[i].record != record) continue;
+        ran = true;
+        if (!outcomes[i].ok) continue;
         const fq::CaseRunReport& r = outcomes[i].report;
         if (r.result.status != fq::RunStatus::Completed) continue;
-        largest_completed = keys[i].scale;
-        std::string collapsed_storeys;
+        ScaleRun run{keys[i].scale, r.peak_ground_acceleration_mps2, ""};
         for (const fq::StoreyOutcome& s : r.storeys)
           if (s.verdict == fq::StoreyVerdict::Collapsed)
-            collapsed_storeys += (collapsed_storeys.empty() ? "" : " ") + std::to_string(s.number);
-        if (collapsed_storeys.empty()) {
-          if (std::isnan(fell)) stood = keys[i].scale;
-        } else if (std::isnan(fell)) {
-          fell = keys[i].scale;
-          pga = r.peak_ground_acceleration_mps2;
-          which = collapsed_storeys;
-        }
+            run.collapsed_storeys += (run.collapsed_storeys.empty() ? "" : " ") + std::to_string(s.number);
+        completed.push_back(std::move(run));
       }
-      bool ran = false;
-      for (std::size_t i = 0; i < jobs.size(); ++i)
-        ran = ran || (keys[i].case_name == name && keys[i].record == record);
       if (!ran) continue;
-      cs << fq::csv_text(name) << "," << fq::csv_text(record) << "," << csv_number(stood) << "," << csv_number(fell) << "," << csv_number(pga)
-         << "," << which << "\n";
+      const CollapseBracket b = bracket_collapse(std::move(completed));
+      const double stood = b.largest_stood, fell = b.smallest_collapse, pga = b.pga_at_collapse_mps2,
+                   largest_completed = b.largest_completed;
+      const std::string& which = b.storeys_at_collapse;
+      cs << fq::csv_text(name) << "," << fq::csv_text(record) << "," << csv_number(stood) << "," << csv_number(fell)
+         << "," << csv_number(pga) << "," << which << "," << stood_above_collapse_csv(b) << "\n";
       md << "| " << name << " | " << record << " | "
          << (std::isnan(largest_completed) ? std::string("-") : std::isnan(stood) ? std::string("none") : fixed(stood, 2))
          << " | "
-         << (!std::isnan(fell)                ? fixed(fell, 2)
+         << (!std::isnan(fell)                ? fixed(fell, 2) + (b.stood_above_collapse.empty() ? "" : " (not monotonic)")
              : std::isnan(largest_completed) ? std::string("no run completed")
                                              : "none up to " + fixed(largest_completed, 2))
          << " | " << (std::isnan(pga) ? std::string("-") : fixed(pga, 2) + " (" + fixed(pga / fq::kStandardGravity_mps2, 3) + " g)")
          << " | " << (which.empty() ? "-" : which) << " |\n";
+      if (const std::string note = non_monotonic_note(name, record, b); !note.empty()) not_monotonic += "\n" + note;
     }
+  // A scale that stood above the smallest collapse: the pair of columns
+  // would read as a threshold (acceptance probe).
+  if (!not_monotonic.empty())
+    md << "\nNot monotonic (a larger scale stood after a smaller one collapsed):" << not_monotonic << "\n";
   {
     std::string skipped;
     for (std::size_t i = 0; i < jobs.size(); ++i) {

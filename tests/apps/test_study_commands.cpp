@@ -307,6 +307,7 @@ TEST(StudyCommands, SweepScalesTheMotionAndFindsNoCollapseInTheDemoPortal) {
   // Collapse columns agree with the rows.
   const bool collapsed_at_1 = rows[1].at("collapsed") == "1";
   EXPECT_EQ(scales[0].at("smallest_scale_with_collapse").empty(), !(collapsed_at_1 || rows[0].at("collapsed") == "1"));
+  EXPECT_EQ(scales[0].at("stood_above_collapse"), "");  // two scales: nothing stood above a collapse
   EXPECT_TRUE(fs::exists(out / "collapse_scales.md"));
   EXPECT_TRUE(is_png(out / "sweep.png"));
   // The runs' drift limits are drawn, once (the figure had none; acceptance
@@ -367,6 +368,19 @@ TEST(StudyCommands, AStudyRemovesTheEarlierStudysTablesBeforeItRuns) {
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(read_text(cmp / "comparison.md").find("stale"), std::string::npos);
   EXPECT_FALSE(fs::exists(cmp / "first_storey_drift.png")) << "--no-figure must not leave the earlier figure";
+
+  // A collapse_scales.csv of ours from before its stood_above_collapse
+  // column is replaced too.
+  const fs::path older = dir.path() / "older";
+  fs::create_directories(older);
+  std::ofstream(older / "collapse_scales.csv")
+      << "case,record,largest_scale_without_collapse,smallest_scale_with_collapse,pga_at_collapse_mps2,"
+         "collapsed_storeys_at_that_scale\nframe_B,kobe,1.25,1.5,12.27,1 2\n";
+  const auto o = run_app({"sweep", portal, "--scales", "1", "--window-length", "0.05", "--no-figure", "--out",
+                          older.string()},
+                         dir.path());
+  ASSERT_EQ(o.code, 0) << o.err;
+  EXPECT_EQ(read_text(older / "collapse_scales.csv").find("frame_B"), std::string::npos);
 
   const fs::path blocked = dir.path() / "blocked";
   fs::create_directories(blocked / "collapse_scales.md" / "inside");  // a folder with content: cannot be removed
