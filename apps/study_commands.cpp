@@ -443,13 +443,32 @@ bool g_said_no_locks = false;
 // otherwise repeat each, after running (direction of a record).
 std::set<std::string> g_said_before_runs;
 
-// A record applied along a direction its header contradicts (a vertical
-// --record along x) holds for every run of a case and record: said before
-// the runs, not only after each (workflow probe: the sweep ran first).
+// The warnings that follow from a case and its record alone (a node no
+// member ends at, a brace joined at one end, a record applied along a
+// direction its header contradicts, bodies overlapping at the start...)
+// hold for every run of that case and record: said once before the runs,
+// not after each (workflow probe: the sweep ran first; review probe: a
+// sweep of six scales said the same node warning six times). Runs differing
+// only in their scale share one scene build.
 void warn_before_runs(const std::vector<fq::BatchJob>& jobs) {
-  for (const fq::BatchJob& job : jobs)
-    for (const std::string& w : fq::ground_motion_direction_warnings(fq::build_model(job.def).ground_motion))
+  std::set<std::string> built;
+  for (const fq::BatchJob& job : jobs) {
+    std::string key = job.def.name;
+    for (const fq::GroundMotionComponentDef& c : job.def.ground_motion ? job.def.ground_motion->components
+                                                                       : std::vector<fq::GroundMotionComponentDef>{})
+      key.append("\n").append(c.resolved_file.string());
+    if (!built.insert(key).second) continue;
+    fq::Scene scene = fq::build_scene(job.def);
+    std::vector<std::string> warnings = fq::case_warnings(job.def, scene);
+    if (scene.contacts) {
+      scene.simulation->initialize();  // step 0's forces: the contacts learn which pairs overlap at the start
+      if (std::string w = fq::initial_overlap_warning(scene.contacts->initial_overlaps(), scene.simulation->bodies());
+          !w.empty())
+        warnings.push_back(std::move(w));
+    }
+    for (const std::string& w : warnings)
       if (g_said_before_runs.insert(w).second) std::cerr << "framequake: warning: " << w << "\n";
+  }
 }
 
 void print_done(std::size_t, const fq::BatchJob& job, const fq::BatchOutcome& out, std::size_t done,

@@ -444,16 +444,7 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
     warn(w.str());
   }
   if (!writer.folder_lock_warning().empty()) warn(writer.folder_lock_warning());
-  if (const std::string w = nodes_inside_members_warning(def); !w.empty()) warn(w);
-  if (const std::string w = near_nodes_warning(def); !w.empty()) warn(w);
-  if (const std::string w = unused_nodes_warning(def); !w.empty()) warn(w);
-  if (const std::string w = slender_members_warning(def); !w.empty()) warn(w);
-  if (const std::string w = unjoined_members_warning(def, scene); !w.empty()) warn(w);
-  if (const std::string w = brace_free_ends_warning(def, scene); !w.empty()) warn(w);
-  if (const std::string w = unused_joint_rules_warning(def); !w.empty()) warn(w);
-  if (const std::string w = horizontal_columns_warning(def); !w.empty()) warn(w);
-  if (const std::string w = no_columns_warning(def); !w.empty()) warn(w);
-  for (const std::string& w : ground_motion_direction_warnings(sim.ground_motion())) warn(w);
+  for (const std::string& w : case_warnings(def, scene)) warn(w);
   // Step 0's forces (run() would do it first): the contacts then know which
   // pairs overlap at the start.
   sim.initialize();
@@ -788,6 +779,17 @@ std::string unjoined_members_warning(const CaseDef& def, const Scene& scene) {
   w << "): such a member stands only on its contacts, or falls where it has none; if it should be joined, end it "
        "at the nodes of the members it meets";
   return w.str();
+}
+
+std::vector<std::string> case_warnings(const CaseDef& def, const Scene& scene) {
+  std::vector<std::string> out;
+  for (std::string w : {nodes_inside_members_warning(def), near_nodes_warning(def), unused_nodes_warning(def),
+                        slender_members_warning(def), unjoined_members_warning(def, scene),
+                        brace_free_ends_warning(def, scene), unused_joint_rules_warning(def),
+                        horizontal_columns_warning(def), no_columns_warning(def)})
+    if (!w.empty()) out.push_back(std::move(w));
+  for (std::string& w : ground_motion_direction_warnings(scene.simulation->ground_motion())) out.push_back(std::move(w));
+  return out;
 }
 
 std::string brace_free_ends_warning(const CaseDef& def, const Scene& scene) {
@@ -1326,17 +1328,7 @@ void describe_case(const CaseDef& case_def, std::ostream& out, std::optional<Int
     // probe); the warnings below say why.
     out << "storeys     none: no column spans a storey, so a run gives no storey drift and no verdict\n";
   }
-  if (const std::string w = nodes_inside_members_warning(def); !w.empty()) out << "warning     " << w << "\n";
-  if (const std::string w = near_nodes_warning(def); !w.empty()) out << "warning     " << w << "\n";
-  if (const std::string w = unused_nodes_warning(def); !w.empty()) out << "warning     " << w << "\n";
-  if (const std::string w = slender_members_warning(def); !w.empty()) out << "warning     " << w << "\n";
-  if (const std::string w = unjoined_members_warning(def, scene); !w.empty()) out << "warning     " << w << "\n";
-  if (const std::string w = brace_free_ends_warning(def, scene); !w.empty()) out << "warning     " << w << "\n";
-  if (const std::string w = unused_joint_rules_warning(def); !w.empty()) out << "warning     " << w << "\n";
-  if (const std::string w = horizontal_columns_warning(def); !w.empty()) out << "warning     " << w << "\n";
-  if (const std::string w = no_columns_warning(def); !w.empty()) out << "warning     " << w << "\n";
-  for (const std::string& w : ground_motion_direction_warnings(sim.ground_motion()))
-    out << "warning     " << w << "\n";
+  for (const std::string& w : case_warnings(def, scene)) out << "warning     " << w << "\n";
   if (scene.contacts) {
     // Step 0's forces, as run evaluates them first: the contacts then know
     // which pairs overlap at the start, which run warns of. An integrator

@@ -239,6 +239,38 @@ TEST(StudyCommands, SweepWarnsOfAVerticalRecordAlongXBeforeItsRuns) {
     EXPECT_NE(read_text(fs::path(row.at("output")) / "summary.json").find(warning), std::string::npos);
 }
 
+// A case's own warnings (here a node no member ends at) hold for every run
+// of a study: said once, before the runs, not under each run (review probe:
+// a sweep of two scales said it twice, of six scales six times).
+TEST(StudyCommands, ACasesOwnWarningIsSaidOnceBeforeTheRuns) {
+  TempDir dir;
+  std::ofstream(dir.path() / "cube.yaml")
+      << "framequake_case: 1\n"
+         "time: {dt_s: 1.0e-4, duration_s: 0.05}\n"
+         "materials: [{name: spruce, density_kg_per_m3: 450}]\n"
+         "nodes: [{id: spare, xyz_m: [1, 1, 0]}]\n"
+         "blocks: [{id: cube, size_m: [0.1, 0.1, 0.1], center_m: [0, 0, 0.05], material: spruce}]\n"
+         "contact:\n"
+         "  ground: {normal_stiffness_N_per_m: 1.0e6, restitution: 0.5, friction_coefficient: 0.4}\n"
+         "ground_motion:\n"
+         "  components:\n"
+         "    - {file: "
+      << (kSource / "cases/ground_motions/RSN1106_KOBE_KJM000.AT2").string() << ", format: peer_at2, axis: x}\n";
+  const fs::path out = dir.path() / "sweep";
+  const auto r = run_app({"sweep", (dir.path() / "cube.yaml").string(), "--scales", "0.5,1", "--out", out.string(),
+                          "--no-figure"},
+                         dir.path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string warning = "1 node is the end of no member ('spare' (line 4))";
+  const std::size_t first = r.err.find(warning);
+  ASSERT_NE(first, std::string::npos) << r.err;
+  EXPECT_LT(first, r.err.find("[1/2]")) << r.err;
+  EXPECT_EQ(r.err.find(warning, first + 1), std::string::npos) << "said more than once:\n" << r.err;
+  // Each run still records it in its own summary.
+  for (const auto& row : read_csv(out / "sweep.csv"))
+    EXPECT_NE(read_text(fs::path(row.at("output")) / "summary.json").find("the end of no member"), std::string::npos);
+}
+
 // The sweep's PGA is what the run felt: a run shorter than its window
 // never feels the rest of it. A ramp record a(t) = 10 t m/s^2 (samples every
 // 0.1 s over 10 s, two_column), whole window, run of 0.25 s: the record is

@@ -233,6 +233,11 @@ std::string unjoined_members_warning(const CaseDef& def, const Scene& scene);
 // diagonal between two points of the frame. Names the first three.
 std::string brace_free_ends_warning(const CaseDef& def, const Scene& scene);
 
+// The warnings above that follow from the case and its scene alone (not the
+// run's time step, output folder or start), in the order run and info give
+// them: the same for every run of a case, so a study says them once.
+std::vector<std::string> case_warnings(const CaseDef& def, const Scene& scene);
+
 // The warning for joint rules (joints.rules) that make no joint: no pair of
 // members of the rule's kinds is joined under the hub rule (with hub_kind
 // beam, braces join the beam at a node, so a [column, brace] rule never
