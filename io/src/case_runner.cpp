@@ -554,7 +554,16 @@ nodes_and_sections_by_name(const CaseDef& def) {
 }
 }  // namespace
 
-std::string nodes_inside_members_warning(const CaseDef& def) {
+namespace {
+
+// Member end nodes lying inside or on another member (within 1 mm of its
+// box), with that member, in member order: nodes_inside_members_warning
+// names them, and brace_free_ends_warning leaves them to it.
+struct NodeInMember {
+  const NodeDef* node;
+  const MemberDef* member;
+};
+std::vector<NodeInMember> nodes_inside_members(const CaseDef& def) {
   const auto [nodes, sections] = nodes_and_sections_by_name(def);
   // Nodes where some member ends: only there do members meet at a joint.
   std::vector<const NodeDef*> ends;
@@ -565,8 +574,7 @@ std::string nodes_inside_members_warning(const CaseDef& def) {
         if (nodes.count(*id) && seen.insert(*id).second) ends.push_back(nodes.at(*id));
   }
   constexpr double kEndClearance_m = 1e-3;
-  std::vector<std::string> found;
-  std::size_t count = 0;
+  std::vector<NodeInMember> inside;
   for (const MemberDef& m : def.members) {
     const auto a = nodes.find(m.node_a), b = nodes.find(m.node_b);
     const auto sec = sections.find(m.section);
@@ -588,14 +596,23 @@ std::string nodes_inside_members_warning(const CaseDef& def) {
       if (along <= kEndClearance_m || along >= length - kEndClearance_m) continue;
       const Vec3 across = n->xyz_m - pa - along * dir;
       if (std::abs(across.dot(frame.col(1))) > half_width || std::abs(across.dot(frame.col(2))) > half_depth) continue;
-      ++count;
-      if (found.size() < 3) {
-        std::ostringstream f;
-        f << "node '" << n->id << "' (line " << n->line << ") inside or on member '" << m.id << "' (line " << m.line
-          << ")";
-        found.push_back(f.str());
-      }
+      inside.push_back({n, &m});
     }
+  }
+  return inside;
+}
+
+}  // namespace
+
+std::string nodes_inside_members_warning(const CaseDef& def) {
+  const std::vector<NodeInMember> inside = nodes_inside_members(def);
+  const std::size_t count = inside.size();
+  std::vector<std::string> found;
+  for (std::size_t k = 0; k < count && k < 3; ++k) {
+    std::ostringstream f;
+    f << "node '" << inside[k].node->id << "' (line " << inside[k].node->line << ") inside or on member '"
+      << inside[k].member->id << "' (line " << inside[k].member->line << ")";
+    found.push_back(f.str());
   }
   if (count == 0) return {};
   std::ostringstream w;
@@ -805,7 +822,13 @@ std::string brace_free_ends_warning(const CaseDef& def, const Scene& scene) {
   for (const SupportDef& sp : def.supports) supported.insert(sp.node);
   std::unordered_map<std::string, int> node_line;
   for (const NodeDef& n : def.nodes) node_line.emplace(n.id, n.line);
-  auto joins_something = [&](const std::string& node) { return members_at[node] > 1 || supported.count(node) > 0; };
+  // A node inside another member is named by nodes_inside_members_warning,
+  // whose advice (split that member there) fits a brace meant to reach it.
+  std::set<std::string> in_member;
+  for (const NodeInMember& n : nodes_inside_members(def)) in_member.insert(n.node->id);
+  auto joins_something = [&](const std::string& node) {
+    return members_at[node] > 1 || supported.count(node) > 0 || in_member.count(node) > 0;
+  };
   std::vector<std::string> found;
   std::size_t count = 0;
   for (const MemberDef& m : def.members) {
