@@ -81,12 +81,23 @@ std::string below_ground_advice(const CaseDef& def, const MemberDef& m, const Bo
   const double corner_z =
       face_centre.z() - 0.5 * (std::fabs(r(2, 1)) * box.size_m.y() + std::fabs(r(2, 2)) * box.size_m.z());
   const double dip_m = level_m - corner_z;
-  if (!(into.z() > 1e-6) || !(dip_m > 0.0))
-    return "raise its nodes, trim it clear of the ground (trim_m) or lower ground.level_m";
+  if (!(dip_m > 0.0)) return "raise its nodes, trim it clear of the ground (trim_m) or lower ground.level_m";
   const double trim_now = at_a ? m.trim_a_m : m.trim_b_m;
+  const double trim_other = at_a ? m.trim_b_m : m.trim_a_m;
   // Rounded up to a micrometre, so that the advised trim clears the corner
   // (to within the tolerance the check allows).
-  const double trim_needed = std::ceil((trim_now + dip_m / into.z() - kGroundTolerance_m) * 1e6) * 1e-6;
+  const double trim_needed =
+      into.z() > 0.0 ? std::ceil((trim_now + dip_m / into.z() - kGroundTolerance_m) * 1e6) * 1e-6 : HUGE_VAL;
+  // A member lying flat or nearly so cannot be trimmed clear: the trim
+  // would take half its length or more (review probe: a 0.3 m member rising
+  // 0.1 mm was told to trim 30 m, one rising 10 mm over 0.5 m its whole
+  // length).
+  const double length_m = (pb - pa).norm();
+  if (!(trim_needed < 0.5 * (length_m - trim_other)))
+    return "it lies too flat for a trim to clear the ground (the corners of its end at node '" +
+           (at_a ? m.node_a : m.node_b) +
+           "' dip below that node, and a trim clearing them would take half its length or more): raise its nodes "
+           "or lower ground.level_m";
   return "it leans, so the corners of its end at node '" + (at_a ? m.node_a : m.node_b) +
          "' dip below that node: trim that end by at least " + fmt(trim_needed) + " m (trim_m[" + (at_a ? "0" : "1") +
          "], now " + fmt(trim_now) + " m), or raise its nodes";

@@ -784,6 +784,24 @@ TEST(CaseFile, ALeaningColumnOnTheGroundIsToldTheTrimThatClearsIt) {
   EXPECT_NO_THROW(fq::build_model(def));
   def.members[0].trim_a_m = 0.9 * 2.5e-5;
   EXPECT_THROW(fq::build_model(def), fq::InputError);
+  // A member lying nearly flat on the ground (rising 10 mm over 0.5 m) or
+  // flat cannot be trimmed clear: the trim would be most of its length
+  // (review probe: a 0.3 m member rising 0.1 mm was told to trim 30 m).
+  for (const double rise_m : {0.01, 0.0}) {
+    fq::CaseDef flat = one_column_case(0.0, rise_m, "col", 9);
+    flat.nodes[1].xyz_m.x() = 0.5;
+    flat.ground = fq::GroundDef{0.0};
+    flat.contact = fq::ContactDef{};
+    flat.contact->ground = fq::ContactParams{};
+    try {
+      fq::build_model(flat);
+      ADD_FAILURE() << "a member lying below the ground was accepted";
+    } catch (const fq::InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("it lies too flat for a trim to clear the ground"), std::string::npos)
+          << e.what();
+      EXPECT_EQ(std::string(e.what()).find("trim that end by"), std::string::npos) << e.what();
+    }
+  }
   // A foot node under the surface is named as the mistake it is.
   def.members[0].trim_a_m = 0.0;
   def.nodes[0].xyz_m.z() = -0.002;
