@@ -223,11 +223,14 @@ class StoreyDriftMonitor {
   void record_peaks(std::size_t i, const Eigen::Vector2d& ratio, double time_s);
   void record_residual(std::size_t i, const Eigen::Vector2d& ratio);
   std::vector<Eigen::Vector2d> column_drift_m_;  // scratch of track()
-  std::vector<Eigen::Vector2d> top_mean_m_;      // scratch of track(): each storey's mean top displacement
+  std::vector<std::vector<Eigen::Vector2d>> top_m_;  // scratch of track(): each column's top displacement
   // Per storey: the storey whose top level is its bottom level (-1: the
-  // foundation), and its top and bottom points' offsets from their centre
-  // in the horizontal plane at t = 0 (m), with the farthest distance.
+  // foundation), the columns of that storey whose tops carry this storey's
+  // columns (the floor below, where this storey stands on it; all of them
+  // where none does), and its top and bottom points' offsets from their
+  // centre in the horizontal plane at t = 0 (m), with the farthest distance.
   std::vector<int> storey_below_;
+  std::vector<std::vector<std::size_t>> columns_below_;
   struct TwistGeometry {
     std::vector<Eigen::Vector2d> top_r, bottom_r;
     double top_r2 = 0.0, bottom_r2 = 0.0, r_max = 0.0;
