@@ -178,6 +178,11 @@ Model build_model(const CaseDef& def_in) {
   };
   auto check_unique_id = [&](const std::string& id, std::size_t upto_members, std::size_t upto_blocks, int line,
                              const std::string& path) {
+    // The ground body is named "ground" in every output (body names, joint
+    // names such as se0:ground-column1_se): a member or block of that id
+    // would be told from it by nothing (review probe: two joints of one name).
+    if (id == "ground")
+      fail(line, path + ".id", "id 'ground' is the ground body's name in the outputs; give this one another id");
     for (std::size_t j = 0; j < upto_members; ++j)
       if (def.members[j].id == id)
         fail(line, path + ".id", "id '" + id + "' is already used by " + item_path("members", j));

@@ -814,6 +814,23 @@ TEST(CaseFile, ALeaningColumnOnTheGroundIsToldTheTrimThatClearsIt) {
   }
 }
 
+// "ground" names the ground body in body names and joint names; a member
+// so named would share them (review probe: two joints named bw:ground-cw).
+TEST(CaseFile, AMemberOrBlockCannotBeNamedGround) {
+  fq::CaseDef def = one_column_case(0.0, 0.2, "col", 9);
+  def.members[0].id = "ground";
+  try {
+    fq::build_model(def);
+    FAIL() << "a member named ground was accepted";
+  } catch (const fq::InputError& e) {
+    EXPECT_EQ(e.line(), 9);
+    EXPECT_EQ(e.field(), "members[0].id");
+    EXPECT_NE(std::string(e.what()).find("id 'ground' is the ground body's name"), std::string::npos) << e.what();
+  }
+  def.members[0].id = "ground_sill";  // a longer name is fine
+  EXPECT_NO_THROW(fq::build_model(def));
+}
+
 TEST(CaseFile, BuilderRejectsUnknownReferenceInCodeBuiltCase) {
   const fq::CaseDef def = one_column_case(0.0, 1.0, "beam", 12);
   try {
