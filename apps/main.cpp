@@ -420,7 +420,7 @@ static int dispatch(int argc, char** argv) {
       words.push_back(arg.rfind('-', 0) == 0 ? "./" + arg : arg);
     } else if (i >= 2 && arg.rfind("--", 0) == 0 && eq != std::string::npos && eq > 2) {
       // Options that take no value (every command's flags).
-      for (const char* flag : {"--help", "--quiet", "--force", "--no-figure", "--compare", "--png"})
+      for (const char* flag : {"--help", "--quiet", "--force", "--no-figure", "--compare", "--png", "--joints"})
         if (arg.compare(0, eq, flag) == 0)
           usage_error(std::string("option ") + flag + " takes no value, got '" + arg + "'",
                       command_help(argv[1]));

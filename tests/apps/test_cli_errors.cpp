@@ -560,6 +560,10 @@ TEST(CliUsage, OptionEqualsValueIsTheOptionFollowedByTheValue) {
   const auto compare = run_app({"compare", (dir.path() / "case.yaml").string(), "--no-figure=1"}, dir.path());
   EXPECT_EQ(compare.code, 2) << compare.err;
   EXPECT_NE(compare.err.find("Usage: framequake compare CASE..."), std::string::npos) << compare.err;
+  // info's flag too (review probe: "unexpected argument 'yes' (one case file per run)").
+  const auto info = run_app({"info", (dir.path() / "case.yaml").string(), "--joints=yes"}, dir.path());
+  EXPECT_EQ(info.code, 2) << info.err;
+  EXPECT_NE(info.err.find("option --joints takes no value, got '--joints=yes'"), std::string::npos) << info.err;
 }
 
 // "--" ends the options: a case file whose name starts with '-' is given
