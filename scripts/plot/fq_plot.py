@@ -4,8 +4,9 @@ programs produce is drawn here, with one style and units on every axis.
 
     fq_plot.py compare DIR   DIR/comparison.csv + each case's history.csv and
                              summary.json -> DIR/first_storey_drift.png (every
-                             storey, one panel each; the name is kept for the
-                             scripts and pages that open it)
+                             storey's drift ratio magnitude |(x, y)|, one
+                             panel each; the name is kept for the scripts
+                             and pages that open it)
     fq_plot.py sweep DIR     DIR/sweep.csv (+ each run's summary.json for its
                              drift limits) -> DIR/sweep.png
     fq_plot.py stability CSV stability_limits' CSV -> CSV with .png (bisected
@@ -147,48 +148,6 @@ def drift_limits(summary):
         return None
 
 
-def motion_direction(summary):
-    """The unit horizontal direction (ux, uy) of a run's strongest horizontal
-    ground-motion component, or None without one. Strength is the
-    component's own peak (summary.json, ground_motion.components[].peak_mps2;
-    |amplitude_scale| in a summary older than that key) times the length of
-    its direction's horizontal part; the first of equals wins."""
-    try:
-        components = summary["ground_motion"]["components"]
-    except (KeyError, TypeError):
-        return None
-    best = None
-    for c in components or []:
-        try:
-            dx, dy = float(c["direction"][0]), float(c["direction"][1])
-            peak = abs(float(c["peak_mps2"] if "peak_mps2" in c else c.get("amplitude_scale", 1.0)))
-        except (KeyError, IndexError, ValueError, TypeError):
-            continue
-        h = math.hypot(dx, dy)
-        if not h > 1e-9:
-            continue  # a vertical component drives no drift
-        if best is None or peak * h > best[0]:
-            best = (peak * h, dx / h, dy / h)
-    return None if best is None else (best[1], best[2])
-
-
-def direction_name(u):
-    """x, -x, y, -y, or the unit vector's components."""
-    for name, axis in (("x", (1.0, 0.0)), ("-x", (-1.0, 0.0)), ("y", (0.0, 1.0)), ("-y", (0.0, -1.0))):
-        if abs(u[0] - axis[0]) < 1e-9 and abs(u[1] - axis[1]) < 1e-9:
-            return name
-    return "(%.3g, %.3g)" % (u[0], u[1])
-
-
-def main_axis(row):
-    """The direction a case's first storey drifted further along: x, or y.
-    Used only for a case without a horizontal ground motion."""
-    def peak(axis):
-        value = row.get("storey1_peak_drift_ratio_%s_rad" % axis)
-        return abs(number(value)) if value else 0.0
-    return "y" if peak("y") > peak("x") else "x"
-
-
 def storey_count(row):
     """How many storeys a comparison.csv row has a verdict for."""
     k = 0
@@ -197,18 +156,17 @@ def storey_count(row):
     return k
 
 
-def limit_lines(ax, limits, positive_only=False):
-    """Each distinct (damage, collapse) pair once, both signs unless
-    positive_only, labelled at the axes' right edge (legends sit outside the
-    axes, on the right: the two cannot overlap). limits: {(damage,
-    collapse): [cases]}. Returns the labels written."""
+def limit_lines(ax, limits):
+    """The sweep figure's limits: each distinct (damage, collapse) pair once,
+    labelled at the axes' right edge (its legend sits outside the axes, on
+    the right: the two cannot overlap). limits: {(damage, collapse):
+    [cases]}. Returns the labels written."""
     labels = []
     edge = ax.get_yaxis_transform()  # x in axes fractions, y in data
     for (damage, collapse), cases in sorted(limits.items()):
         who = "" if len(limits) == 1 else " (%s)" % ", ".join(cases)
-        for sign in ((1,) if positive_only else (1, -1)):
-            ax.axhline(sign * collapse, color="0.4", ls="--", lw=0.8)
-            ax.axhline(sign * damage, color="0.6", ls=":", lw=0.8)
+        ax.axhline(collapse, color="0.4", ls="--", lw=0.8)
+        ax.axhline(damage, color="0.6", ls=":", lw=0.8)
         for kind, value, colour in (("collapse", collapse, "0.3"), ("damage", damage, "0.45")):
             text = "%s limit %.3g rad%s" % (kind, value, who)
             ax.text(0.995, value, text, transform=edge, va="bottom", ha="right", fontsize=7, color=colour)
@@ -222,30 +180,51 @@ def limits_description(limits):
                      for (d, c), cases in sorted(limits.items()))
 
 
+def drift_magnitude(rx, ry):
+    """The magnitude |(x, y)| (rad, >= 0) of a storey's drift ratio at each
+    sample: what its verdict is taken from (summary.json,
+    storeys[].peak_drift_ratio_rad is its peak over every step)."""
+    return [math.hypot(x, y) for x, y in zip(rx, ry)]
+
+
+def limit_handles(limits):
+    """Legend entries for each distinct (damage, collapse) pair, drawn
+    positive only (the traces are magnitudes), and their labels.
+    limits: {(damage, collapse): [cases]}."""
+    from matplotlib.lines import Line2D
+
+    handles = []
+    for (damage, collapse), cases in sorted(limits.items()):
+        who = "" if len(limits) == 1 else " (%s)" % ", ".join(cases)
+        handles.append(Line2D([], [], color="0.4", ls="--", lw=0.8,
+                              label="collapse limit %.3g rad%s" % (collapse, who)))
+        handles.append(Line2D([], [], color="0.6", ls=":", lw=0.8, label="damage limit %.3g rad%s" % (damage, who)))
+    return handles
+
+
 def draw_compare(folder):
     """The comparison figure: one panel per storey, stacked on one time
-    axis, each case's drift ratio projected on the horizontal direction of
-    its strongest ground-motion component (motion_direction). Before, only
-    storey 1 was drawn (a retrofit that moved the damage up showed in the
-    table alone), and each case along the axis its first storey drifted
-    further along, so a wrecked frame with a larger x peak under an EW
-    (y) motion was drawn along x beside the others along y (acceptance
-    probe). Returns the figure and its PNG texts."""
+    axis, each case's storey drift ratio magnitude |(x, y)| against time,
+    the quantity its verdict is taken from, so that every trace reaches its
+    summary's peak (to the history's sampling) whatever the direction of
+    the motion. Before, each case was drawn as its projection on the
+    direction of its strongest ground-motion component: a frame that
+    swayed mostly across it (two components, or an oblique record) was
+    drawn under the damage line beside a legend that said damaged (review
+    probe: frame B with KJM000 along x and KJM090 along y, storey 2 peak
+    0.0499, drawn 0.0332). The limit labels are legend entries, beside the
+    axes: inside them at the right edge they sat over the late traces.
+    Returns the figure and its PNG texts."""
     rows = read_csv(os.path.join(folder, "comparison.csv"))
     drawn = []
     for row in rows:
         if row.get("status") == "failed" or not row.get("output") or not row.get("storey1_verdict"):
             continue  # failed, or a case without columns: no storeys to draw
         summary = read_summary(os.path.join(row["output"], "summary.json"))
-        u = motion_direction(summary)
-        if u is None:  # no horizontal ground motion: the axis it drifted further along
-            u = (1.0, 0.0) if main_axis(row) == "x" else (0.0, 1.0)
-        drawn.append({"row": row, "u": u, "direction": direction_name(u), "storeys": storey_count(row),
-                      "limits": drift_limits(summary), "colour": COLOURS[len(drawn) % len(COLOURS)]})
+        drawn.append({"row": row, "storeys": storey_count(row), "limits": drift_limits(summary),
+                      "colour": COLOURS[len(drawn) % len(COLOURS)], "peaks": []})
     if not drawn:
         fail("no case with storeys in " + os.path.join(folder, "comparison.csv"))
-    directions = sorted(set(d["direction"] for d in drawn))
-    one_direction = len(directions) == 1
     storeys = max(d["storeys"] for d in drawn)
     fig, axes = plt.subplots(storeys, 1, sharex=True, squeeze=False, figsize=(10.0, 1.2 + 2.6 * storeys))
     axes = [a[0] for a in axes]
@@ -271,42 +250,41 @@ def draw_compare(folder):
                 continue
             row = d["row"]
             t, rx, ry = d["columns"][0], d["columns"][2 * k - 1], d["columns"][2 * k]
-            ux, uy = d["u"]
-            drift = [x * ux + y * uy for x, y in zip(rx, ry)]
-            peak = max([peak] + [abs(v) for v in drift if not math.isnan(v)])
+            drift = drift_magnitude(rx, ry)
+            own = max([0.0] + [v for v in drift if not math.isnan(v)])
+            d["peaks"].append(own)
+            peak = max(peak, own)
             verdict = row.get("storey%d_verdict" % k, "?")
             if row.get("status") == "unstable":
                 verdict = "not assessed (unstable)"
             elif row.get("status") != "completed" and verdict != "collapsed":
                 verdict += " so far"  # stopped before the end of its record
-            label = "%s: %s" % (row["case"], verdict)
-            if not one_direction:
-                label = "%s, along %s: %s" % (row["case"], d["direction"], verdict)
-            ax.plot(t, drift, color=d["colour"], lw=1.0, label=label)
+            ax.plot(t, drift, color=d["colour"], lw=1.0, label="%s: %s" % (row["case"], verdict))
             cases.append(row["case"])
-        limit_lines(ax, limits)
+        for damage, collapse in sorted(limits):
+            ax.axhline(collapse, color="0.4", ls="--", lw=0.8)
+            ax.axhline(damage, color="0.6", ls=":", lw=0.8)
         limit = max([c for _, c in limits] or [0.0])
+        title = "storey %d" % k
         if limit and peak > 3 * limit:
-            ax.set_ylim(-3 * limit, 3 * limit)  # a fallen storey would flatten the others' traces
-            ax.text(0.005, 0.02, "clipped at +/- %.2f rad" % (3 * limit), transform=ax.transAxes, ha="left",
-                    fontsize=7, color="0.3")
-        along = ("along %s" % directions[0]) if one_direction else "along each case's motion"
-        ax.set_ylabel("storey %d drift ratio\n%s (rad)" % (k, along), fontsize=9)
-        # Beside the axes: the limit labels sit at the right edge inside
-        # them, where the legend covered the collapse limit's (acceptance
-        # probe).
-        ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8, borderaxespad=0.0,
-                  title="storey %d" % k, title_fontsize=8)
+            ax.set_ylim(0.0, 3 * limit)  # a fallen storey would flatten the others' traces
+            title += " (clipped at %.2f rad)" % (3 * limit)
+        else:
+            ax.set_ylim(bottom=0.0)
+        ax.set_ylabel("storey %d drift ratio\nmagnitude |(x, y)| (rad)" % k, fontsize=9)
+        # Beside the axes, the limits' labels in it: none of it can cover a
+        # trace.
+        handles, _ = ax.get_legend_handles_labels()
+        ax.legend(handles=handles + limit_handles(limits), loc="upper left", bbox_to_anchor=(1.01, 1.0),
+                  fontsize=8, borderaxespad=0.0, title=title, title_fontsize=8)
         panels.append("storey %d: %s" % (k, ", ".join(cases)))
     axes[-1].set_xlabel("simulated time t (s)")
-    if one_direction:
-        axes[0].set_title("Storey drift ratio along the ground motion's direction (%s)" % directions[0])
-    else:
-        axes[0].set_title("Storey drift ratio, each case along its ground motion's direction")
+    axes[0].set_title("Storey drift ratio magnitude |(x, y)|, the drift each verdict is taken from")
     fig.tight_layout()
-    # What each trace shows, in the PNG's texts (read by the tests): the
-    # Description keeps its "<case> along <direction>" form.
-    texts = {"Description": "; ".join("%s along %s" % (d["row"]["case"], d["direction"]) for d in drawn),
+    # What each trace shows, in the PNG's texts (read by the tests): each
+    # case's drawn peak per storey.
+    texts = {"Description": "; ".join("%s: |(x, y)| peaks %s" % (d["row"]["case"], " ".join(
+                 "%.6g" % p for p in d["peaks"])) for d in drawn),
              "Panels": "; ".join(panels), "Limits": limits_description(limits)}
     return fig, texts
 
@@ -369,7 +347,7 @@ def draw_sweep(folder):
         ax.scatter([xi for xi, p in zip(x, points) if not p[2]], [yi for yi, p in zip(y, points) if not p[2]],
                    facecolors="none", edgecolors=colour, marker="o", s=30, zorder=3)
     ax.set_yscale("log")
-    limit_lines(ax, limits, positive_only=True)
+    limit_lines(ax, limits)
     ax.set_xlabel("peak ground acceleration (g)")
     ax.set_ylabel("peak storey drift ratio, largest storey (rad)")
     ax.set_title("Amplitude sweep: x = a storey collapsed, o = none collapsed", fontsize=11)

@@ -1,10 +1,12 @@
 #!/usr/bin/env python3
 """What scripts/plot/fq_plot.py draws, on small made-up study folders: every
-storey of a comparison, each case along its ground motion's direction, the
-legend clear of the limit labels, and the drift limits on the sweep figure.
+storey of a comparison, each case's drift ratio magnitude |(x, y)| reaching
+its summary's peak whatever the motion's direction, positive limits named
+in the legend beside the axes, and the drift limits on the sweep figure.
 Run by CTest with Debian's python3 (tests/apps/CMakeLists.txt)."""
 import csv
 import json
+import math
 import os
 import sys
 import tempfile
@@ -17,15 +19,18 @@ plt = fq_plot.plt
 
 
 def write_run(folder, name, direction, histories, damage=1 / 30, collapse=0.1, peak=5.0, components=None):
-    """A run's folder: summary.json (ground motion, limits) and history.csv
-    with time_s and each storey's drift ratios; histories: per storey a list
-    of (ratio_x, ratio_y) at t = 0, 0.1, ..."""
+    """A run's folder: summary.json (ground motion, limits, each storey's
+    peak_drift_ratio_rad: the largest |(x, y)| of its series, as the run
+    takes it) and history.csv with time_s and each storey's drift ratios;
+    histories: per storey a list of (ratio_x, ratio_y) at t = 0, 0.1, ..."""
     out = os.path.join(folder, name)
     os.makedirs(out)
     if components is None:
         components = [{"direction": direction, "peak_mps2": peak, "amplitude_scale": 1}]
     summary = {"assessment": {"safety_drift_ratio_rad": damage, "collapse_drift_ratio_rad": collapse},
-               "ground_motion": {"components": components}}
+               "ground_motion": {"components": components},
+               "storeys": [{"storey": k + 1, "peak_drift_ratio_rad": max(math.hypot(x, y) for x, y in h)}
+                           for k, h in enumerate(histories)]}
     with open(os.path.join(out, "summary.json"), "w") as f:
         json.dump(summary, f)
     with open(os.path.join(out, "history.csv"), "w", newline="") as f:
@@ -61,29 +66,6 @@ def traces(ax):
             if not line.get_label().startswith("_")}
 
 
-class Direction(unittest.TestCase):
-    def test_the_strongest_horizontal_component_wins(self):
-        summary = {"ground_motion": {"components": [
-            {"direction": [1, 0, 0], "peak_mps2": 3.0},
-            {"direction": [0, 1, 0], "peak_mps2": 5.0},
-            {"direction": [0, 0, 1], "peak_mps2": 9.0}]}}  # vertical: drives no drift
-        self.assertEqual(fq_plot.motion_direction(summary), (0.0, 1.0))
-        self.assertEqual(fq_plot.direction_name((0.0, 1.0)), "y")
-        self.assertEqual(fq_plot.direction_name((0.0, -1.0)), "-y")
-
-    def test_an_inclined_component_counts_by_its_horizontal_part(self):
-        summary = {"ground_motion": {"components": [
-            {"direction": [0.6, 0, 0.8], "peak_mps2": 5.0},  # 3 horizontal
-            {"direction": [0, -1, 0], "peak_mps2": 4.0}]}}
-        self.assertEqual(fq_plot.motion_direction(summary), (0.0, -1.0))
-
-    def test_no_horizontal_motion_gives_none(self):
-        self.assertIsNone(fq_plot.motion_direction({"ground_motion": None}))
-        self.assertIsNone(fq_plot.motion_direction(None))
-        self.assertIsNone(fq_plot.motion_direction(
-            {"ground_motion": {"components": [{"direction": [0, 0, 1], "peak_mps2": 1.0}]}}))
-
-
 class CompareFigure(unittest.TestCase):
     def setUp(self):
         plt.rcParams.update(fq_plot.STYLE)
@@ -117,40 +99,99 @@ class CompareFigure(unittest.TestCase):
         panels = [ax for ax in fig.axes if traces(ax)]
         self.assertEqual(len(panels), 2)
         self.assertEqual(texts["Panels"], "storey 1: bare, wrecked; storey 2: bare, wrecked")
-        self.assertEqual(traces(panels[1])["wrecked: collapsed"], [0.03 * i for i in range(6)])
+        self.assertEqual(traces(panels[1])["wrecked: collapsed"], [math.hypot(0.01, 0.03 * i) for i in range(6)])
         self.assertIn("storey 2", panels[1].get_ylabel())
         # One time axis.
         self.assertTrue(panels[0].get_shared_x_axes().joined(panels[0], panels[1]))
 
-    def test_each_case_is_drawn_along_its_motion_not_its_larger_drift(self):
+    def test_each_case_is_drawn_as_its_drift_magnitude(self):
         self.make_study()
         fig, texts = fq_plot.draw_compare(self.folder)
-        self.assertEqual(texts["Description"], "bare along y; wrecked along y")
         first = traces(fig.axes[0])
-        self.assertEqual(first["wrecked: collapsed"], [0.02 * i for i in range(6)])  # its y drift, not x
-        self.assertIn("along y", fig.axes[0].get_ylabel())
+        # Both its x and y drift, not its part along the motion's y.
+        self.assertEqual(first["wrecked: collapsed"], [math.hypot(0.05 * i, 0.02 * i) for i in range(6)])
+        self.assertEqual(first["bare: standing"], [0.01 * (i % 3) for i in range(6)])
+        self.assertIn("magnitude |(x, y)|", fig.axes[0].get_ylabel())
+        self.assertEqual(texts["Description"], "bare: |(x, y)| peaks 0.02 0.02; wrecked: |(x, y)| peaks %.6g %.6g"
+                         % (math.hypot(0.25, 0.1), math.hypot(0.01, 0.15)))
 
-    def test_an_oblique_motion_is_projected(self):
-        run = write_run(self.folder, "oblique", [0.6, 0.8, 0], [[(0.1, 0.2), (0.3, -0.1)]])
-        write_comparison(self.folder, [{"case": "oblique", "status": "completed", "storey1_verdict": "damaged",
-                                        "output": run}], 1)
+    def assert_drawn_peaks_are_the_summarys(self, fig, texts, runs):
+        """Every panel's drawn peak of every case equals its summary.json's
+        storeys[].peak_drift_ratio_rad; runs: {case: output folder}."""
+        panels = [ax for ax in fig.axes if traces(ax)]
+        for case, out in runs.items():
+            with open(os.path.join(out, "summary.json")) as f:
+                storeys = json.load(f)["storeys"]
+            self.assertEqual(len(panels), len(storeys))
+            for ax, storey in zip(panels, storeys):
+                drift = [v for label, v in traces(ax).items() if label.startswith(case + ":")]
+                self.assertEqual(len(drift), 1, case)
+                self.assertAlmostEqual(max(drift[0]), storey["peak_drift_ratio_rad"], places=12,
+                                       msg="%s storey %d" % (case, storey["storey"]))
+                self.assertGreaterEqual(min(drift[0]), 0.0)
+
+    def test_two_components_draw_the_peak_the_verdict_uses(self):
+        """The review probe: frame B with KJM000 along x (the stronger) and
+        KJM090 along y sways across x in storey 2; its peak |(x, y)| 0.0499
+        is above the damage line, its x part 0.0332 below it."""
+        components = [{"direction": [1, 0, 0], "peak_mps2": 8.2, "amplitude_scale": 1},
+                      {"direction": [0, 1, 0], "peak_mps2": 6.0, "amplitude_scale": 1}]
+        storey1 = [(0.0, 0.0), (0.01, 0.004), (-0.012, 0.003), (0.006, -0.002)]
+        storey2 = [(0.0, 0.0), (0.0332, 0.01), (-0.02, 0.0456), (0.01, -0.03)]
+        run = write_run(self.folder, "frame_B", None, [storey1, storey2], components=components)
+        write_comparison(self.folder, [{"case": "frame_B", "status": "completed", "storey1_verdict": "standing",
+                                        "storey2_verdict": "damaged", "output": run}], 2)
         fig, texts = fq_plot.draw_compare(self.folder)
-        drift = traces(fig.axes[0])["oblique: damaged"]
-        self.assertAlmostEqual(drift[0], 0.6 * 0.1 + 0.8 * 0.2)
-        self.assertAlmostEqual(drift[1], 0.6 * 0.3 - 0.8 * 0.1)
-        self.assertEqual(texts["Description"], "oblique along (0.6, 0.8)")
+        self.assert_drawn_peaks_are_the_summarys(fig, texts, {"frame_B": run})
+        drawn = max(traces(fig.axes[1])["frame_B: damaged"])
+        self.assertAlmostEqual(drawn, math.hypot(-0.02, 0.0456))  # 0.0498, not 0.0332 along x
+        self.assertGreater(drawn, 1 / 30)
 
-    def test_the_legend_covers_no_limit_label(self):
+    def test_an_oblique_motion_draws_the_drift_across_it(self):
+        """A record along (0.6, 0.8) and a frame that sways across it,
+        along (-0.8, 0.6): its projection on the motion is 0, its
+        magnitude 0.05."""
+        across = [(-0.8 * a, 0.6 * a) for a in (0.0, 0.02, -0.05, 0.03)]
+        run = write_run(self.folder, "oblique", [0.6, 0.8, 0], [across])
+        other = write_run(self.folder, "along_x", [1, 0, 0], [[(0.0, 0.0), (0.01, 0.0), (-0.03, 0.0), (0.0, 0.0)]])
+        write_comparison(self.folder, [
+            {"case": "oblique", "status": "completed", "storey1_verdict": "damaged", "output": run},
+            {"case": "along_x", "status": "completed", "storey1_verdict": "standing", "output": other}], 1)
+        fig, texts = fq_plot.draw_compare(self.folder)
+        self.assert_drawn_peaks_are_the_summarys(fig, texts, {"oblique": run, "along_x": other})
+        drift = traces(fig.axes[0])["oblique: damaged"]
+        for value, a in zip(drift, (0.0, 0.02, 0.05, 0.03)):
+            self.assertAlmostEqual(value, a)
+        self.assertEqual(traces(fig.axes[0])["along_x: standing"], [0.0, 0.01, 0.03, 0.0])
+
+    def test_the_limits_are_drawn_positive_and_named_beside_the_axes(self):
         self.make_study()
-        fig, _ = fq_plot.draw_compare(self.folder)
+        fig, texts = fq_plot.draw_compare(self.folder)
+        self.assertEqual(texts["Limits"], "damage 0.0333333 rad, collapse 0.1 rad: bare, wrecked")
         fig.canvas.draw()
         renderer = fig.canvas.get_renderer()
         for ax in fig.axes:
-            legend = ax.get_legend().get_window_extent(renderer)
-            labels = [t for t in ax.texts if "limit" in t.get_text()]
-            self.assertEqual(len(labels), 2)
-            for t in labels:
-                self.assertFalse(legend.overlaps(t.get_window_extent(renderer)), t.get_text())
+            levels = sorted(line.get_ydata()[0] for line in ax.get_lines() if line.get_label().startswith("_")
+                            and len(set(line.get_ydata())) == 1)
+            self.assertEqual(levels, [1 / 30, 0.1])  # no negative limit
+            self.assertEqual(ax.get_ylim()[0], 0.0)
+            # No label inside the axes, where it sat over the late traces:
+            # the legend, outside them, names the limits.
+            self.assertEqual([t.get_text() for t in ax.texts], [])
+            legend = ax.get_legend()
+            names = [t.get_text() for t in legend.get_texts()]
+            self.assertIn("damage limit 0.0333 rad", names)
+            self.assertIn("collapse limit 0.1 rad", names)
+            box = legend.get_window_extent(renderer)
+            self.assertGreaterEqual(box.x0, ax.get_window_extent(renderer).x1)
+
+    def test_a_fallen_storey_is_clipped_and_the_legend_says_so(self):
+        fallen = write_run(self.folder, "fallen", [1, 0, 0], [[(0.0, 0.0), (0.3, 0.4)]])
+        write_comparison(self.folder, [{"case": "fallen", "status": "completed", "storey1_verdict": "collapsed",
+                                        "output": fallen}], 1)
+        fig, _ = fq_plot.draw_compare(self.folder)
+        self.assertEqual(fig.axes[0].get_ylim(), (0.0, 0.30000000000000004))
+        self.assertEqual(fig.axes[0].get_legend().get_title().get_text(), "storey 1 (clipped at 0.30 rad)")
 
 
 class SweepFigure(unittest.TestCase):
