@@ -56,9 +56,9 @@ const char* kCompareHelp =
     "  DIR/comparison.csv, .md     peak drift ratio and verdict per storey, first joint\n"
     "                              failure, broken joints, energy balance error, wall time\n"
     "  DIR/first_storey_drift.png  drift ratio against time of every storey, one panel each\n"
-    "                              (the name is kept from when it showed storey 1 only), each\n"
-    "                              case along the horizontal direction of its strongest\n"
-    "                              ground-motion component, with each case's drift limits\n"
+    "                              (the name is kept from when it showed storey 1 only): the\n"
+    "                              magnitude of its x and y parts, which the verdicts are\n"
+    "                              taken from, with each case's drift limits\n"
     "An earlier study's tables and figure in DIR are removed before the runs start;\n"
     "a file of the same name that no study of ours wrote stops the study.\n"
     "A run that did not reach its end is standing or damaged only \"so far\".\n"
@@ -612,8 +612,10 @@ bool is_our_csv_table(const std::string& name, const std::string& text) {
 // "Matplotlib" in it, a user's own of the same name too (CLI probe: a
 // user's first_storey_drift.png was deleted). A comparison figure drawn
 // before the mark existed (stop 27) is recognised by the Description
-// fq_plot.py gave it, "<case> along <direction>" for each trace, so that
-// the main job run again into its old out/compare is not refused.
+// fq_plot.py gave it then, "<case> along <direction>" for each trace, so
+// that the main job run again into its old out/compare is not refused
+// (those since carry the mark; their Description is "<case>: |(x, y)|
+// peaks ...").
 bool is_legacy_comparison_description(const std::string& text) {
   if (text.empty()) return false;
   for (std::size_t from = 0; from <= text.size();) {

@@ -342,10 +342,9 @@ std::string ground_motion_summary(const Simulation& sim) {
     const double used_s = std::max(
         0.0, std::min({c.window_length_s, c.record.duration_s() - c.window_start_s, duration_s / c.time_scale}));
     // The component's own peak over those seconds, |amplitude_scale a(t)|
-    // at its samples and at the ends of the span: the figure draws each
-    // case along its strongest horizontal component (scripts/plot/fq_plot.py),
-    // which the summed peaks per world axis cannot tell when components
-    // are oblique.
+    // at its samples and at the ends of the span: which component is the
+    // strongest, which the summed peaks per world axis cannot tell when
+    // components are oblique.
     double peak_mps2 =
         std::max(std::abs(c.record.at(c.window_start_s)), std::abs(c.record.at(c.window_start_s + used_s)));
     for (std::size_t k = 0; k < c.record.acceleration_mps2.size(); ++k) {
