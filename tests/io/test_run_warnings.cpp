@@ -536,6 +536,22 @@ TEST(RunWarnings, AMemberNoJointHoldsIsNamed) {
   }
 }
 
+std::filesystem::path shipped_case(const char* name) { return std::filesystem::path(FQ_SOURCE_DIR) / "cases" / name; }
+
+// A shipped case's text, to be edited and written elsewhere: its records,
+// named relative to its folder, are given as absolute paths.
+std::string shipped_case_text_to_copy(const char* name) {
+  const std::filesystem::path file = shipped_case(name);
+  std::ifstream in(file);
+  std::stringstream all;
+  all << in.rdbuf();
+  std::string text = all.str();
+  for (std::size_t r = text.find("file: ground_motions/"); r != std::string::npos;
+       r = text.find("file: ground_motions/", r + 1))
+    text.replace(r, 6, "file: " + (file.parent_path() / "").string());
+  return text;
+}
+
 // Frame C with its East brace's head node moved 12 mm off the corner it
 // should reach (acceptance probe): that node is the end of the brace alone
 // and no support holds it, so the brace is joined at its foot only. The
@@ -543,18 +559,8 @@ TEST(RunWarnings, AMemberNoJointHoldsIsNamed) {
 // foot node, gets no warning.
 TEST(RunWarnings, ABraceJoinedAtOneEndOnlyIsNamed) {
   test::TempDir dir;
-  const std::filesystem::path shipped_c = std::filesystem::path(FQ_SOURCE_DIR) / "cases" / "frame_C.yaml";
-  std::string text;
-  {
-    std::ifstream in(shipped_c);
-    std::stringstream all;
-    all << in.rdbuf();
-    text = all.str();
-  }
-  // The record named relative to the case's folder, which the copy leaves.
-  for (std::size_t r = text.find("file: ground_motions/"); r != std::string::npos;
-       r = text.find("file: ground_motions/", r + 1))
-    text.replace(r, 6, "file: " + (shipped_c.parent_path() / "").string());
+  const std::filesystem::path shipped_c = shipped_case("frame_C.yaml");
+  std::string text = shipped_case_text_to_copy("frame_C.yaml");
   const std::string brace = "{id: brace_e, kind: brace, nodes: [brace_e0, ne1],";
   const std::size_t at = text.find(brace);
   ASSERT_NE(at, std::string::npos);
@@ -590,17 +596,8 @@ TEST(RunWarnings, ABraceJoinedAtOneEndOnlyIsNamed) {
 // shipped frame C's rules all make joints.
 TEST(RunWarnings, AJointRuleThatMakesNoJointIsNamed) {
   test::TempDir dir;
-  const std::filesystem::path shipped_c = std::filesystem::path(FQ_SOURCE_DIR) / "cases" / "frame_C.yaml";
-  std::string text;
-  {
-    std::ifstream in(shipped_c);
-    std::stringstream all;
-    all << in.rdbuf();
-    text = all.str();
-  }
-  for (std::size_t r = text.find("file: ground_motions/"); r != std::string::npos;
-       r = text.find("file: ground_motions/", r + 1))
-    text.replace(r, 6, "file: " + (shipped_c.parent_path() / "").string());
+  const std::filesystem::path shipped_c = shipped_case("frame_C.yaml");
+  std::string text = shipped_case_text_to_copy("frame_C.yaml");
   const std::string rules = "  rules:\n";
   const std::size_t at = text.find(rules);
   ASSERT_NE(at, std::string::npos);
