@@ -441,7 +441,9 @@ bool g_said_no_locks = false;
 
 // Warnings the study said once before its first run, which its runs would
 // otherwise repeat each, after running (direction of a record).
-std::set<std::string> g_said_before_runs;
+// Keyed by the case's name and the warning: two cases may share a text
+// (variants of one frame overlapping alike), and each is said for its case.
+std::set<std::pair<std::string, std::string>> g_said_before_runs;
 
 // The warnings that follow from a case and its record alone (a node no
 // member ends at, a brace joined at one end, a record applied along a
@@ -467,7 +469,8 @@ void warn_before_runs(const std::vector<fq::BatchJob>& jobs) {
         warnings.push_back(std::move(w));
     }
     for (const std::string& w : warnings)
-      if (g_said_before_runs.insert(w).second) std::cerr << "framequake: warning: " << w << "\n";
+      if (g_said_before_runs.insert({job.def.name, w}).second)
+        std::cerr << "framequake: warning: case " << job.def.name << ": " << w << "\n";
   }
 }
 
@@ -486,7 +489,7 @@ void print_done(std::size_t, const fq::BatchJob& job, const fq::BatchOutcome& ou
       line << "; storey " << s.number << " " << verdict_text(r, s) << " (peak "
            << fixed(s.drift.peak_ratio_rad, 3) << " rad)";
     for (const std::string& w : r.warnings)
-      if (!(g_said_no_locks && fq::is_folder_lock_warning(w)) && !g_said_before_runs.count(w))
+      if (!(g_said_no_locks && fq::is_folder_lock_warning(w)) && !g_said_before_runs.count({job.def.name, w}))
         line << "\n  warning: " << w;
   }
   std::cerr << line.str() << "\n";

@@ -272,6 +272,33 @@ TEST(StudyCommands, ACasesOwnWarningIsSaidOnceBeforeTheRuns) {
     EXPECT_NE(read_text(fs::path(row.at("output")) / "summary.json").find("the end of no member"), std::string::npos);
 }
 
+// Two cases whose warnings read alike (two variants of one scene whose
+// blocks overlap alike) each get theirs, named with the case, before the
+// runs (final review probe: the second case's warning was dropped as said).
+TEST(StudyCommands, EachCaseIsWarnedOfItsOwnWarningsThoughTheTextsMatch) {
+  TempDir dir;
+  const std::string text =
+      "framequake_case: 1\n"
+      "time: {dt_s: 1.0e-4, duration_s: 0.02}\n"
+      "materials: [{name: spruce, density_kg_per_m3: 450}]\n"
+      "blocks:\n"
+      "  - {id: low, size_m: [0.1, 0.1, 0.1], center_m: [0, 0, 0.05], material: spruce}\n"
+      "  - {id: high, size_m: [0.1, 0.1, 0.1], center_m: [0, 0, 0.149], material: spruce}\n"
+      "contact:\n"
+      "  ground: {normal_stiffness_N_per_m: 1.0e6, restitution: 0.5, friction_coefficient: 0.4}\n";
+  std::ofstream(dir.path() / "variant_a.yaml") << text;
+  std::ofstream(dir.path() / "variant_b.yaml") << text;
+  const auto r = run_app({"compare", (dir.path() / "variant_a.yaml").string(), (dir.path() / "variant_b.yaml").string(),
+                          "--out", (dir.path() / "cmp").string(), "--no-figure", "--jobs", "1"},
+                         dir.path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string overlap = "1 pair of bodies not held by a joint overlap at the start ('low' and 'high'";
+  const std::size_t a = r.err.find("case variant_a: " + overlap), b = r.err.find("case variant_b: " + overlap);
+  EXPECT_NE(a, std::string::npos) << r.err;
+  EXPECT_NE(b, std::string::npos) << r.err;
+  EXPECT_LT(std::max(a, b), r.err.find("[1/2]")) << r.err;
+}
+
 // The sweep's PGA is what the run felt: a run shorter than its window
 // never feels the rest of it. A ramp record a(t) = 10 t m/s^2 (samples every
 // 0.1 s over 10 s, two_column), whole window, run of 0.25 s: the record is
