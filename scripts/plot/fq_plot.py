@@ -245,6 +245,12 @@ def draw_compare(folder):
         ax = axes[k - 1]
         peak = 0.0
         cases = []
+        # The limits of the cases drawn in this panel only (a case without
+        # this storey was listed beside its limit lines; final review probe).
+        panel_limits = {}
+        for d in drawn:
+            if d["storeys"] >= k and d["limits"]:
+                panel_limits.setdefault(d["limits"], []).append(d["row"]["case"])
         for d in drawn:
             if d["storeys"] < k:
                 continue
@@ -261,10 +267,10 @@ def draw_compare(folder):
                 verdict += " so far"  # stopped before the end of its record
             ax.plot(t, drift, color=d["colour"], lw=1.0, label="%s: %s" % (row["case"], verdict))
             cases.append(row["case"])
-        for damage, collapse in sorted(limits):
+        for damage, collapse in sorted(panel_limits):
             ax.axhline(collapse, color="0.4", ls="--", lw=0.8)
             ax.axhline(damage, color="0.6", ls=":", lw=0.8)
-        limit = max([c for _, c in limits] or [0.0])
+        limit = max([c for _, c in panel_limits] or [0.0])
         title = "storey %d" % k
         if limit and peak > 3 * limit:
             ax.set_ylim(0.0, 3 * limit)  # a fallen storey would flatten the others' traces
@@ -275,7 +281,7 @@ def draw_compare(folder):
         # Beside the axes, the limits' labels in it: none of it can cover a
         # trace.
         handles, _ = ax.get_legend_handles_labels()
-        ax.legend(handles=handles + limit_handles(limits), loc="upper left", bbox_to_anchor=(1.01, 1.0),
+        ax.legend(handles=handles + limit_handles(panel_limits), loc="upper left", bbox_to_anchor=(1.01, 1.0),
                   fontsize=8, borderaxespad=0.0, title=title, title_fontsize=8)
         panels.append("storey %d: %s" % (k, ", ".join(cases)))
     axes[-1].set_xlabel("simulated time t (s)")

@@ -185,6 +185,24 @@ class CompareFigure(unittest.TestCase):
             box = legend.get_window_extent(renderer)
             self.assertGreaterEqual(box.x0, ax.get_window_extent(renderer).x1)
 
+    def test_a_panel_names_only_the_limits_of_the_cases_it_draws(self):
+        # 'tall' has two storeys and its own limits, 'low' one storey and
+        # stricter ones: storey 2's panel draws 'tall' alone, so only its
+        # limits (final review probe: cases without that storey were listed).
+        tall = write_run(self.folder, "tall", [1, 0, 0], [[(0.01, 0.0)] * 3, [(0.02, 0.0)] * 3])
+        low = write_run(self.folder, "low", [1, 0, 0], [[(0.01, 0.0)] * 3], damage=0.02, collapse=0.05)
+        write_comparison(self.folder, [
+            {"case": "tall", "status": "completed", "storey1_verdict": "standing", "storey2_verdict": "standing",
+             "output": tall},
+            {"case": "low", "status": "completed", "storey1_verdict": "standing", "output": low}], 2)
+        fig, texts = fq_plot.draw_compare(self.folder)
+        panels = [ax for ax in fig.axes if traces(ax)]
+        second = [t.get_text() for t in panels[1].get_legend().get_texts()]
+        self.assertIn("collapse limit 0.1 rad", second)
+        self.assertFalse([t for t in second if "0.05" in t or "low" in t], second)
+        first = [t.get_text() for t in panels[0].get_legend().get_texts()]
+        self.assertIn("collapse limit 0.05 rad (low)", first)
+
     def test_a_fallen_storey_is_clipped_and_the_legend_says_so(self):
         fallen = write_run(self.folder, "fallen", [1, 0, 0], [[(0.0, 0.0), (0.3, 0.4)]])
         write_comparison(self.folder, [{"case": "fallen", "status": "completed", "storey1_verdict": "collapsed",
