@@ -905,13 +905,16 @@ int command_compare(int argc, char** argv, const std::atomic<bool>* stop_request
     md << " (cases/README.md, `assessment`). Drift ratios are magnitudes of the x-y drift vector over the storey "
           "height; times are simulated seconds.\n";
     // Where each frame first failed: the weak point a retrofit should
-    // address (events.csv gives joint and body numbers only; workflow
-    // probe).
+    // address (workflow probe), with the joint's name as events.csv and the
+    // frames give it, which a case's joint numbering does not keep.
     std::string firsts;
-    for (std::size_t i : assessed)
-      if (!outcomes[i].report.first_joint_failure.empty())
-        firsts += "\n- " + jobs[i].label + ": " + outcomes[i].report.first_joint_failure + " at t = " +
-                  fixed(outcomes[i].report.first_joint_failure_time_s, 3) + " s";
+    for (std::size_t i : assessed) {
+      const fq::CaseRunReport& r = outcomes[i].report;
+      if (r.first_joint_failure.empty()) continue;
+      firsts += "\n- " + jobs[i].label + ": " + r.first_joint_failure;
+      if (!r.first_joint_failure_name.empty()) firsts += ", joint " + r.first_joint_failure_name;
+      firsts += " at t = " + fixed(r.first_joint_failure_time_s, 3) + " s";
+    }
     if (!firsts.empty()) md << "\nFirst joint to fail (a spring deleted or the joint broken):" << firsts << "\n";
     // A shortened window can miss the record's strongest part, and with
     // it a verdict (workflow probe: B standing at --window-length 8,
