@@ -279,7 +279,11 @@ StoreyDriftMonitor::StoreyDriftMonitor(std::vector<Storey> storeys, AssessmentDe
     }
   }
   top_m_.resize(storeys_.size());
-  for (std::size_t i = 0; i < storeys_.size(); ++i) top_m_[i].resize(storeys_[i].columns.size());
+  bottom_m_.resize(storeys_.size());
+  for (std::size_t i = 0; i < storeys_.size(); ++i) {
+    top_m_[i].resize(storeys_[i].columns.size());
+    bottom_m_[i].resize(storeys_[i].columns.size());
+  }
   const double window_steps = std::max(1.0, std::round(kResidualDriftWindow_s / dt_s));
   block_steps_ = std::max<std::int64_t>(1, std::int64_t(window_steps / 1000.0));
   window_blocks_ = std::size_t(std::ceil(window_steps / double(block_steps_)));
@@ -292,23 +296,28 @@ void StoreyDriftMonitor::sample(const BodyStore& bodies, std::int64_t step, doub
 }
 
 void StoreyDriftMonitor::track(const BodyStore& bodies, double time_s) {
-  // Each storey's mean top displacement first: the floor drift of a storey
-  // needs that of the storey below.
+  // Every column's two points first: the floor drift of a storey needs the
+  // tops of the storey below.
   for (std::size_t i = 0; i < storeys_.size(); ++i)
     for (std::size_t k = 0; k < storeys_[i].columns.size(); ++k) {
       const StoreyColumn& c = storeys_[i].columns[k];
       top_m_[i][k] = (bodies.to_world(c.top_body, c.top_local_m) - c.top_start_m).head<2>();
+      bottom_m_[i][k] = (bodies.to_world(c.bottom_body, c.bottom_local_m) - c.bottom_start_m).head<2>();
     }
   for (std::size_t i = 0; i < storeys_.size(); ++i) {
     const Storey& s = storeys_[i];
     const double height_m = s.height_m();
-    const Eigen::Vector2d drift_m = storey_drift_m(s, bodies, &column_drift_m_);
+    // The storey's drift as storey_drift_m forms it: the mean of its
+    // columns' top less bottom.
+    Eigen::Vector2d drift_m = Eigen::Vector2d::Zero();
+    for (std::size_t c = 0; c < s.columns.size(); ++c) drift_m += top_m_[i][c] - bottom_m_[i][c];
+    drift_m /= double(s.columns.size());
     const Eigen::Vector2d ratio = drift_m / height_m;
     record_peaks(i, ratio, time_s);
     record_residual(i, ratio);
     StoreyDriftRecord& r = records_[i];
-    for (std::size_t c = 0; c < column_drift_m_.size(); ++c) {
-      const double column_ratio = column_drift_m_[c].norm() / height_m;
+    for (std::size_t c = 0; c < s.columns.size(); ++c) {
+      const double column_ratio = (top_m_[i][c] - bottom_m_[i][c]).norm() / height_m;
       if (column_ratio > r.peak_column_ratio_rad) {
         r.peak_column_ratio_rad = column_ratio;
         r.peak_column = int(c);
@@ -331,9 +340,8 @@ void StoreyDriftMonitor::track(const BodyStore& bodies, double time_s) {
     if (g.top_r2 > 0.0 && g.bottom_r2 > 0.0) {
       double top_turn = 0.0, bottom_turn = 0.0;
       for (std::size_t c = 0; c < s.columns.size(); ++c) {
-        const StoreyColumn& col = s.columns[c];
-        const Eigen::Vector2d dt = (bodies.to_world(col.top_body, col.top_local_m) - col.top_start_m).head<2>();
-        const Eigen::Vector2d db = (bodies.to_world(col.bottom_body, col.bottom_local_m) - col.bottom_start_m).head<2>();
+        const Eigen::Vector2d& dt = top_m_[i][c];
+        const Eigen::Vector2d& db = bottom_m_[i][c];
         top_turn += g.top_r[c].x() * dt.y() - g.top_r[c].y() * dt.x();
         bottom_turn += g.bottom_r[c].x() * db.y() - g.bottom_r[c].y() * db.x();
       }

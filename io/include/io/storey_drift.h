@@ -222,8 +222,10 @@ class StoreyDriftMonitor {
   void record(std::size_t i, const Eigen::Vector2d& drift_m, double time_s);
   void record_peaks(std::size_t i, const Eigen::Vector2d& ratio, double time_s);
   void record_residual(std::size_t i, const Eigen::Vector2d& ratio);
-  std::vector<Eigen::Vector2d> column_drift_m_;  // scratch of track()
-  std::vector<std::vector<Eigen::Vector2d>> top_m_;  // scratch of track(): each column's top displacement
+  // Scratch of track(): each column's top and bottom point displacements
+  // (m), turned into the world once per step for the drifts, the floor
+  // drift and the twist alike.
+  std::vector<std::vector<Eigen::Vector2d>> top_m_, bottom_m_;
   // Per storey: the storey whose top level is its bottom level (-1: the
   // foundation), the columns of that storey whose tops carry this storey's
   // columns (the floor below, where this storey stands on it; all of them
