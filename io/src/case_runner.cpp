@@ -1341,7 +1341,12 @@ void describe_case(const CaseDef& case_def, std::ostream& out, std::optional<Int
       const Storey& st = scene.storeys[i];
       out << "            " << i + 1 << " from z = " << st.bottom_z_m << " to " << st.top_z_m << " m, "
           << st.columns.size() << " column" << (st.columns.size() == 1 ? "" : "s") << ":";
-      for (std::size_t c = 0; c < st.column_names.size(); ++c) out << (c ? ", " : " ") << st.column_names[c];
+      for (std::size_t c = 0; c < st.column_names.size(); ++c) {
+        out << (c ? ", " : " ") << st.column_names[c];
+        // A column shorter than its storey (its foot inside the band) has
+        // its drift ratio taken over its own height (io/storey_drift.h).
+        if (st.height_m() - st.columns[c].height_m > kStoreyLevelTolerance_m) out << " (" << st.columns[c].height_m << " m)";
+      }
       out << "\n";
     }
     out << "            verdicts: damaged above " << def.assessment.safety_drift_ratio_rad

@@ -199,6 +199,7 @@ std::vector<Storey> find_storeys(const Model& model) {
       sc.top_body = model.member_body[top.member];
       sc.bottom_start_m = bottom.point_at(foot_z);
       sc.top_start_m = top.point_at(s.top_z_m);
+      sc.height_m = s.top_z_m - foot_z;
       sc.bottom_local_m = model.bodies.rotation[sc.bottom_body].transpose() *
                           (sc.bottom_start_m - model.bodies.position_m[sc.bottom_body]);
       sc.top_local_m =
@@ -317,7 +318,7 @@ void StoreyDriftMonitor::track(const BodyStore& bodies, double time_s) {
     record_residual(i, ratio);
     StoreyDriftRecord& r = records_[i];
     for (std::size_t c = 0; c < s.columns.size(); ++c) {
-      const double column_ratio = (top_m_[i][c] - bottom_m_[i][c]).norm() / height_m;
+      const double column_ratio = (top_m_[i][c] - bottom_m_[i][c]).norm() / s.columns[c].height_m;
       if (column_ratio > r.peak_column_ratio_rad) {
         r.peak_column_ratio_rad = column_ratio;
         r.peak_column = int(c);
@@ -512,7 +513,14 @@ std::string StoreyDriftMonitor::twist_warning(std::size_t i) const {
   const StoreyVerdict storey = verdict(i), column = verdict_for_peak(r.peak_column_ratio_rad, limits_);
   if (r.peak_column < 0 || int(column) <= int(storey)) return "";
   const Storey& s = storeys_[i];
-  const std::string& name = s.column_names[std::size_t(r.peak_column)];
+  // The column quoted, and for one shorter than the storey (its foot
+  // inside the band) the height its ratio is taken over.
+  std::ostringstream label;
+  label << std::setprecision(3) << "'" << s.column_names[std::size_t(r.peak_column)] << "'";
+  const double own_height_m = s.columns[std::size_t(r.peak_column)].height_m;
+  if (s.height_m() - own_height_m > kStoreyLevelTolerance_m)
+    label << " (" << own_height_m << " m tall in the storey's " << s.height_m() << " m; its ratio is over its own height)";
+  const std::string column_label = label.str();
   std::ostringstream w;
   w << std::setprecision(3);
   // A mean of zero with a column drifting is a pure twist (columns on
@@ -526,14 +534,13 @@ std::string StoreyDriftMonitor::twist_warning(std::size_t i) const {
   const bool turned = r.peak_twist_ratio_rad > kTwistColumnExcess * r.peak_ratio_rad;
   if (apart && !turned) {
     w << "storey " << s.number << "'s columns did not move alike: its drift, the mean of its " << s.columns.size()
-      << " columns, peaked at " << r.peak_ratio_rad << " rad (" << storey_verdict_name(storey) << "), but column '"
-      << name << "' alone drifted " << r.peak_column_ratio_rad << " rad, which would make it "
+      << " columns, peaked at " << r.peak_ratio_rad << " rad (" << storey_verdict_name(storey) << "), but column " << column_label << " alone drifted " << r.peak_column_ratio_rad << " rad, which would make it "
       << storey_verdict_name(column) << ", while the floor did not turn (twist at most " << r.peak_twist_ratio_rad
       << " rad): some columns leaned further than others (a column broken loose at a joint, or columns of other "
          "stiffness or length in one storey); the verdict uses the mean (cases/README.md, assessment)";
   } else if (apart) {
     w << "storey " << s.number << " twists: its drift, the mean of its " << s.columns.size() << " columns, peaked at "
-      << r.peak_ratio_rad << " rad (" << storey_verdict_name(storey) << "), but column '" << name << "' alone drifted "
+      << r.peak_ratio_rad << " rad (" << storey_verdict_name(storey) << "), but column " << column_label << " alone drifted "
       << r.peak_column_ratio_rad << " rad, which would make it " << storey_verdict_name(column)
       << "; the verdict uses the mean (cases/README.md, assessment)";
   } else {
@@ -546,8 +553,7 @@ std::string StoreyDriftMonitor::twist_warning(std::size_t i) const {
       << r.peak_ratio_rad << " rad (" << storey_verdict_name(storey) << "), under the "
       << (collapse ? "collapse" : "safety") << " limit of "
       << (collapse ? limits_.collapse_drift_ratio_rad : limits_.safety_drift_ratio_rad)
-      << " rad, which its largest column, '"
-      << name << "', passes alone at " << r.peak_column_ratio_rad << " rad, "
+      << " rad, which its largest column, " << column_label << ", passes alone at " << r.peak_column_ratio_rad << " rad, "
       << std::setprecision(2) << 100.0 * (r.peak_column_ratio_rad / r.peak_ratio_rad - 1.0)
       << " % above the mean: its columns drifted alike (no twist), and the verdict, which uses the mean, lies within "
          "that of the limit (cases/README.md, assessment)";

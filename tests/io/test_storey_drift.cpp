@@ -116,6 +116,53 @@ TEST(StoreyDrift, AColumnOnAHillsideStepCountsFromItsFoot) {
   EXPECT_NEAR(d.y(), 0.0, 1e-12);
 }
 
+// The same hillside portal swaying as a frame: both tops move d = 11 mm
+// along x, each column turned about its foot by asin(d / its height). The
+// storey drifts d / 0.39 = 0.0282 rad (the mean of its columns' top
+// displacements over the storey's height), under the safety limit 1/30;
+// the short column tilts d / 0.29 = 0.0379 rad, past it, as a short column
+// does: its ratio is over its own 0.29 m, and the run says that it alone
+// would be damaged (geometry probe, 2026-11-27: over the storey's height
+// it read 0.19 / 0.29 of its tilt and no warning came).
+TEST(StoreyDrift, AShortColumnsDriftRatioIsOverItsOwnHeight) {
+  TempDir dir;
+  Model model = build_model(load_case_file(dir.write("hillside.yaml",
+      "framequake_case: 1\n"
+      "time: {dt_s: 1.0e-5, duration_s: 0.01}\n"
+      "materials: [{name: wood, density_kg_per_m3: 450}]\n"
+      "sections: [{name: col, width_m: 0.010, depth_m: 0.020}]\n"
+      "nodes:\n"
+      "  - {id: a0, xyz_m: [0, 0, 0]}\n"
+      "  - {id: a1, xyz_m: [0, 0, 0.39]}\n"
+      "  - {id: b0, xyz_m: [0.5, 0, 0.1]}\n"
+      "  - {id: b1, xyz_m: [0.5, 0, 0.39]}\n"
+      "members:\n"
+      "  - {id: long, kind: column, nodes: [a0, a1], section: col, material: wood}\n"
+      "  - {id: short, kind: column, nodes: [b0, b1], section: col, material: wood}\n"
+      "  - {id: beam, kind: beam, nodes: [a1, b1], section: col, material: wood}\n")));
+  const std::vector<Storey> storeys = find_storeys(model);
+  ASSERT_EQ(storeys.size(), 1u);
+  ASSERT_EQ(storeys[0].columns.size(), 2u);
+  EXPECT_NEAR(storeys[0].columns[0].height_m, 0.39, 1e-15);
+  EXPECT_NEAR(storeys[0].columns[1].height_m, 0.29, 1e-15);
+  StoreyDriftMonitor monitor(storeys, AssessmentDef{}, 1e-5);
+  monitor.track(model.bodies, 0.0);
+  const double d = 0.011;
+  turn_about_y(model.bodies, model.member_body[0], Vec3(0, 0, 0), std::asin(d / 0.39));
+  turn_about_y(model.bodies, model.member_body[1], Vec3(0.5, 0, 0.1), std::asin(d / 0.29));
+  monitor.track(model.bodies, 0.1);
+  const StoreyDriftRecord& r = monitor.records()[0];
+  EXPECT_NEAR(r.peak_ratio_rad, d / 0.39, 1e-12);
+  EXPECT_NEAR(r.peak_column_ratio_rad, d / 0.29, 1e-12);
+  EXPECT_EQ(r.peak_column, 1);
+  EXPECT_EQ(monitor.verdict(0), StoreyVerdict::Standing);
+  const std::string note = monitor.twist_warning(0);
+  EXPECT_NE(note.find("column 'short' (0.29 m tall in the storey's 0.39 m; its ratio is over its own height) alone "
+                      "drifted 0.0379 rad, which would make it damaged"),
+            std::string::npos)
+      << note;
+}
+
 // Turns every member of `model` by `angle` about world y through the
 // origin: a rigid sway of the whole frame, under which every point at
 // height z moves z sin(angle) along x, so every storey whose columns are

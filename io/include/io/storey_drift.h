@@ -49,6 +49,14 @@ struct StoreyColumn {
   Vec3 top_local_m = Vec3::Zero();     // point at the band's top, top_body's frame (m)
   Vec3 bottom_start_m = Vec3::Zero();  // its world position at t = 0 (m)
   Vec3 top_start_m = Vec3::Zero();
+  // The column line's own height, top point less bottom point (m): the
+  // storey's height, or less for a foot inside the band (a column on a
+  // hillside step, a post on a beam). A column's drift ratio is over its
+  // own height: a short column takes the floor's sway over its shorter
+  // length, and over the storey's height its tilt read 0.19 / 0.29 of what
+  // it was (geometry probe, 2026-11-27: a hillside column tilting 0.0404
+  // rad, past the safety limit, was reported at 0.0272 without a warning).
+  double height_m = 0.0;
 };
 
 struct Storey {
