@@ -1157,7 +1157,7 @@ CaseRunReport run_case(const CaseDef& case_def, const CaseRunOptions& options) {
   }
 
   std::unique_ptr<RunOutput> writer;
-  StoreyDriftMonitor storeys(scene.storeys, def.assessment, sim.settings().dt_s);
+  StoreyDriftMonitor storeys(scene.storeys, def.assessment, sim.settings().dt_s, residual_drift_window_s(def));
   try {
     writer = std::make_unique<RunOutput>(output, def.name);
     attach_provider_output(*writer, scene);
@@ -1254,7 +1254,7 @@ CaseRunReport resume_case(const std::filesystem::path& folder, const CaseRunOpti
   const std::vector<Vec3> initial_position_m = sim.bodies().position_m;
 
   std::unique_ptr<RunOutput> writer;
-  StoreyDriftMonitor storeys(scene.storeys, def.assessment, sim.settings().dt_s);
+  StoreyDriftMonitor storeys(scene.storeys, def.assessment, sim.settings().dt_s, residual_drift_window_s(def));
   try {
     writer = std::make_unique<RunOutput>(RunOutput::resume(def.output, def.name, in));
     storeys.load_state(in);

@@ -231,7 +231,12 @@ Eigen::Vector2d storey_drift_m(const Storey& storey, const BodyStore& bodies, st
   return {sum.x(), sum.y()};
 }
 
-StoreyDriftMonitor::StoreyDriftMonitor(std::vector<Storey> storeys, AssessmentDef limits, double dt_s)
+double residual_drift_window_s(const CaseDef& def) {
+  return kResidualDriftWindow_record_s * (def.ground_motion ? def.ground_motion->time_scale : 1.0);
+}
+
+StoreyDriftMonitor::StoreyDriftMonitor(std::vector<Storey> storeys, AssessmentDef limits, double dt_s,
+                                       double residual_window_s)
     : storeys_(std::move(storeys)),
       limits_(limits),
       records_(storeys_.size()),
@@ -239,6 +244,8 @@ StoreyDriftMonitor::StoreyDriftMonitor(std::vector<Storey> storeys, AssessmentDe
       residual_(storeys_.size()),
       dt_s_(dt_s) {
   if (!(dt_s > 0.0)) throw std::invalid_argument("StoreyDriftMonitor: the time step must be positive");
+  if (!(residual_window_s > 0.0))
+    throw std::invalid_argument("StoreyDriftMonitor: the residual drift's window must be positive");
   storey_below_.assign(storeys_.size(), -1);
   columns_below_.resize(storeys_.size());
   twist_.resize(storeys_.size());
@@ -285,7 +292,7 @@ StoreyDriftMonitor::StoreyDriftMonitor(std::vector<Storey> storeys, AssessmentDe
     top_m_[i].resize(storeys_[i].columns.size());
     bottom_m_[i].resize(storeys_[i].columns.size());
   }
-  const double window_steps = std::max(1.0, std::round(kResidualDriftWindow_s / dt_s));
+  const double window_steps = std::max(1.0, std::round(residual_window_s / dt_s));
   block_steps_ = std::max<std::int64_t>(1, std::int64_t(window_steps / 1000.0));
   window_blocks_ = std::size_t(std::ceil(window_steps / double(block_steps_)));
 }

@@ -145,7 +145,7 @@ TEST(StoreyDrift, AShortColumnsDriftRatioIsOverItsOwnHeight) {
   ASSERT_EQ(storeys[0].columns.size(), 2u);
   EXPECT_NEAR(storeys[0].columns[0].height_m, 0.39, 1e-15);
   EXPECT_NEAR(storeys[0].columns[1].height_m, 0.29, 1e-15);
-  StoreyDriftMonitor monitor(storeys, AssessmentDef{}, 1e-5);
+  StoreyDriftMonitor monitor(storeys, AssessmentDef{}, 1e-5, 1.0);
   monitor.track(model.bodies, 0.0);
   const double d = 0.011;
   turn_about_y(model.bodies, model.member_body[0], Vec3(0, 0, 0), std::asin(d / 0.39));
@@ -366,7 +366,7 @@ TEST(StoreyDrift, TranslatedStoreyDoesNotDrift) {
 TEST(StoreyDrift, MonitorKeepsPeaksAndJudgesByTheLimits) {
   Model model = frame_model();
   AssessmentDef limits;  // 1/30 and 1/10 rad
-  StoreyDriftMonitor monitor(find_storeys(model), limits, 1e-5);
+  StoreyDriftMonitor monitor(find_storeys(model), limits, 1e-5, 1.0);
   const BodyId col_a1 = model.member_body[0], col_b1 = model.member_body[2], col_c = model.member_body[4];
   auto lean_storey1 = [&](double angle) {  // sets storey 1 to lean by `angle` (absolute)
     Model fresh = frame_model();
@@ -410,7 +410,7 @@ TEST(StoreyDrift, MonitorKeepsPeaksAndJudgesByTheLimits) {
 // then is the column's).
 TEST(StoreyDrift, AColumnPastAWorseVerdictThanItsStoreysMeanIsWarnedOf) {
   Model model = frame_model();
-  StoreyDriftMonitor monitor(find_storeys(model), AssessmentDef{}, 1e-5);
+  StoreyDriftMonitor monitor(find_storeys(model), AssessmentDef{}, 1e-5, 1.0);
   const BodyId col_a1 = model.member_body[0];
   monitor.track(model.bodies, 0.0);
   turn_about_y(model.bodies, col_a1, Vec3(0, 0, 0), -0.05);
@@ -433,7 +433,7 @@ TEST(StoreyDrift, AColumnPastAWorseVerdictThanItsStoreysMeanIsWarnedOf) {
       << w;
 
   Model even = frame_model();
-  StoreyDriftMonitor same(find_storeys(even), AssessmentDef{}, 1e-5);
+  StoreyDriftMonitor same(find_storeys(even), AssessmentDef{}, 1e-5, 1.0);
   same.track(even.bodies, 0.0);
   turn_about_y(even.bodies, even.member_body[0], Vec3(0, 0, 0), -0.05);
   turn_about_y(even.bodies, even.member_body[2], Vec3(0.5, 0, 0), -0.05);
@@ -458,7 +458,7 @@ TEST(StoreyDrift, AColumnJustAboveItsStoreysMeanIsNoTwist) {
   const double pivots_x[] = {0.0, 0.5, 1.0};
   auto lean = [&](const double (&ratios)[3]) {
     Model model = frame_model();
-    StoreyDriftMonitor monitor(find_storeys(model), limits, 1e-5);
+    StoreyDriftMonitor monitor(find_storeys(model), limits, 1e-5, 1.0);
     monitor.track(model.bodies, 0.0);
     for (int c = 0; c < 3; ++c)
       turn_about_y(model.bodies, model.member_body[std::size_t(2 * c)], Vec3(pivots_x[c], 0, 0), std::asin(ratios[c]));
@@ -510,7 +510,7 @@ TEST(StoreyDrift, AFloorThatTurnsIsATwist) {
       "  - {id: cc, kind: column, nodes: [c0, c1], section: col, material: wood}\n"
       "  - {id: cd, kind: column, nodes: [d0, d1], section: col, material: wood}\n")));
   Model model = model0;
-  StoreyDriftMonitor monitor(find_storeys(model), AssessmentDef{}, 1e-5);
+  StoreyDriftMonitor monitor(find_storeys(model), AssessmentDef{}, 1e-5, 1.0);
   monitor.track(model.bodies, 0.0);
   const double theta = 0.05;
   for (std::size_t m = 0; m < 4; ++m) {
@@ -546,7 +546,7 @@ TEST(StoreyDrift, AFloorThatTurnsIsATwist) {
 // column's upper band moved by d) moved d/3 - d relative to the floor below.
 TEST(StoreyDrift, AStoreyThatSlidOffItsFoundationIsWarnedOf) {
   Model model = frame_model();
-  StoreyDriftMonitor monitor(find_storeys(model), AssessmentDef{}, 1e-5);
+  StoreyDriftMonitor monitor(find_storeys(model), AssessmentDef{}, 1e-5, 1.0);
   monitor.track(model.bodies, 0.0);
   const double d = 0.05, h = 0.29;
   for (std::size_t m : {0, 2, 4}) model.bodies.position_m[model.member_body[m]] += Vec3(d, 0, 0);
@@ -565,7 +565,7 @@ TEST(StoreyDrift, AStoreyThatSlidOffItsFoundationIsWarnedOf) {
       << w;
   // A rigid sway (columns turned about their feet) slides nothing: no warning.
   Model swayed = frame_model();
-  StoreyDriftMonitor sway(find_storeys(swayed), AssessmentDef{}, 1e-5);
+  StoreyDriftMonitor sway(find_storeys(swayed), AssessmentDef{}, 1e-5, 1.0);
   sway.track(swayed.bodies, 0.0);
   turn_about_y(swayed.bodies, swayed.member_body[0], Vec3(0, 0, 0), 0.05);
   turn_about_y(swayed.bodies, swayed.member_body[2], Vec3(0.5, 0, 0), 0.05);
@@ -589,7 +589,7 @@ TEST(StoreyDrift, TheFloorBelowIsTakenWhereTheStoreyStandsOnIt) {
   text.insert(text.find("members:\n"), "  - {id: m0, xyz_m: [0.25, 0, 0]}\n  - {id: m1, xyz_m: [0.25, 0, 0.29]}\n");
   text += "  - {id: col_m, kind: column, nodes: [m0, m1], section: col, material: wood}\n";
   Model model = build_model(load_case_file(dir.write("mezzanine.yaml", text)));
-  StoreyDriftMonitor monitor(find_storeys(model), AssessmentDef{}, 1e-5);
+  StoreyDriftMonitor monitor(find_storeys(model), AssessmentDef{}, 1e-5, 1.0);
   ASSERT_EQ(monitor.storeys().size(), 2u);
   ASSERT_EQ(monitor.storeys()[0].columns.size(), 4u);
   monitor.track(model.bodies, 0.0);
@@ -607,7 +607,7 @@ TEST(StoreyDrift, TheFloorBelowIsTakenWhereTheStoreyStandsOnIt) {
 TEST(StoreyDrift, APeakInTheRunsLastMomentsIsSaidToBePerhapsStillGrowing) {
   auto lean_at = [](double angle, double t_s) {
     Model model = frame_model();
-    StoreyDriftMonitor monitor(find_storeys(model), AssessmentDef{}, 1e-5);
+    StoreyDriftMonitor monitor(find_storeys(model), AssessmentDef{}, 1e-5, 1.0);
     monitor.track(model.bodies, 0.0);
     turn_about_y(model.bodies, model.member_body[0], Vec3(0, 0, 0), angle);
     turn_about_y(model.bodies, model.member_body[2], Vec3(0.5, 0, 0), angle);
@@ -740,7 +740,7 @@ TEST(StoreyDrift, ResidualIsTheMeanOfTheLastSecondNotTheLastSample) {
   const double theta0 = 0.01, a = 1e-3, period = 0.25;
   Model model = frame_model();
   const Model fresh = frame_model();
-  StoreyDriftMonitor monitor(find_storeys(model), AssessmentDef{}, 1e-3);  // steps of 1 ms
+  StoreyDriftMonitor monitor(find_storeys(model), AssessmentDef{}, 1e-3, 1.0);  // steps of 1 ms
   const BodyId cols[] = {model.member_body[0], model.member_body[2], model.member_body[4]};
   const double pivots_x[] = {0.0, 0.5, 1.0};
   const int samples = 3000;
@@ -775,7 +775,7 @@ TEST(StoreyDrift, ResidualIsTheMeanOverTheLastSecondsStepsInBlocks) {
   Model model = frame_model();
   const Model fresh = frame_model();
   const double dt = 1e-4;
-  StoreyDriftMonitor monitor(find_storeys(model), AssessmentDef{}, dt);
+  StoreyDriftMonitor monitor(find_storeys(model), AssessmentDef{}, dt, 1.0);
   const BodyId cols[] = {model.member_body[0], model.member_body[2], model.member_body[4]};
   const double pivots_x[] = {0.0, 0.5, 1.0};
   const int last = 25004, first_in_window = 15000;
@@ -937,6 +937,42 @@ TEST(StoreyDrift, AStoppedRunReportsTheGroundMotionItFelt) {
   EXPECT_NE(summary.str().find("\"peak_horizontal_mps2\":0.5,"), std::string::npos) << summary.str();
 }
 
+// The residual's window is 3 RECORD seconds: at a ground motion time scale
+// of 0.05 it is 0.15 simulated s of the 0.2 s run (to within two blocks of
+// 15 steps and a step, class comment), and the residual is the mean of the
+// every-step rows in it. With a window of a fixed simulated second it was
+// the mean of the whole run, so a model and its full-scale original,
+// alike by similitude, averaged different parts of their response
+// (geometry probe, 2026-11-27). Frame B's record runs at 0.3162: 0.9486 s.
+TEST(StoreyDrift, TheResidualsWindowIsInRecordSeconds) {
+  TempDir dir;
+  {
+    std::ofstream record(dir.path() / "shake.txt");
+    for (int k = 0; k <= 300; ++k)
+      record << 0.001 * k << " " << 60.0 * std::sin(2.0 * M_PI * 5.0 * 0.001 * k) << "\n";
+  }
+  std::string text = swaying_column_case(dir.path() / "out", 1e-5);
+  const std::string gm = "ground_motion:\n";
+  text.replace(text.find(gm), gm.size(), gm + "  time_scale: 0.05\n");
+  const CaseDef def = load_case_file(dir.write("scaled.yaml", text));
+  EXPECT_NEAR(residual_drift_window_s(def), 0.15, 1e-15);
+  const CaseRunReport r = run_case(def, {});
+  ASSERT_EQ(r.storeys.size(), 1u);
+  const StoreyDriftRecord& d = r.storeys[0].drift;
+  EXPECT_NEAR(d.residual_window_s, 0.15, 2 * 15e-5 + 1e-5);
+  // The mean of the rows (one per step, t = 0 .. 0.2 s) in the window.
+  const std::vector<Eigen::Vector2d> rows = storey1_ratio_rows(dir.path() / "out/history.csv");
+  ASSERT_EQ(rows.size(), 20001u);
+  const std::size_t in_window = std::size_t(std::llround(d.residual_window_s / 1e-5)) + 1;
+  double sum = 0.0, largest = 0.0;
+  for (std::size_t k = rows.size() - in_window; k < rows.size(); ++k) sum += rows[k].x();
+  for (const Eigen::Vector2d& row : rows) largest = std::max(largest, std::abs(row.x()));
+  ASSERT_GT(largest, 1e-4) << "the column must sway";
+  EXPECT_NEAR(d.residual_ratio_x_rad, sum / double(in_window), 1e-9 * largest);
+  EXPECT_NEAR(residual_drift_window_s(load_case_file(fs::path(FQ_SOURCE_DIR) / "cases/frame_B.yaml")), 3.0 * 0.3162,
+              1e-15);
+}
+
 TEST(StoreyDrift, PeaksAreTakenAtEveryStepWhateverTheHistoryIntervalAndSurviveAResume) {
   TempDir dir;
   {
@@ -960,7 +996,7 @@ TEST(StoreyDrift, PeaksAreTakenAtEveryStepWhateverTheHistoryIntervalAndSurviveAR
   EXPECT_EQ(coarse_peak.peak_time_s, fine_peak.peak_time_s);
   EXPECT_LT(largest_storey1_ratio_of_rows(dir.path() / "coarse/history.csv"), reference * (1.0 - 1e-6))
       << "the 13 ms rows must miss the peak for this test to prove anything";
-  // The residual too: the run is shorter than the 1 s window, so it is the
+  // The residual too: the run is shorter than the 3 s window, so it is the
   // mean of the drift ratio over every step, the mean of the every-step
   // rows (written to 9 significant digits or more).
   const double mean_of_rows = mean_storey1_ratio_x_of_rows(dir.path() / "fine/history.csv");

@@ -38,7 +38,9 @@ namespace fq {
 // the output section.
 // Version 4: each storey's record adds its peak floor drift, base slip and
 // twist.
-inline constexpr std::uint32_t kCheckpointFormatVersion = 4;
+// Version 5: the residual's window is in record seconds (its blocks are
+// of another length than a version 4 file's).
+inline constexpr std::uint32_t kCheckpointFormatVersion = 5;
 inline constexpr const char* kCheckpointFileName = "checkpoint.bin";
 
 // A checkpoint file that cannot be used: missing, damaged, truncated,

@@ -101,7 +101,7 @@ struct StoreyDriftRecord {
   double final_ratio_x_rad = 0.0; // at the last sample
   double final_ratio_y_rad = 0.0;
   // Residual drift: the mean over the steps of the last
-  // kResidualDriftWindow_s of the run (the whole run if shorter; to within
+  // residual window of the run (the whole run if shorter; to within
   // about two thousandths of the window, StoreyDriftMonitor; residual_window_s is the
   // time from the first to the last step averaged), not the last sample,
   // which a frame still swaying after the shaking ends puts anywhere
@@ -141,13 +141,24 @@ struct StoreyDriftRecord {
   double peak_twist_ratio_rad = 0.0;
 };
 
-// Trailing window (simulated s) over which the residual drift is averaged.
-// The mean of a sway about a permanent offset over a whole number of its
-// periods is the offset; over a window W it is off by at most the sway
-// amplitude times T / (pi W). One second holds 7 periods of the frames'
-// first sway (0.14 s) and 3.7 of a three-storey variant's (0.27 s): off by
-// at most 6 % and 9 % of the amplitude still swaying at the end.
-inline constexpr double kResidualDriftWindow_s = 1.0;
+// Trailing window over which the residual drift is averaged, in RECORD
+// seconds: a run whose ground motion has time scale s (simulation s per
+// record s) averages over the last s x 3 simulated seconds
+// (residual_drift_window_s). The mean of a sway about a permanent offset
+// over a whole number of its periods is the offset; over a window W it is
+// off by at most the sway amplitude times T / (pi W). A model scaled by
+// similitude has its periods scaled by s as well, so a window in record
+// seconds holds the same number of periods at every scale: the frames'
+// first sway (0.14 s in the 1/10 model, 0.44 s at full scale) 6.8 times,
+// off by at most 4.7 % of the amplitude still swaying at the end; a
+// three-storey variant's (0.27 s in the model) 3.5 times, 9 %. (A window
+// of a fixed simulated second, until 2026-11-27, held 7 periods of the
+// model and 2.3 of the same frame at full scale, whose residual then
+// differed: +6e-5 against -3.2e-3 rad over a 4 s window of Kobe; geometry
+// probe.) Without ground motion, s = 1.
+inline constexpr double kResidualDriftWindow_record_s = 3.0;
+// The residual's window in simulated seconds for a case (above).
+double residual_drift_window_s(const CaseDef& def);
 
 // A column line's peak drift ratio more than this fraction above its
 // storey's peak (the mean of the storey's columns) is a twist. A floor
@@ -184,14 +195,16 @@ inline constexpr double kPeakAtEndFraction = 0.02;
 //
 // The residual is summed in blocks of B whole steps, B = the window's
 // steps / 1000 (at least 1): the window holds the last 1000 complete blocks
-// and the block under way, so it spans the last kResidualDriftWindow_s to
+// and the block under way, so it spans the last residual window to
 // within two blocks and a step (about 2 ms of 1 s; a step that does not
 // divide the block's length rounds it down) and keeps about 1000 block
 // sums per storey, not one number per step.
 class StoreyDriftMonitor {
  public:
-  // dt_s: the run's time step (s), which sets the residual's blocks.
-  StoreyDriftMonitor(std::vector<Storey> storeys, AssessmentDef limits, double dt_s);
+  // dt_s: the run's time step (s), which sets the residual's blocks;
+  // residual_window_s: the residual's window in simulated seconds
+  // (residual_drift_window_s for a case).
+  StoreyDriftMonitor(std::vector<Storey> storeys, AssessmentDef limits, double dt_s, double residual_window_s);
 
   void sample(const BodyStore& bodies, std::int64_t step, double time_s);
   // The peaks, the collapse time and the residual, from the current poses.
