@@ -3,14 +3,21 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "io/utf8_text.h"
 #include "number_format.h"
 
 namespace fq {
 
 JsonWriter::JsonWriter(int indent_spaces) : indent_(indent_spaces < 0 ? 0 : indent_spaces) {}
 
-std::string JsonWriter::quote(std::string_view s) {
+std::string JsonWriter::quote(std::string_view text) {
   static const char* const hex = "0123456789abcdef";
+  // JSON is UTF-8 (RFC 8259 section 8.1): a byte that is not, from a record
+  // header or a path, made a whole summary.json unreadable to strict
+  // readers (Python's json); it is written as U+FFFD instead.
+  const bool valid = is_valid_utf8(text);
+  const std::string repaired = valid ? std::string() : utf8_repaired(text);
+  const std::string_view s = valid ? text : std::string_view(repaired);
   std::string out;
   out.reserve(s.size() + 2);
   out.push_back('"');
@@ -245,10 +252,10 @@ class JsonChecker {
   }
 
   bool string() {
-    ++i_;  // opening quote
+    const std::size_t begin = ++i_;  // past the opening quote
     while (!at_end()) {
       const auto c = static_cast<unsigned char>(t_[i_++]);
-      if (c == '"') return true;
+      if (c == '"') return is_valid_utf8(t_.substr(begin, i_ - 1 - begin));  // RFC 8259 section 8.1
       if (c < 0x20) return false;
       if (c == '\\') {
         if (at_end()) return false;

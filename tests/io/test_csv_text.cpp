@@ -24,4 +24,13 @@ TEST(CsvText, FieldsWithCommasQuotesOrLineBreaksAreQuoted) {
   EXPECT_EQ(fq::csv_text("cr\rhere"), "\"cr\rhere\"");
 }
 
+// The tables are UTF-8: a byte that is not (a Latin-1 file name of a
+// --record) becomes U+FFFD (EF BF BD) instead of making pandas' default
+// reader fail on the whole file.
+TEST(CsvText, IllFormedUtf8BecomesTheReplacementCharacter) {
+  EXPECT_EQ(fq::csv_text("D\xFCzce"), "D\xEF\xBF\xBDzce");
+  EXPECT_EQ(fq::csv_text("out/D\xFCzce,1"), "\"out/D\xEF\xBF\xBDzce,1\"");
+  EXPECT_EQ(fq::csv_text("D\xC3\xBCzce"), "D\xC3\xBCzce");  // valid UTF-8 as it is
+}
+
 }  // namespace

@@ -23,6 +23,41 @@ TEST(JsonWriter, EscapesStringsPerRfc8259) {
   EXPECT_EQ(fq::JsonWriter::quote("caf\xc3\xa9 / ok"), "\"caf\xc3\xa9 / ok\"");
 }
 
+TEST(JsonWriter, IllFormedUtf8BecomesTheReplacementCharacter) {
+  // JSON text is UTF-8 (RFC 8259 section 8.1); a byte that is not (a Latin-1
+  // record header) made summary.json unreadable to Python's json. Each
+  // ill-formed sequence becomes U+FFFD (EF BF BD), one per maximal subpart
+  // (the Unicode Standard, section 3.9, table 3-8's examples).
+  const std::string fffd = "\xEF\xBF\xBD";
+  // A stray byte: Latin-1 u-umlaut (FC) never starts a UTF-8 sequence.
+  EXPECT_EQ(fq::JsonWriter::quote("D\xFCzce"), "\"D" + fffd + "zce\"");
+  // A stray continuation byte.
+  EXPECT_EQ(fq::JsonWriter::quote("a\x80" "b"), "\"a" + fffd + "b\"");
+  // A truncated multi-byte sequence: E2 82 of the euro sign E2 82 AC, cut
+  // before a letter and at the end: one U+FFFD each.
+  EXPECT_EQ(fq::JsonWriter::quote("\xE2\x82x"), "\"" + fffd + "x\"");
+  EXPECT_EQ(fq::JsonWriter::quote("x\xE2\x82"), "\"x" + fffd + "\"");
+  // Overlong encodings: '/' as C0 AF, and as E0 80 AF (C0 is never a lead
+  // byte, and after E0 a byte below A0 ends the sequence: one U+FFFD per byte).
+  EXPECT_EQ(fq::JsonWriter::quote("\xC0\xAF"), "\"" + fffd + fffd + "\"");
+  EXPECT_EQ(fq::JsonWriter::quote("\xE0\x80\xAF"), "\"" + fffd + fffd + fffd + "\"");
+  // A UTF-16 surrogate (ED A0 80) and a code point above U+10FFFF (F4 90 80 80).
+  EXPECT_EQ(fq::JsonWriter::quote("\xED\xA0\x80"), "\"" + fffd + fffd + fffd + "\"");
+  EXPECT_EQ(fq::JsonWriter::quote("\xF4\x90\x80\x80"), "\"" + fffd + fffd + fffd + fffd + "\"");
+  // Well-formed sequences of 2, 3 and 4 bytes pass unchanged: u-umlaut, euro sign, U+1F600.
+  EXPECT_EQ(fq::JsonWriter::quote("\xC3\xBC \xE2\x82\xAC \xF0\x9F\x98\x80"),
+            "\"\xC3\xBC \xE2\x82\xAC \xF0\x9F\x98\x80\"");
+  // Escapes still apply around a repaired byte.
+  EXPECT_EQ(fq::JsonWriter::quote("\"\xFF\n"), "\"\\\"" + fffd + "\\n\"");
+  // The validator refuses strings that are not UTF-8, so raw() cannot pass them on.
+  EXPECT_FALSE(fq::json_is_valid("\"D\xFCzce\""));
+  EXPECT_FALSE(fq::json_is_valid("[\"\xE2\x82\"]"));
+  EXPECT_FALSE(fq::json_is_valid("{\"\xC0\xAF\": 1}"));
+  EXPECT_TRUE(fq::json_is_valid("\"D\xC3\xBCzce\""));
+  fq::JsonWriter w;
+  EXPECT_THROW(w.raw("\"D\xFCzce\""), std::invalid_argument);
+}
+
 TEST(JsonWriter, NumbersRoundTripAndNonFiniteIsNull) {
   // JSON has no NaN or infinity (RFC 8259 section 6).
   EXPECT_EQ(fq::JsonWriter::number(std::numeric_limits<double>::quiet_NaN()), "null");
@@ -95,6 +130,23 @@ TEST(JsonWriter, PythonJsonReadsTheSameStrings) {
   const std::string cmd =
       "/usr/bin/python3 -c \"import json,sys; d=json.load(open(sys.argv[1])); "
       "sys.exit(0 if [ord(c) for c in d['s']]==[97,34,98,92,99,10,1,233] and d['x']==0.1 else 1)\" '" +
+      file.string() + "'";
+  EXPECT_EQ(std::system(cmd.c_str()), 0) << w.str();
+}
+
+TEST(JsonWriter, PythonReadsAStrayByteAsUtf8Json) {
+  if (std::system("/usr/bin/python3 -c 'import json' > /dev/null 2>&1") != 0)
+    GTEST_SKIP() << "/usr/bin/python3 not available for the independent check";
+  fq::JsonWriter w;
+  w.begin_object().key("s").value("D\xFCzce \xE2\x82").end_object();
+  const std::filesystem::path file =
+      std::filesystem::path(FQ_BINARY_DIR) / "test_output" / "json_writer" / "stray_byte.json";
+  std::filesystem::create_directories(file.parent_path());
+  { std::ofstream(file, std::ios::binary) << w.str(); }
+  // Decoded strictly as UTF-8: D U+FFFD z c e space U+FFFD.
+  const std::string cmd =
+      "/usr/bin/python3 -c \"import json,sys; d=json.loads(open(sys.argv[1],'rb').read().decode('utf-8')); "
+      "sys.exit(0 if [ord(c) for c in d['s']]==[68,0xFFFD,122,99,101,32,0xFFFD] else 1)\" '" +
       file.string() + "'";
   EXPECT_EQ(std::system(cmd.c_str()), 0) << w.str();
 }

@@ -9,7 +9,8 @@
 namespace fq {
 
 // `text` as it is, or in double quotes with each quote doubled when it holds
-// a comma, a quote or a line end.
+// a comma, a quote or a line end; ill-formed UTF-8 becomes U+FFFD
+// (io/utf8_text.h).
 std::string csv_text(std::string_view text);
 
 }  // namespace fq

@@ -5,7 +5,9 @@
 // Numbers are written in the shortest form that reads back to the same
 // double (std::to_chars); JSON has no NaN or infinity, so non-finite numbers
 // are written as null. Strings are escaped per RFC 8259 (quote, backslash,
-// control characters); other bytes, UTF-8 included, pass through unchanged.
+// control characters); valid UTF-8 passes through unchanged, and each
+// ill-formed byte sequence is written as U+FFFD, so the output is always
+// UTF-8 (section 8.1). The validator refuses strings that are not UTF-8.
 //
 //   JsonWriter w;
 //   w.begin_object().key("status").value("completed").key("dt_s").value(1e-5).end_object();
@@ -70,7 +72,8 @@ class JsonWriter {
 };
 
 // True when `text` is exactly one JSON value (RFC 8259), surrounding
-// whitespace allowed. Nesting deeper than 256 levels is rejected.
+// whitespace allowed, its strings UTF-8. Nesting deeper than 256 levels is
+// rejected.
 bool json_is_valid(std::string_view text);
 
 }  // namespace fq
