@@ -16,6 +16,7 @@
 
 #include "dem_core/types.h"
 #include "io/input_error.h"
+#include "io/utf8_text.h"
 
 namespace fq {
 
@@ -151,10 +152,16 @@ std::size_t find_ci(std::string_view s, std::string_view word, std::size_t from 
 
 std::string quoted(std::string_view s) {
   constexpr std::size_t kMaxShown = 60;  // keep messages one line long
+  // The file's text as UTF-8 (a Latin-1 header reached the terminal as raw
+  // bytes), cut at a character boundary, not inside a multi-byte one.
+  const std::string text = utf8_from_utf8_or_latin1(s);
+  std::size_t shown = std::min(text.size(), kMaxShown);
+  while (shown > 0 && shown < text.size() && (static_cast<unsigned char>(text[shown]) & 0xC0) == 0x80) --shown;
   std::string out = "'";
-  out.append(s.substr(0, kMaxShown));
-  if (s.size() > kMaxShown) out += "...";
-  return out + "'";
+  out.append(text, 0, shown);
+  if (shown < text.size()) out += "...";
+  out += "'";
+  return out;
 }
 
 std::string fmt(double v) {
@@ -437,7 +444,9 @@ AccelerationRecord read_peer_at2(const std::filesystem::path& file) {
 
   AccelerationRecord rec;
   rec.source = name;
-  rec.description = std::string(trim(header[1]));
+  // Header text goes into summary.json, warnings and messages as UTF-8;
+  // older and Windows-written files carry Latin-1 ("D\xfczce, Turkey").
+  rec.description = utf8_from_utf8_or_latin1(trim(header[1]));
   rec.dt_s = size.dt_s;
   // Never trust NPTS for the allocation alone: a corrupt header must not
   // request gigabytes. Each value takes at least two bytes (digit + space).
@@ -544,7 +553,7 @@ AccelerationRecord read_two_column(const std::filesystem::path& file, Accelerati
     if (body.empty()) continue;
     if (body.front() == '#') {
       if (!have_comment) {
-        first_comment = std::string(trim(body.substr(1)));
+        first_comment = utf8_from_utf8_or_latin1(trim(body.substr(1)));  // as an AT2 header's text
         have_comment = !first_comment.empty();
       }
       continue;

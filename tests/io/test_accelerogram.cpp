@@ -18,6 +18,7 @@
 #include "dem_core/ground_motion.h"
 #include "io/accelerogram.h"
 #include "io/input_error.h"
+#include "io/utf8_text.h"
 
 namespace fs = std::filesystem;
 
@@ -175,6 +176,11 @@ TEST(PeerAt2, JmaKobePeaksMatchPublishedValues) {
 
 // ---- line ends -----------------------------------------------------------------
 
+const std::string kSynthHead =
+    "PEER NGA STRONG MOTION DATABASE RECORD\n"
+    "Synthetic, 1/1/2000, Nowhere, 0\n"
+    "ACCELERATION TIME SERIES IN UNITS OF G\n";
+
 void expect_same_record(const fq::AccelerationRecord& a, const fq::AccelerationRecord& b) {
   EXPECT_EQ(a.description, b.description);
   EXPECT_EQ(a.dt_s, b.dt_s);
@@ -239,6 +245,42 @@ TEST(PeerAt2, ReadsFortranEAndDExponentsAndTolerantLineFour) {
   EXPECT_DOUBLE_EQ(rec.dt_s, 0.005);
   const double expected_g[] = {-0.1416764e-3, 1.5, 2.5, -0.125, 4.0};
   for (std::size_t k = 0; k < 5; ++k) EXPECT_DOUBLE_EQ(rec.acceleration_mps2[k], expected_g[k] * kG) << k;
+}
+
+// Header text that is not UTF-8 is Latin-1 (older and Windows-written
+// files): "D\xFCzce" is kept as "Düzce" in UTF-8 (FC = U+00FC -> C3 BC), so
+// that summary.json and the warnings that quote it are UTF-8 (records
+// probe: the raw byte made summary.json unreadable to Python). UTF-8 text
+// is kept as it is.
+TEST(PeerAt2, Latin1HeaderTextIsReadAsLatin1) {
+  TempDir dir;
+  const std::string rest = "ACCELERATION TIME SERIES IN UNITS OF G\nNPTS= 2, DT= .0100 SEC\n  .1E-02  .2E-02\n";
+  EXPECT_EQ(fq::read_peer_at2(dir.write("latin1.AT2", "PEER NGA STRONG MOTION DATABASE RECORD\n"
+                                                      "D\xFCzce, Turkey, 11/12/1999, D\xFCzce, UP\n" + rest))
+                .description,
+            "D\xC3\xBCzce, Turkey, 11/12/1999, D\xC3\xBCzce, UP");
+  EXPECT_EQ(fq::read_peer_at2(dir.write("utf8.AT2", "PEER NGA STRONG MOTION DATABASE RECORD\n"
+                                                    "D\xC3\xBCzce, Turkey, 11/12/1999, D\xC3\xBCzce, UP\n" + rest))
+                .description,
+            "D\xC3\xBCzce, Turkey, 11/12/1999, D\xC3\xBCzce, UP");
+  // A two-column file's first comment is kept the same way.
+  const fq::AccelerationRecord two =
+      fq::read_two_column(dir.write("latin1.txt", "# D\xFCzce station\n0.00 1\n0.01 2\n"), fq::AccelerationUnit::G);
+  EXPECT_EQ(two.description.rfind("D\xC3\xBCzce station [", 0), 0u) << two.description;
+  // Messages quote the file's text as UTF-8 too, and never cut a character
+  // in two when they shorten it (60 bytes are shown).
+  const std::string long_token = std::string(59, '7') + "\xC3\xBC" + "0";
+  for (const std::string& token : {std::string("1.0\xB0"), long_token}) {
+    try {
+      (void)fq::read_peer_at2(dir.write("bad_token.AT2", kSynthHead + "NPTS= 2, DT= .0100 SEC\n  " + token + " 1\n"));
+      ADD_FAILURE() << "accepted " << token;
+    } catch (const fq::InputError& e) {
+      EXPECT_TRUE(fq::is_valid_utf8(e.what())) << e.what();
+      if (token.size() < 10) {
+        EXPECT_NE(std::string(e.what()).find("'1.0\xC2\xB0'"), std::string::npos) << e.what();
+      }
+    }
+  }
 }
 
 // ---- malformed input -----------------------------------------------------------

@@ -21,6 +21,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <optional>
@@ -30,6 +31,8 @@
 
 #include "io/case_file.h"
 #include "io/case_runner.h"
+#include "io/json_writer.h"
+#include "io/utf8_text.h"
 #include "io_test_util.h"
 
 namespace fq {
@@ -657,6 +660,49 @@ TEST(RunWarnings, AVerticalRecordAppliedHorizontallyAndTheReverseAreNamed) {
     const CaseDef shipped = load_case_file(std::filesystem::path(FQ_SOURCE_DIR) / "cases" / name);
     EXPECT_TRUE(ground_motion_direction_warnings(build_scene(shipped).simulation->ground_motion()).empty()) << name;
   }
+}
+
+// A record header in Latin-1 ("D\xFCzce", as older files carry) reaches
+// summary.json through the vertical-component warning that quotes it. The
+// file must be UTF-8 JSON holding "Düzce" (records probe: the raw byte FC
+// made json.loads fail). Checked by this library's validator and,
+// independently, by Python's json reading the bytes as strict UTF-8.
+TEST(RunWarnings, ALatin1RecordHeaderReachesSummaryJsonAsUtf8) {
+  test::TempDir dir;
+  dir.write("duzce_up.at2", "PEER NGA STRONG MOTION DATABASE RECORD\n"
+                            "D\xFCzce, Turkey, 11/12/1999, D\xFCzce, UP\n"
+                            "ACCELERATION TIME SERIES IN UNITS OF G\n"
+                            "NPTS=    5, DT= .0100 SEC\n 0.0 0.001 0.002 0.001 0.0\n");
+  const CaseDef def = load_case_file(dir.write(
+      "duzce.yaml",
+      "framequake_case: 1\n"
+      "name: duzce\n"
+      "time: {dt_s: 1.0e-4, duration_s: 0.01}\n"
+      "materials: [{name: spruce, density_kg_per_m3: 450}]\n"
+      "blocks: [{id: b, size_m: [0.1, 0.1, 0.1], center_m: [0, 0, 1], material: spruce}]\n"
+      "ground_motion: {components: [{file: duzce_up.at2, format: peer_at2, axis: x}]}\n"
+      "output: {frame_interval_s: 0.01, history_interval_s: 0.01}\n"));
+  CaseRunOptions options;
+  options.output_folder = dir.path() / "run";
+  const CaseRunReport report = run_case(def, options);
+  // "D" U+00FC "zce" in UTF-8, U+00FC = C3 BC.
+  const std::string duzce = "D\xC3\xBCzce, Turkey, 11/12/1999, D\xC3\xBCzce, UP";
+  ASSERT_TRUE(mentions(report.warnings, duzce)) << (report.warnings.empty() ? "" : report.warnings[0]);
+  const std::filesystem::path summary_file = dir.path() / "run" / "summary.json";
+  std::ifstream in(summary_file, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  const std::string summary = text.str();
+  EXPECT_TRUE(is_valid_utf8(summary));
+  EXPECT_TRUE(json_is_valid(summary));
+  EXPECT_NE(summary.find(duzce), std::string::npos) << summary;
+  if (std::system("/usr/bin/python3 -c 'import json' > /dev/null 2>&1") != 0)
+    GTEST_SKIP() << "/usr/bin/python3 not available for the independent check";
+  const std::string cmd =
+      "/usr/bin/python3 -c \"import json,sys; d=json.loads(open(sys.argv[1],'rb').read().decode('utf-8')); "
+      "sys.exit(0 if any('D\\u00fczce, Turkey' in w for w in d['warnings']) else 1)\" '" +
+      summary_file.string() + "'";
+  EXPECT_EQ(std::system(cmd.c_str()), 0) << summary;
 }
 
 }  // namespace

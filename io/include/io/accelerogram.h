@@ -14,7 +14,9 @@
 //
 // Both readers accept LF, CRLF and CR line ends, a leading UTF-8 byte-order
 // mark, Fortran E-format numbers with or without a leading digit
-// ("-.1416764E-03") and Fortran D exponents ("1.5D-03").
+// ("-.1416764E-03") and Fortran D exponents ("1.5D-03"). Text kept from a file (an AT2 header's line 2, a two-column
+// file's first comment) and text quoted in messages is UTF-8: a line that
+// is not valid UTF-8 is read as Latin-1.
 #pragma once
 
 #include <filesystem>
@@ -44,7 +46,9 @@ double acceleration_unit_to_mps2(AccelerationUnit u);
 // PEER NGA .AT2: 4 header lines, then NPTS values in g, any number per line
 // (PEER writes 5; the last line may be partial).
 //   line 1  database banner (not checked)
-//   line 2  event, date, station, component -> description (trimmed)
+//   line 2  event, date, station, component -> description (trimmed; text
+//           that is not valid UTF-8 is read as Latin-1 and converted, so
+//           "D\xfczce" from an older file becomes "Düzce")
 //   line 3  "ACCELERATION TIME SERIES IN UNITS OF G"; if it names units
 //           ("UNITS OF X") they must be G, so a velocity (.VT2) or
 //           displacement (.DT2) file given by mistake is refused
