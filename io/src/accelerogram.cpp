@@ -266,40 +266,114 @@ struct At2Size {
   double dt_s = 0.0;
 };
 
-At2Size parse_npts_dt(const std::string& file, std::string_view line) {
-  constexpr int kLine = 4;
-  const std::string shown = quoted(trim(line));
-  At2Size out;
+// The layouts of header line 4 that are read, shown when the line is not
+// one of them, so the message says how to fix the file.
+constexpr const char* kLineFourLayouts =
+    "the layouts read are 'NPTS= 5372, DT= .0100 SEC' (NGA; the two in either order, keywords in any case, "
+    "commas optional), '5372  .0100  NPTS, DT' (older PEER files: the numbers, then their names in the same "
+    "order) and '5372 .0100' (a whole number of samples, then the time step in s with a decimal point)";
 
-  std::string_view tok;
-  std::size_t after = 0;
-  if (!keyword_value(line, "NPTS", 0, tok, after) || tok.empty())
-    throw InputError(file, kLine, "NPTS",
-                     "expected 'NPTS= <number of samples>' on header line 4, got " + shown);
-  {
-    const char* const end = tok.data() + tok.size();
-    const auto [ptr, ec] = std::from_chars(tok.data(), end, out.npts);
-    if (ec != std::errc() || ptr != end)
-      throw InputError(file, kLine, "NPTS", "expected a whole number of samples, got " + quoted(tok));
-  }
-  if (out.npts <= 0)
-    throw InputError(file, kLine, "NPTS", "expected a positive number of samples, got " + quoted(tok));
-  if (out.npts < 2)
+// NPTS from its token on line 4, whatever the layout: a whole number >= 2.
+long long npts_value(const std::string& file, std::string_view tok) {
+  constexpr int kLine = 4;
+  long long npts = 0;
+  const char* const end = tok.data() + tok.size();
+  const auto [ptr, ec] = std::from_chars(tok.data(), end, npts);
+  if (ec != std::errc() || ptr != end)
+    throw InputError(file, kLine, "NPTS", "expected a whole number of samples, got " + quoted(tok));
+  if (npts <= 0) throw InputError(file, kLine, "NPTS", "expected a positive number of samples, got " + quoted(tok));
+  if (npts < 2)
     throw InputError(file, kLine, "NPTS",
                      "expected at least 2 samples (one interval defines the time step), got " + quoted(tok));
+  return npts;
+}
 
-  if (!keyword_value(line, "DT", after, tok, after) || tok.empty())
-    throw InputError(file, kLine, "DT", "expected 'DT= <time step> SEC' after NPTS on header line 4, got " + shown);
+// DT from its token on line 4, whatever the layout: a positive finite time
+// step in s within the sampling bounds.
+double dt_value(const std::string& file, std::string_view tok) {
+  constexpr int kLine = 4;
   // Tolerate a unit glued to the number (".0200SEC").
   std::string_view number = tok;
-  if (number.size() > 3 && find_ci(number.substr(number.size() - 3), "SEC") == 0)
-    number.remove_suffix(3);
+  if (number.size() > 3 && find_ci(number.substr(number.size() - 3), "SEC") == 0) number.remove_suffix(3);
   double dt = 0.0;
   const NumberStatus st = parse_number(number, dt);
   if (st != NumberStatus::Ok || !std::isfinite(dt) || dt <= 0.0)
     throw InputError(file, kLine, "DT", "expected a positive finite time step in s, got " + quoted(tok));
   if (const std::string why = sample_interval_problem(dt); !why.empty()) throw InputError(file, kLine, "DT", why);
-  out.dt_s = dt;
+  return dt;
+}
+
+// A token written as a whole number: digits with an optional sign.
+bool is_whole_number_text(std::string_view tok) {
+  if (!tok.empty() && (tok.front() == '+' || tok.front() == '-')) tok.remove_prefix(1);
+  return !tok.empty() && std::all_of(tok.begin(), tok.end(), [](char c) { return c >= '0' && c <= '9'; });
+}
+
+bool equals_ci(std::string_view a, std::string_view b) { return a.size() == b.size() && find_ci(a, b) == 0; }
+
+// Header line 4 in one of the layouts of kLineFourLayouts:
+//   keywords   "NPTS= 5372, DT= .0100 SEC" or "DT= .0100 SEC, NPTS= 5372"
+//              (either keyword followed by '=' selects this layout);
+//   labelled   "5372  .0100  NPTS, DT" (or "... DT, NPTS" with the numbers
+//              swapped): two numbers, then their names, blanks or commas
+//              between;
+//   bare       "5372 .0100": read only when unambiguous, a whole number
+//              then a number with a decimal point or exponent ("5372 1"
+//              or ".0100 5372" could be either way round and is refused).
+// Every layout's values get the same checks and messages (npts_value,
+// dt_value).
+At2Size parse_npts_dt(const std::string& file, std::string_view line) {
+  constexpr int kLine = 4;
+  const std::string shown = quoted(trim(line));
+  std::string_view npts_tok, dt_tok;
+  std::size_t after = 0;
+  const bool npts_keyword = keyword_value(line, "NPTS", 0, npts_tok, after);
+  const bool dt_keyword = keyword_value(line, "DT", 0, dt_tok, after);
+  if (npts_keyword || dt_keyword) {
+    if (!npts_keyword || npts_tok.empty())
+      throw InputError(file, kLine, "NPTS",
+                       std::string("expected 'NPTS= <number of samples>' with 'DT= <time step> SEC' on header line "
+                                   "4, got ")
+                           .append(shown)
+                           .append("; ")
+                           .append(kLineFourLayouts));
+    if (!dt_keyword || dt_tok.empty())
+      throw InputError(file, kLine, "DT",
+                       std::string("expected 'DT= <time step> SEC' with 'NPTS= <number of samples>' on header line "
+                                   "4, got ")
+                           .append(shown)
+                           .append("; ")
+                           .append(kLineFourLayouts));
+  } else {
+    std::vector<std::string_view> tokens;
+    for (std::size_t i = 0; i < line.size();) {
+      while (i < line.size() && (is_blank(line[i]) || line[i] == ',')) ++i;
+      std::size_t j = i;
+      while (j < line.size() && !is_blank(line[j]) && line[j] != ',') ++j;
+      if (j > i) tokens.push_back(line.substr(i, j - i));
+      i = j;
+    }
+    if (tokens.size() == 4 && equals_ci(tokens[2], "NPTS") && equals_ci(tokens[3], "DT")) {
+      npts_tok = tokens[0];
+      dt_tok = tokens[1];
+    } else if (tokens.size() == 4 && equals_ci(tokens[2], "DT") && equals_ci(tokens[3], "NPTS")) {
+      dt_tok = tokens[0];
+      npts_tok = tokens[1];
+    } else if (tokens.size() == 2 && is_whole_number_text(tokens[0]) && !is_whole_number_text(tokens[1])) {
+      npts_tok = tokens[0];
+      dt_tok = tokens[1];
+    } else {
+      throw InputError(file, kLine, "NPTS",
+                       std::string("expected the number of samples (NPTS) and the time step (DT) on header line 4, "
+                                   "got ")
+                           .append(shown)
+                           .append("; ")
+                           .append(kLineFourLayouts));
+    }
+  }
+  At2Size out;
+  out.npts = npts_value(file, npts_tok);
+  out.dt_s = dt_value(file, dt_tok);
   return out;
 }
 

@@ -247,6 +247,51 @@ TEST(PeerAt2, ReadsFortranEAndDExponentsAndTolerantLineFour) {
   for (std::size_t k = 0; k < 5; ++k) EXPECT_DOUBLE_EQ(rec.acceleration_mps2[k], expected_g[k] * kG) << k;
 }
 
+// Line 4 in the layout of older PEER files (numbers first, then their
+// names), with the NGA keywords in reverse order, and as two bare numbers
+// (records probe: each was refused). NPTS and DT are those written in each
+// file; the values are the same five in g.
+TEST(PeerAt2, ReadsTheOlderAndReversedLineFourLayouts) {
+  TempDir dir;
+  const std::string head =
+      "PEER STRONG MOTION DATABASE RECORD. PROCESSING BY PACIFIC ENGINEERING.\n"
+      "IMPERIAL VALLEY 05/19/40 0439, EL CENTRO ARRAY #9, 180\n"
+      "ACCELERATION TIME SERIES IN UNITS OF G\n";
+  const std::string values = "   .1000000E-02   .2000000E-02  -.3000000E-02   .4000000E-02   .5000000E-02\n";
+  struct Layout {
+    const char* label;
+    const char* line4;
+    double dt_s;
+  };
+  const Layout layouts[] = {
+      {"labelled", "  5    0.0100    NPTS, DT", 0.01},
+      {"labelled_lower_no_comma", "5 .005 npts dt", 0.005},
+      {"labelled_dt_first", "  0.0200    5    DT, NPTS", 0.02},
+      {"reversed_keywords", "DT= 0.0100 SEC, NPTS= 5", 0.01},
+      {"reversed_keywords_spaced", "dt = .0050 sec , npts = 5 ,", 0.005},
+      {"bare", "5 0.0100", 0.01},
+      {"bare_exponent", "   5   1.0E-02", 0.01},
+  };
+  const double expected_g[] = {0.001, 0.002, -0.003, 0.004, 0.005};
+  for (const Layout& l : layouts) {
+    SCOPED_TRACE(l.label);
+    const fq::AccelerationRecord rec =
+        fq::read_peer_at2(dir.write(std::string(l.label) + ".AT2", head + l.line4 + "\n" + values));
+    EXPECT_DOUBLE_EQ(rec.dt_s, l.dt_s);
+    ASSERT_EQ(rec.acceleration_mps2.size(), 5u);
+    for (std::size_t k = 0; k < 5; ++k) EXPECT_DOUBLE_EQ(rec.acceleration_mps2[k], expected_g[k] * kG) << k;
+    EXPECT_EQ(rec.description, "IMPERIAL VALLEY 05/19/40 0439, EL CENTRO ARRAY #9, 180");
+  }
+  // NPTS is checked against the values in every layout.
+  try {
+    (void)fq::read_peer_at2(dir.write("labelled_short.AT2", head + "  6    0.0100    NPTS, DT\n" + values));
+    ADD_FAILURE() << "accepted 5 values for NPTS 6";
+  } catch (const fq::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("declares NPTS=6 but the file holds 5 values"), std::string::npos)
+        << e.what();
+  }
+}
+
 // Header text that is not UTF-8 is Latin-1 (older and Windows-written
 // files): "D\xFCzce" is kept as "Düzce" in UTF-8 (FC = U+00FC -> C3 BC), so
 // that summary.json and the warnings that quote it are UTF-8 (records
@@ -310,6 +355,7 @@ std::vector<BadInput> bad_inputs() {
        "value", "0x00"},
       {"at2_three_header_lines", F::PeerAt2, kHead, 4, "header", "4 header lines"},
       {"at2_no_npts", F::PeerAt2, kHead + "DT= .0100 SEC\n" + five, 4, "NPTS", "NPTS="},
+      {"at2_no_npts_layouts", F::PeerAt2, kHead + "DT= .0100 SEC\n" + five, 4, "NPTS", "the layouts read are"},
       {"at2_no_dt", F::PeerAt2, kHead + "NPTS= 5,\n" + five, 4, "DT", "DT="},
       {"at2_npts_zero", F::PeerAt2, kHead + "NPTS= 0, DT= .01 SEC\n", 4, "NPTS", "positive"},
       {"at2_npts_negative", F::PeerAt2, kHead + "NPTS= -5, DT= .01 SEC\n" + five, 4, "NPTS", "'-5'"},
@@ -354,6 +400,26 @@ std::vector<BadInput> bad_inputs() {
       {"at2_dt_far_too_small", F::PeerAt2, kHead + "NPTS= 5, DT= 1E-300 SEC\n" + five, 4, "DT",
        "expected a sampling interval"},
       {"at2_dt_far_too_large", F::PeerAt2, kHead + "NPTS= 5, DT= 10.0 SEC\n" + five, 4, "DT", "got 10 s"},
+      // The other layouts of line 4 (older PEER files, keywords reversed,
+      // two bare numbers) get the same checks and messages on their values.
+      {"at2_labelled_npts_negative", F::PeerAt2, kHead + "  -5    .0100    NPTS, DT\n" + five, 4, "NPTS", "'-5'"},
+      {"at2_labelled_npts_not_integer", F::PeerAt2, kHead + "  5.5    .0100    NPTS, DT\n" + five, 4, "NPTS",
+       "'5.5'"},
+      {"at2_labelled_dt_zero", F::PeerAt2, kHead + "  5    0.0000    NPTS, DT\n" + five, 4, "DT", "positive"},
+      {"at2_labelled_dt_nan", F::PeerAt2, kHead + "  5    nan    NPTS, DT\n" + five, 4, "DT", "'nan'"},
+      {"at2_labelled_dt_too_large", F::PeerAt2, kHead + "  5    10.0    NPTS, DT\n" + five, 4, "DT", "got 10 s"},
+      {"at2_reversed_npts_zero", F::PeerAt2, kHead + "DT= .0100 SEC, NPTS= 0\n", 4, "NPTS", "positive"},
+      {"at2_reversed_dt_negative", F::PeerAt2, kHead + "DT= -.01 SEC, NPTS= 5\n" + five, 4, "DT", "'-.01'"},
+      {"at2_bare_one_sample", F::PeerAt2, kHead + "1 .0100\n  .1E-02\n", 4, "NPTS", "at least 2"},
+      {"at2_bare_npts_negative", F::PeerAt2, kHead + "-5 .0100\n" + five, 4, "NPTS", "'-5'"},
+      {"at2_bare_dt_zero", F::PeerAt2, kHead + "5 0.0\n" + five, 4, "DT", "positive"},
+      // Lines 4 in none of the layouts, or bare numbers that could be read
+      // either way round, are refused with the layouts listed.
+      {"at2_bare_two_whole_numbers", F::PeerAt2, kHead + "5 1\n" + five, 4, "NPTS", "the layouts read are"},
+      {"at2_bare_dt_first", F::PeerAt2, kHead + ".0100 5\n" + five, 4, "NPTS", "the layouts read are"},
+      {"at2_one_label", F::PeerAt2, kHead + "5 .0100 NPTS\n" + five, 4, "NPTS", "'5372  .0100  NPTS, DT'"},
+      {"at2_labels_first", F::PeerAt2, kHead + "NPTS, DT 5 .0100\n" + five, 4, "NPTS", "older PEER files"},
+      {"at2_three_numbers", F::PeerAt2, kHead + "5 .0100 7\n" + five, 4, "NPTS", "the layouts read are"},
 
       {"two_missing", F::TwoColumn, "<missing>", 0, "file", "not found"},
       {"two_empty", F::TwoColumn, "", 0, "file", "empty"},

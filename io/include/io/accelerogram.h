@@ -52,10 +52,19 @@ double acceleration_unit_to_mps2(AccelerationUnit u);
 //   line 3  "ACCELERATION TIME SERIES IN UNITS OF G"; if it names units
 //           ("UNITS OF X") they must be G, so a velocity (.VT2) or
 //           displacement (.DT2) file given by mistake is refused
-//   line 4  NPTS and DT. Spellings seen in the wild all work:
-//           "NPTS=   7500, DT=   .0200 SEC,", "NPTS =   7500 , DT =   .020 SEC ,",
-//           "NPTS=   2000  DT=   .0200 SEC" (keywords case-insensitive, spaces
-//           around '=' optional, comma between the two optional).
+//   line 4  NPTS and DT, in one of three layouts:
+//           - NGA keywords: "NPTS=   7500, DT=   .0200 SEC,",
+//             "NPTS =   7500 , DT =   .020 SEC ,", "NPTS=   2000  DT=   .0200 SEC",
+//             "DT= .0100 SEC, NPTS= 5372" (keywords case-insensitive, in
+//             either order, spaces around '=' and the comma optional);
+//           - older PEER files, numbers then names: "  5372    0.0100    NPTS, DT"
+//             (or "... DT, NPTS" with the numbers in that order);
+//           - two bare numbers "5372 0.0100", read only when unambiguous:
+//             a whole number (NPTS), then a number with a decimal point or
+//             an exponent (DT).
+//           Every layout's NPTS must be a whole number >= 2 and DT a positive
+//           finite time step in s; a line in none of them is refused with
+//           a message that lists them.
 // The count of values must equal NPTS exactly: a short or long file means a
 // truncated or concatenated download, which must not pass silently.
 // source = file as given; dt_s = DT; values converted with 9.80665 m/s^2 per g.
