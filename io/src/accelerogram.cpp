@@ -81,6 +81,10 @@ std::string load_file(const std::filesystem::path& file, const char* expected_co
     text.append(chunk, static_cast<std::size_t>(in.gcount()));
   }
   if (in.bad()) throw InputError(name, 0, "file", std::string("read error; expected ") + expected_content);
+  // A DOS end-of-file mark (Ctrl-Z, 0x1A) as the last byte(s), which old
+  // DOS-written files carry, is not content. Anywhere else 0x1A is refused
+  // as a non-text byte (require_text): inside a file it means binary data.
+  while (!text.empty() && text.back() == '\x1A') text.pop_back();
   if (text.empty()) throw InputError(name, 0, "file", std::string("the file is empty; expected ") + expected_content);
   // A UTF-8 byte-order mark, as some Windows editors write, is not content.
   if (text.size() >= 3 && text.compare(0, 3, "\xEF\xBB\xBF") == 0) text.erase(0, 3);

@@ -292,6 +292,29 @@ TEST(PeerAt2, ReadsTheOlderAndReversedLineFourLayouts) {
   }
 }
 
+// Old DOS-written files end with Ctrl-Z (0x1A); as the last byte(s) it is
+// not content (records probe: refused as a non-text byte). Elsewhere it
+// still is binary (bad_inputs: at2_eof_mark_inside, two_eof_mark_inside).
+TEST(Accelerogram, ATrailingDosEndOfFileMarkIsIgnored) {
+  TempDir dir;
+  const std::string at2 = kSynthHead + "NPTS= 3, DT= .0100 SEC\n  .1E-02  -.2E-02  .3E-02";
+  const fq::AccelerationRecord plain = fq::read_peer_at2(dir.write("plain.AT2", at2 + "\n"));
+  ASSERT_EQ(plain.acceleration_mps2.size(), 3u);
+  EXPECT_DOUBLE_EQ(plain.acceleration_mps2[1], -0.002 * kG);
+  for (const std::string& tail : {std::string("\n\x1a"), std::string("\x1a"), std::string("\r\n\x1a\x1a")}) {
+    SCOPED_TRACE(tail.size());
+    expect_same_record(plain, fq::read_peer_at2(dir.write("eof.AT2", at2 + tail)));
+  }
+  const std::string two = "# dos file\n0.00 1.5\n0.01 -2.5\n";
+  const fq::AccelerationRecord two_plain = fq::read_two_column(dir.write("plain.txt", two), fq::AccelerationUnit::G);
+  const fq::AccelerationRecord two_eof =
+      fq::read_two_column(dir.write("eof.txt", two + "\x1a"), fq::AccelerationUnit::G);
+  expect_same_record(two_plain, two_eof);
+  EXPECT_EQ(two_eof.acceleration_mps2, (std::vector<double>{1.5 * kG, -2.5 * kG}));
+  // A file of nothing but the mark is empty.
+  EXPECT_THROW((void)fq::read_peer_at2(dir.write("only.AT2", "\x1a")), fq::InputError);
+}
+
 // Header text that is not UTF-8 is Latin-1 (older and Windows-written
 // files): "D\xFCzce" is kept as "Düzce" in UTF-8 (FC = U+00FC -> C3 BC), so
 // that summary.json and the warnings that quote it are UTF-8 (records
@@ -420,6 +443,12 @@ std::vector<BadInput> bad_inputs() {
       {"at2_one_label", F::PeerAt2, kHead + "5 .0100 NPTS\n" + five, 4, "NPTS", "'5372  .0100  NPTS, DT'"},
       {"at2_labels_first", F::PeerAt2, kHead + "NPTS, DT 5 .0100\n" + five, 4, "NPTS", "older PEER files"},
       {"at2_three_numbers", F::PeerAt2, kHead + "5 .0100 7\n" + five, 4, "NPTS", "the layouts read are"},
+      // A DOS end-of-file mark is read only as the file's last byte(s):
+      // inside the data, or followed by a line end, it is binary.
+      {"at2_eof_mark_inside", F::PeerAt2, kHead + "NPTS= 5, DT= .01 SEC\n  .1E-02\x1a  .2E-02  .3E-02  .4E-02  .5E-02\n",
+       5, "value", "0x1A"},
+      {"at2_eof_mark_then_line_end", F::PeerAt2, kHead + "NPTS= 5, DT= .01 SEC\n" + five + "\x1a\n", 6, "value",
+       "0x1A"},
 
       {"two_missing", F::TwoColumn, "<missing>", 0, "file", "not found"},
       {"two_empty", F::TwoColumn, "", 0, "file", "empty"},
@@ -442,6 +471,7 @@ std::vector<BadInput> bad_inputs() {
       // Times in ms read as s: intervals of 10 s.
       {"two_times_in_ms", F::TwoColumn, "0 0.1\n10 0.2\n20 0.3\n", 2, "time", "got 10 s"},
       {"two_typo_time", F::TwoColumn, "0.00 1\n0.01 2\n0.02 3\n0.020001 4\n0.04 5\n", 4, "time", "mistyped"},
+      {"two_eof_mark_inside", F::TwoColumn, "0.00 1\n\x1a\n0.01 2\n", 2, "value", "0x1A"},
   };
 }
 

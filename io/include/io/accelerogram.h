@@ -13,8 +13,9 @@
 //   "time", "acceleration"  the two columns of a two-column file
 //
 // Both readers accept LF, CRLF and CR line ends, a leading UTF-8 byte-order
-// mark, Fortran E-format numbers with or without a leading digit
-// ("-.1416764E-03") and Fortran D exponents ("1.5D-03"). Text kept from a file (an AT2 header's line 2, a two-column
+// mark, a trailing DOS end-of-file mark (0x1A), Fortran E-format numbers
+// with or without a leading digit ("-.1416764E-03") and Fortran D exponents
+// ("1.5D-03"). Text kept from a file (an AT2 header's line 2, a two-column
 // file's first comment) and text quoted in messages is UTF-8: a line that
 // is not valid UTF-8 is read as Latin-1.
 #pragma once
@@ -65,6 +66,8 @@ double acceleration_unit_to_mps2(AccelerationUnit u);
 //           Every layout's NPTS must be a whole number >= 2 and DT a positive
 //           finite time step in s; a line in none of them is refused with
 //           a message that lists them.
+// A DOS end-of-file mark (0x1A, Ctrl-Z) as the file's last byte(s) is
+// ignored (old DOS-written files end so); elsewhere it is a non-text byte.
 // The count of values must equal NPTS exactly: a short or long file means a
 // truncated or concatenated download, which must not pass silently.
 // source = file as given; dt_s = DT; values converted with 9.80665 m/s^2 per g.
