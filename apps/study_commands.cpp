@@ -15,6 +15,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <optional>
 #include <set>
@@ -192,8 +193,10 @@ StudyArgs parse_study_args(int argc, char** argv, const char* help, bool sweep) 
 }
 
 // Shortens the ground-motion window to `length_s` record seconds (never the
-// physics: same model, same record, same scales).
-void shorten_window(fq::CaseDef& def, double length_s) {
+// physics: same model, same record, same scales). `say_when_not_shorter`:
+// note on stderr when the case's window is not longer (a sweep with
+// --record says it per record instead, whose lengths are not the case's).
+void shorten_window(fq::CaseDef& def, double length_s, bool say_when_not_shorter = true) {
   if (!def.ground_motion)
     throw fq::InputError(def.source_file.string(), 0, "ground_motion",
                          "--window-length given but the case has no ground motion");
@@ -203,7 +206,7 @@ void shorten_window(fq::CaseDef& def, double length_s) {
   double window_s = gm.window_length_s;
   for (const fq::GroundMotionComponentDef& c : gm.components)
     window_s = std::min(window_s, c.record.duration_s() - gm.window_start_s);
-  if (length_s >= window_s)
+  if (length_s >= window_s && say_when_not_shorter)
     std::cerr << "framequake: note: --window-length " << length_s << " s is not shorter than the window of '"
               << def.name << "' (" << window_s << " record s); its whole window is used\n";
   // An option that leaves less than one step is the option's fault, named
@@ -224,6 +227,52 @@ void shorten_window(fq::CaseDef& def, double length_s) {
     const double simulated = def.ground_motion->window_length_s * def.ground_motion->time_scale;
     def.time.duration_s = std::min(*def.time.duration_s, simulated);
   }
+}
+
+// A case's window before --window-length shortened it, to tell what the
+// option cut.
+struct UnshortenedWindow {
+  double window_length_s;
+  std::optional<double> duration_s;
+};
+
+UnshortenedWindow unshortened_window(const fq::CaseDef& def) {
+  return {def.ground_motion ? def.ground_motion->window_length_s : 0.0, def.time.duration_s};
+}
+
+// The part of its record a study's run applied, for the tables' notes.
+struct WindowUse {
+  std::string label;    // the case, or in a sweep the case and record
+  double start_s;       // window start (record s)
+  double applied_s;     // record seconds run
+  double record_s;      // the shortest record's duration (record s)
+  double unshortened_s; // record seconds the run would have applied without --window-length
+  bool cut() const { return applied_s < unshortened_s; }
+};
+
+// Record seconds of its ground motion a run applies: the window, cut by the
+// end of the shortest record and by time.duration_s, as the run does.
+double applied_window_s(const fq::GroundMotionDef& gm, double window_length_s,
+                        const std::optional<double>& duration_s) {
+  double w = window_length_s;
+  for (const fq::GroundMotionComponentDef& c : gm.components)
+    w = std::min(w, c.record.duration_s() - gm.window_start_s);
+  if (duration_s) w = std::min(w, *duration_s / gm.time_scale);
+  return w;
+}
+
+// `job_def` as it will run (shortened, records in place); `before` the
+// case's own window.
+WindowUse window_use(std::string label, const fq::CaseDef& job_def, const UnshortenedWindow& before) {
+  const fq::GroundMotionDef& gm = *job_def.ground_motion;
+  WindowUse u;
+  u.label = std::move(label);
+  u.start_s = gm.window_start_s;
+  u.applied_s = applied_window_s(gm, gm.window_length_s, job_def.time.duration_s);
+  u.unshortened_s = applied_window_s(gm, before.window_length_s, before.duration_s);
+  u.record_s = std::numeric_limits<double>::infinity();
+  for (const fq::GroundMotionComponentDef& c : gm.components) u.record_s = std::min(u.record_s, c.record.duration_s());
+  return u;
 }
 
 std::string fixed(double x, int digits) {
@@ -776,14 +825,37 @@ bool run_jobs(const StudyArgs& args, const std::vector<fq::BatchJob>& jobs, cons
   return true;
 }
 
-// The Markdown tables' note when --window-length cut the record ("" when
-// not): `what` holds for that part of the record only.
-std::string window_length_note(const StudyArgs& args, const char* what) {
+// The Markdown tables' note on --window-length ("" without it): what each
+// run applied of its record, since `what` holds for that part only. A
+// window not longer than the option is run whole, and the note says so (it
+// said "cut to the first 100 record seconds" of a 6 s window; records
+// probe).
+std::string window_length_note(const StudyArgs& args, const std::vector<WindowUse>& uses, const char* what) {
   if (!args.window_length_s) return "";
+  const double length_s = *args.window_length_s;
   std::ostringstream note;
-  note << "\nGround motion cut to the first " << *args.window_length_s
-       << " record seconds of each case's window (--window-length): " << what
-       << " hold for that part of the record only.\n";
+  if (std::all_of(uses.begin(), uses.end(), [](const WindowUse& u) { return u.cut(); })) {
+    note << "\nGround motion cut to the first " << length_s
+         << " record seconds of each case's window (--window-length): " << what
+         << " hold for that part of the record only.\n";
+    return note.str();
+  }
+  note << "\nGround motion with --window-length " << length_s << " s:";
+  for (const WindowUse& u : uses) {
+    note << "\n- " << u.label << ": ";
+    if (u.cut()) {
+      note << "cut to the first " << length_s << " record seconds of its window; " << what
+           << " hold for that part of the record only";
+      continue;
+    }
+    note << "not cut (its window is not longer than " << length_s << " s): it ran ";
+    if (u.start_s == 0.0 && u.applied_s == u.record_s)
+      note << "the whole record (" << u.applied_s << " s)";
+    else
+      note << "its whole window, record seconds " << u.start_s << " to " << u.start_s + u.applied_s << " ("
+           << u.applied_s << " s)";
+  }
+  note << "\n";
   return note.str();
 }
 
@@ -807,6 +879,7 @@ int finish_with_figure(const StudyArgs& args, const std::vector<fq::BatchOutcome
 int command_compare(int argc, char** argv, const std::atomic<bool>* stop_requested) {
   const StudyArgs args = parse_study_args(argc, argv, kCompareHelp, false);
   std::vector<fq::BatchJob> jobs;
+  std::vector<WindowUse> window_uses;  // with --window-length: what each case runs of its record
   try {
     std::vector<fq::CaseDef> defs = load_cases(args.cases);
     std::set<std::string> names;
@@ -814,8 +887,10 @@ int command_compare(int argc, char** argv, const std::atomic<bool>* stop_request
       if (!names.insert(def.name).second)
         throw fq::InputError(def.source_file.string(), name_line(def), "name",
                              "two cases are named '" + def.name + "'; each case needs its own output folder");
+      const UnshortenedWindow before = unshortened_window(def);
       if (args.window_length_s) shorten_window(def, *args.window_length_s);
       check_runnable(def, args);
+      if (args.window_length_s) window_uses.push_back(window_use(def.name, def, before));
       fq::BatchJob job;
       job.label = def.name;
       job.output_folder = args.out / def.name;
@@ -919,7 +994,7 @@ int command_compare(int argc, char** argv, const std::atomic<bool>* stop_request
     // A shortened window can miss the record's strongest part, and with
     // it a verdict (workflow probe: B standing at --window-length 8,
     // damaged over its whole window).
-    md << window_length_note(args, "the verdicts");
+    md << window_length_note(args, window_uses, "the verdicts");
   }
   for (std::size_t i = 0; i < jobs.size(); ++i)
     if (!outcomes[i].ok) md << "\n" << jobs[i].label << ": " << outcomes[i].error << "\n";
@@ -940,6 +1015,7 @@ int command_sweep(int argc, char** argv, const std::atomic<bool>* stop_requested
   };
   std::vector<JobKey> keys;
   std::vector<std::string> case_order, record_order;
+  std::vector<WindowUse> window_uses;  // with --window-length: what each case runs of each record
   try {
     std::vector<fq::CaseDef> defs = load_cases(args.cases);
     std::vector<fq::AccelerationRecord> records;
@@ -959,7 +1035,8 @@ int command_sweep(int argc, char** argv, const std::atomic<bool>* stop_requested
                              "two cases are named '" + def.name + "'; each case needs its own output folders");
       if (!def.ground_motion)
         throw fq::InputError(def.source_file.string(), 0, "ground_motion", "a sweep needs a case with a ground motion");
-      if (args.window_length_s) shorten_window(def, *args.window_length_s);
+      const UnshortenedWindow before = unshortened_window(def);
+      if (args.window_length_s) shorten_window(def, *args.window_length_s, records.empty());
       check_runnable(def, args);
       case_order.push_back(def.name);
       // Variants of the motion: the case's own record, or each --record.
@@ -994,6 +1071,14 @@ int command_sweep(int argc, char** argv, const std::atomic<bool>* stop_requested
       for (auto& [record_name, variant] : variants) {
         if (std::find(record_order.begin(), record_order.end(), record_name) == record_order.end())
           record_order.push_back(record_name);
+        if (args.window_length_s) {
+          window_uses.push_back(window_use(def.name + ", record " + record_name, variant, before));
+          // shorten_window's note spoke of the case's own record, not this one.
+          if (!records.empty() && !window_uses.back().cut())
+            std::cerr << "framequake: note: --window-length " << *args.window_length_s
+                      << " s is not shorter than the window of '" << def.name << "' with --record " << record_name
+                      << " (" << window_uses.back().applied_s << " record s); its whole window is used\n";
+        }
         for (double scale : args.scales) {
           fq::BatchJob job;
           job.def = variant;
@@ -1120,7 +1205,7 @@ int command_sweep(int argc, char** argv, const std::atomic<bool>* stop_requested
     }
     if (!skipped.empty()) md << "\nNot counted above (the run did not complete):" << skipped << "\n";
   }
-  md << window_length_note(args, "the collapse scales");
+  md << window_length_note(args, window_uses, "the collapse scales");
   if (!write_text(args.out / "sweep.csv", csv.str()) || !write_text(args.out / "collapse_scales.csv", cs.str()) ||
       !write_text(args.out / "collapse_scales.md", md.str()))
     return kExitOutputFailed;

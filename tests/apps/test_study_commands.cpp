@@ -1017,6 +1017,93 @@ TEST(StudyCommands, AWindowLengthLongerThanTheCasesWindowIsNoted) {
       << r.err;
 }
 
+// The tables' note on --window-length says what each run applied of its
+// record. A window not longer than the option is run whole, and the note
+// said "cut to the first 100 record seconds" of it (records probe: a 6 s
+// window). Two blocks on a 0.3 s record (samples 0.00-0.30 s, written
+// below): "whole" runs the record to its end, "windowed" its own window of
+// record seconds 0.05 to 0.25. At --window-length 100 neither is cut; at
+// 0.25 "whole" is cut to 0.25 s and "windowed" (0.2 s) runs whole.
+TEST(StudyCommands, TheWindowNoteSaysWhatEachRunApplied) {
+  TempDir dir;
+  {
+    std::ofstream record(dir.path() / "short.txt");
+    record << std::fixed << std::setprecision(2);
+    for (int k = 0; k <= 30; ++k) record << 0.01 * k << " " << 0.5 << "\n";
+  }
+  auto block = [&](const std::string& name, const std::string& window) {
+    std::ofstream(dir.path() / (name + ".yaml"))
+        << "framequake_case: 1\n"
+           "name: " << name << "\n"
+           "time: {dt_s: 1.0e-4}\n"
+           "materials: [{name: spruce, density_kg_per_m3: 450}]\n"
+           "blocks: [{id: cube, size_m: [0.1, 0.1, 0.1], center_m: [0, 0, 0.05], material: spruce}]\n"
+           "contact:\n"
+           "  ground: {normal_stiffness_N_per_m: 1.0e6, restitution: 0.5, friction_coefficient: 0.4}\n"
+           "ground_motion:\n" << window << "  components: [{file: short.txt, format: two_column, axis: x}]\n";
+    return (dir.path() / (name + ".yaml")).string();
+  };
+  const std::string whole = block("whole", ""),
+                    windowed = block("windowed", "  window_start_s: 0.05\n  window_length_s: 0.2\n");
+
+  const auto longer = run_app({"compare", whole, windowed, "--window-length", "100", "--no-figure", "--out",
+                               (dir.path() / "cmp100").string()},
+                              dir.path());
+  ASSERT_EQ(longer.code, 0) << longer.err;
+  const std::string md100 = read_text(dir.path() / "cmp100" / "comparison.md");
+  EXPECT_EQ(md100.find("cut to the first"), std::string::npos) << md100;
+  EXPECT_NE(md100.find("Ground motion with --window-length 100 s:\n"
+                       "- whole: not cut (its window is not longer than 100 s): it ran the whole record (0.3 s)\n"
+                       "- windowed: not cut (its window is not longer than 100 s): it ran its whole window, record "
+                       "seconds 0.05 to 0.25 (0.2 s)\n"),
+            std::string::npos)
+      << md100;
+
+  const auto mixed = run_app({"compare", whole, windowed, "--window-length", "0.25", "--no-figure", "--out",
+                              (dir.path() / "cmp025").string()},
+                             dir.path());
+  ASSERT_EQ(mixed.code, 0) << mixed.err;
+  const std::string md025 = read_text(dir.path() / "cmp025" / "comparison.md");
+  EXPECT_NE(md025.find("- whole: cut to the first 0.25 record seconds of its window; the verdicts hold for that "
+                       "part of the record only\n"
+                       "- windowed: not cut (its window is not longer than 0.25 s): it ran its whole window, record "
+                       "seconds 0.05 to 0.25 (0.2 s)\n"),
+            std::string::npos)
+      << md025;
+
+  // A sweep's collapse table says the same.
+  const auto sweep = run_app({"sweep", whole, "--scales", "1", "--window-length", "100", "--no-figure", "--out",
+                              (dir.path() / "sweep100").string()},
+                             dir.path());
+  ASSERT_EQ(sweep.code, 0) << sweep.err;
+  const std::string smd = read_text(dir.path() / "sweep100" / "collapse_scales.md");
+  EXPECT_EQ(smd.find("cut to the first"), std::string::npos) << smd;
+  EXPECT_NE(smd.find("- whole, record short: not cut (its window is not longer than 100 s): it ran the whole record "
+                     "(0.3 s)\n"),
+            std::string::npos)
+      << smd;
+
+  // With --record the window is that record's: a 0.5 s record (NPTS 51,
+  // DT 0.01) is cut to 0.4 s although the case's own 0.3 s record is not
+  // longer than 0.4 s, which the note on stderr said of the run.
+  {
+    std::ofstream at2(dir.path() / "longer.AT2");
+    at2 << "PEER NGA STRONG MOTION DATABASE RECORD\nSynthetic, 1/1/2000, Nowhere, 0\n"
+           "ACCELERATION TIME SERIES IN UNITS OF G\nNPTS=   51, DT=   .0100 SEC\n";
+    for (int k = 0; k < 51; ++k) at2 << "  .1000000E-01" << (k % 5 == 4 ? "\n" : "");
+    at2 << "\n";
+  }
+  const auto with_record = run_app({"sweep", whole, "--scales", "1", "--record", (dir.path() / "longer.AT2").string(),
+                                    "--window-length", "0.4", "--no-figure", "--out", (dir.path() / "sweep04").string()},
+                                   dir.path());
+  ASSERT_EQ(with_record.code, 0) << with_record.err;
+  EXPECT_EQ(with_record.err.find("is not shorter than the window"), std::string::npos) << with_record.err;
+  EXPECT_NE(read_text(dir.path() / "sweep04" / "collapse_scales.md")
+                .find("Ground motion cut to the first 0.4 record seconds of each case's window (--window-length): "
+                      "the collapse scales hold for that part of the record only."),
+            std::string::npos);
+}
+
 // The collapse table counts only runs that completed: an unstable run is
 // listed under it, not assessed. (A run failing at its folder, the first
 // half of this test until 2026-11-26, is now refused before any run:
