@@ -392,18 +392,44 @@ fs::path find_plot_script() {
   return {};
 }
 
-int run_figure(const std::string& kind, const fs::path& folder, const char* file) {
+std::string plot_interpreter() {
   const char* python_env = std::getenv("FQ_PYTHON");
-  const std::string python = python_env && *python_env ? python_env : "/usr/bin/python3";
+  return python_env && *python_env ? python_env : "/usr/bin/python3";
+}
+
+std::string shell_quoted(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+// Whether the figure can be drawn: the script is there and its
+// interpreter imports matplotlib (fq_plot.py --check). Asked before a
+// study's first run; a missing interpreter or matplotlib was found only
+// after every run (docs probe, 2026-11-27: FQ_PYTHON=/nonexistent ran the
+// whole study, then exited 3), though the README promised the study would
+// stop before its first run.
+bool figure_can_be_drawn() {
+  const fs::path script = find_plot_script();
+  if (script.empty()) return false;
+  const std::string command = shell_quoted(plot_interpreter()) + " " + shell_quoted(script.string()) + " --check";
+  const int status = std::system((command + " > /dev/null").c_str());
+  if (status == 0) return true;
+  const int code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  std::cerr << "framequake: error: the figure cannot be drawn: " << command << " exited with status " << code;
+  if (code == kPlotNoMatplotlib || code == kShellCommandNotFound)
+    std::cerr << " (it needs Debian's python3 with python3-matplotlib: bash scripts/install_deps.sh; FQ_PYTHON "
+                 "selects another interpreter)";
+  std::cerr << "; give --no-figure to write the tables only (nothing was run)\n";
+  return false;
+}
+
+int run_figure(const std::string& kind, const fs::path& folder, const char* file) {
+  const std::string python = plot_interpreter();
   const fs::path script = find_plot_script();
   if (script.empty()) return kExitOutputFailed;
-  auto quoted = [](const std::string& s) {
-    std::string q = "'";
-    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return q + "'";
-  };
-  const std::string command =
-      quoted(python) + " " + quoted(script.string()) + " " + kind + " " + quoted(folder.string());
+  const std::string command = shell_quoted(python) + " " + shell_quoted(script.string()) + " " + kind + " " +
+                              shell_quoted(folder.string());
   const int status = std::system(command.c_str());
   if (status != 0) {
     // The script removes its temporary file itself; a script killed
@@ -795,9 +821,9 @@ bool run_jobs(const StudyArgs& args, const std::vector<fq::BatchJob>& jobs, cons
       return false;
     }
   }
-  // A figure that cannot be drawn for want of its script is said before
-  // any run, not after all of them.
-  if (args.figure && find_plot_script().empty()) return false;
+  // A figure that cannot be drawn for want of its script, its interpreter
+  // or matplotlib is said before any run, not after all of them.
+  if (args.figure && !figure_can_be_drawn()) return false;
   if (!prepare_folder(args.out)) return false;
   try {
     lock = fq::FolderLock(args.out);

@@ -14,6 +14,9 @@ programs produce is drawn here, with one style and units on every axis.
     fq_plot.py work-precision DIR_OR_CSV
                              work_precision.csv (validation/work_precision)
                              -> work_precision.png beside it
+    fq_plot.py --check       exit 0 if the figures can be drawn (matplotlib
+                             imports), 4 if not: framequake asks before a
+                             study's first run
 
 Run with Debian's python3 (python3-matplotlib): /usr/bin/python3.
 """
@@ -454,6 +457,8 @@ def main(argv):
     if len(argv) == 2 and argv[1] in ("-h", "--help"):
         print(USAGE)
         return
+    if len(argv) == 2 and argv[1] == "--check":
+        return  # matplotlib imported above
     plt.rcParams.update(STYLE)
     if len(argv) != 3 or argv[1] not in COMMANDS:
         fail(USAGE)

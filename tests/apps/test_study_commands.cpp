@@ -564,7 +564,9 @@ TEST(StudyCommands, AUsersOwnFigureOrRowsUnderATablesNameStopTheStudy) {
 TEST(StudyCommands, CtrlCWhileTheFigureIsDrawnIsAStopNotAFailure) {
   TempDir dir;
   const fs::path fake = dir.path() / "python_interrupted.sh";
-  std::ofstream(fake) << "#!/bin/sh\nkill -INT $$\nsleep 5\n";
+  // (It answers the check before the runs, fq_plot.py --check, as a
+  // python with matplotlib does.)
+  std::ofstream(fake) << "#!/bin/sh\n[ \"$2\" = --check ] && exit 0\nkill -INT $$\nsleep 5\n";
   fs::permissions(fake, fs::perms::owner_all);
   ::setenv("FQ_PYTHON", fake.c_str(), 1);
   const fs::path cmp = dir.path() / "cmp";
@@ -681,7 +683,8 @@ TEST(StudyCommands, TheFigureScriptIsFoundBesideTheProgramOrWhereFqPlotScriptSay
   const std::string block = (kSource / "cases/demo_falling_block.yaml").string();
   auto stand_in = [](const fs::path& p, const std::string& tag) {
     fs::create_directories(p.parent_path());
-    std::ofstream(p) << "echo " << tag << " > \"$2/called.txt\"\ntouch \"$2/first_storey_drift.png\"\n";
+    std::ofstream(p) << "[ \"$1\" = --check ] && exit 0\necho " << tag
+                     << " > \"$2/called.txt\"\ntouch \"$2/first_storey_drift.png\"\n";
   };
   // A copy of the program with a script beside it.
   const fs::path bin = dir.path() / "bin";
@@ -764,6 +767,22 @@ TEST(StudyCommands, AFigureTheDiskRefusesIsOneLineAndLeavesNoTemporaryFile) {
   EXPECT_NE(m.err.find("matplotlib is missing"), std::string::npos) << m.err;
   EXPECT_NE(m.err.find("python3-matplotlib: bash scripts/install_deps.sh"), std::string::npos) << m.err;
   EXPECT_EQ(m.err.find("Traceback"), std::string::npos) << m.err;
+  // Said before the first run (fq_plot.py --check), as the README says:
+  // the study ran every case first, then failed (docs probe, 2026-11-27).
+  EXPECT_NE(m.err.find("(nothing was run)"), std::string::npos) << m.err;
+  EXPECT_FALSE(fs::exists(dir.path() / "cmp2" / "comparison.csv")) << "a run started";
+  EXPECT_FALSE(fs::exists(dir.path() / "cmp2" / "demo_portal_frame")) << "a run started";
+  // So is an interpreter that is not there.
+  ::setenv("FQ_PYTHON", (dir.path() / "no_such_python").c_str(), 1);
+  const auto absent = run_app({"compare", portal, "--window-length", "0.05", "--out", (dir.path() / "cmp3").string()},
+                              dir.path());
+  ::unsetenv("FQ_PYTHON");
+  EXPECT_EQ(absent.code, 3) << absent.err;
+  EXPECT_NE(absent.err.find("exited with status 127 (it needs Debian's python3 with python3-matplotlib"),
+            std::string::npos)
+      << absent.err;
+  EXPECT_NE(absent.err.find("(nothing was run)"), std::string::npos) << absent.err;
+  EXPECT_FALSE(fs::exists(dir.path() / "cmp3" / "demo_portal_frame")) << "a run started";
 }
 
 // The comparison gives the peak drift along y as well as x, and the figure
