@@ -56,6 +56,7 @@ std::int32_t JointSystem::add_joint(const BodyStore& bodies, const JointDef& def
   joint_frame_world_.push_back(def.frame);
   joint_break_.push_back(def.fracture);
   joint_broken_.push_back(0);
+  joint_books_open_.push_back(0);
   joint_break_pending_.push_back(0);
   joint_event_pending_.push_back(0);
 
@@ -323,8 +324,12 @@ double JointSystem::spring_elastic_J(std::size_t s) const {
       break;
   }
   if (out.failed) {
-    // Deleted: the force drops to zero now and forever; what it stored is
-    // released as plastic work.
+    // Deleted: the force drops to zero now and forever. Released as plastic
+    // work: what it stored at the last step, plus its work over this step's
+    // increment by the trapezoid of the forces the dynamics applied, that
+    // last force and now 0 (it acted for the whole last step; the ledger's
+    // kinetic energy counts that step's work up to here: without this term
+    // the ledger lost f v dt / 2 per spring, tests/joints/test_fracture_energy.cpp).
     pending_[s] |= kPendingDelete;
     failure_force_N_[s] = law_force_prev;
     const bool tension = delta > 0.0;
@@ -333,7 +338,8 @@ double JointSystem::spring_elastic_J(std::size_t s) const {
       yielded_[s] = 1;
       pending_[s] |= kPendingYield;
     }
-    if (has_prev_[s]) plastic_J_[s] += stored_energy_J_(s, law_force_prev, delta_prev);
+    if (has_prev_[s])
+      plastic_J_[s] += stored_energy_J_(s, law_force_prev, delta_prev) + 0.5 * law_force_prev * (delta - delta_prev);
     alive_[s] = 0;
     law_force_N_[s] = 0.0;
     has_prev_[s] = 0;  // also tells spring_status a deletion from a joint's break
@@ -395,14 +401,41 @@ Mat3 JointSystem::update_joint_frame_(const BodyStore& bodies, std::size_t j) {
   // one-sided springs, jumped its force and energy.) The sum vanishes only
   // at a whole relative turn, where its rotation is continuous up to that
   // one instant (q and -q are the same rotation).
+  const Mat3 frame = joint_frame_now_(bodies, j);
+  joint_frame_world_[j] = frame;
+  return frame;
+}
+
+Mat3 JointSystem::joint_frame_now_(const BodyStore& bodies, std::size_t j) const {
   const Quat qa = bodies.orientation[joint_body_a_[j]] * joint_frame_a_[j];
   const Quat qb = bodies.orientation[joint_body_b_[j]] * joint_frame_b_[j];
   Quat qm;
   qm.coeffs() = qa.coeffs() + qb.coeffs();
   qm.normalize();
-  const Mat3 frame = qm.toRotationMatrix();
-  joint_frame_world_[j] = frame;
-  return frame;
+  return qm.toRotationMatrix();
+}
+
+// The springs a break took out (finish_step, kill_spring_) acted with their
+// law force of the breaking step n for that whole step; their books hold
+// what they stored at n. At n + 1, the first evaluation after the break,
+// the trapezoid of that force and the 0 that follows over the increment
+// delta(n+1) - delta(n) completes them, as for a spring its law deletes
+// (evaluate_spring_). delta(n+1) by joint_step_'s geometry (half-way frame,
+// ends on the bodies), kept local: the springs' deformations, ends and the
+// joint's frame stay those of the break for the output.
+void JointSystem::close_broken_joint_books_(const BodyStore& bodies, std::size_t j) {
+  joint_books_open_[j] = 0;
+  const BodyId a = joint_body_a_[j], b = joint_body_b_[j];
+  const Mat3 frame = joint_frame_now_(bodies, j);
+  for (auto s = std::size_t(joint_first_[j]); s < std::size_t(joint_first_[j + 1]); ++s) {
+    const double f = law_force_N_[s];
+    if (f == 0.0) continue;  // deleted earlier by its law (force already 0), or nothing to book
+    law_force_N_[s] = 0.0;
+    const Vec3 d = (bodies.position_m[b] + bodies.rotation[b] * attach_b_local_m_[s]) -
+                   (bodies.position_m[a] + bodies.rotation[a] * attach_a_local_m_[s]);
+    const double delta = spring_axis_[s] >= 0 ? frame.col(spring_axis_[s]).dot(d) : d.norm() - rest_length_m_[s];
+    plastic_J_[s] += 0.5 * f * (delta - delta_m_[s]);
+  }
 }
 
 // One joint, one pass (joint_system.h). Writes only what joint j owns: its
@@ -413,6 +446,7 @@ void JointSystem::joint_step_(const BodyStore& bodies, std::size_t j) {
     slot_force_N_[2 * j + 1].setZero();
     slot_torque_Nm_[2 * j].setZero();
     slot_torque_Nm_[2 * j + 1].setZero();
+    if (joint_books_open_[j]) close_broken_joint_books_(bodies, j);
     return;
   }
   const BodyId a = joint_body_a_[j], b = joint_body_b_[j];
@@ -621,9 +655,11 @@ const std::vector<Vec3>& JointSystem::spring_end_b_m() const {
 void JointSystem::kill_spring_(std::size_t s) {
   if (!alive_[s]) return;
   // has_prev_ stays set: spring_status reports the spring as JointBroken.
+  // law_force_N_ keeps the force of this last step until the next
+  // evaluation books its work over the step (close_broken_joint_books_);
+  // nothing reads a dead spring's law force as a force.
   plastic_J_[s] += spring_elastic_J(s);
   alive_[s] = 0;
-  law_force_N_[s] = 0.0;
   spring_force_current_ = false;
   point_plain_[std::size_t(spring_point_[s])] = 0;
 }
@@ -719,6 +755,7 @@ void JointSystem::finish_step(const BodyStore& bodies, const StepInfo& step, Eve
                                                                         : "shear_spring_deleted";
       events.add(e);
       joint_broken_[j] = 1;
+      joint_books_open_[j] = 1;
       for (std::size_t s = first; s < last; ++s) kill_spring_(s);
       if (bonded_) bonded_->release(joint_body_a_[j], joint_body_b_[j]);
     }

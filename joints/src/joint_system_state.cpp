@@ -17,7 +17,9 @@ namespace {
 // 3: no copies of what a spring's deformation and law force give (previous
 //    values, total and dashpot force, stored energy); dashpot books per point.
 // 4: dashpot books per joint (the dashpot resultant, joint_system.h "Energy").
-constexpr std::uint32_t kJointStateVersion = 4;
+// 5: joints broken in the last step whose books close at the next one
+//    (their springs keep the law force of the break until then).
+constexpr std::uint32_t kJointStateVersion = 5;
 
 template <class T>
 void read_into(StateReader& in, std::vector<T>& out_values, const char* what) {
@@ -41,6 +43,7 @@ void JointSystem::save_state(StateWriter& out) const {
 
   out.mat3s(joint_frame_world_);
   out.vec(joint_broken_);
+  out.vec(joint_books_open_);
   out.vec(joint_break_pending_);
   out.vec(joint_event_pending_);
 
@@ -111,6 +114,7 @@ void JointSystem::load_state(StateReader& in) {
   // leaves a half-loaded system, which the caller discards.
   joint_frame_world_ = in.mat3s("joint frames", joint_frame_world_.size());
   read_into(in, joint_broken_, "joint broken flags");
+  read_into(in, joint_books_open_, "joint open books flags");
   read_into(in, joint_break_pending_, "joint break flags");
   read_into(in, joint_event_pending_, "joint event flags");
 

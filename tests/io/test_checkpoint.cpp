@@ -206,8 +206,9 @@ TEST(Checkpoint, StateForAnotherSceneIsRefusedWithAReason) {
     EXPECT_NE(std::string(e.what()).find("providers"), std::string::npos) << e.what();
   }
 
-  // A joint section of another layout (version 3 kept dashpot books per
-  // point, joint_system_state.cpp) is refused with both versions named.
+  // A joint section of another layout (version 4 had no flags for the
+  // books a break leaves open, joint_system_state.cpp) is refused with both
+  // versions named.
   {
     std::string other = saved.bytes();
     // A section is its marker (state_io.h), its name's length and its name;
@@ -219,16 +220,16 @@ TEST(Checkpoint, StateForAnotherSceneIsRefusedWithAReason) {
     const std::size_t at = framed + tag.size();
     std::uint32_t version = 0;
     std::memcpy(&version, other.data() + at + tag.size(), sizeof version);
-    EXPECT_EQ(version, 4u);
-    version = 3;
+    EXPECT_EQ(version, 5u);
+    version = 4;
     std::memcpy(other.data() + at + tag.size(), &version, sizeof version);
     Scene c = build_scene(def);
     StateReader old_layout(other);
     try {
       c.simulation->load_state(old_layout);
-      ADD_FAILURE() << "a joint state of version 3 was accepted";
+      ADD_FAILURE() << "a joint state of version 4 was accepted";
     } catch (const StateFormatError& e) {
-      EXPECT_NE(std::string(e.what()).find("joint state version 3, this build reads 4"), std::string::npos)
+      EXPECT_NE(std::string(e.what()).find("joint state version 4, this build reads 5"), std::string::npos)
           << e.what();
     }
   }

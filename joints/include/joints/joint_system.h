@@ -193,6 +193,11 @@ class JointSystem final : public ForceProvider {
   void joint_step_(const BodyStore& bodies, std::size_t j);
   // The current frame of joint j (stored in joint_frame_world_ and returned).
   Mat3 update_joint_frame_(const BodyStore& bodies, std::size_t j);
+  // The same frame, not stored.
+  Mat3 joint_frame_now_(const BodyStore& bodies, std::size_t j) const;
+  // Books of the springs joint j's break took out, at the first evaluation
+  // after it (joint_books_open_): their last force's work over that step.
+  void close_broken_joint_books_(const BodyStore& bodies, std::size_t j);
   // The end of a joint's step: its summed force and torque on a (about x_a)
   // into its two slots, the fracture test and the event flag.
   // With it, the joint's dashpot resultant (force sum on a and its moment
@@ -282,6 +287,9 @@ class JointSystem final : public ForceProvider {
   std::vector<std::int32_t> joint_first_;            // springs [first[j], first[j+1])
   std::vector<JointBreakDef> joint_break_;
   std::vector<std::uint8_t> joint_broken_;
+  // Broken in the last finish_step; its springs' law forces of that step
+  // wait for close_broken_joint_books_.
+  std::vector<std::uint8_t> joint_books_open_;
   std::vector<std::uint8_t> joint_break_pending_;
   std::vector<std::uint8_t> joint_event_pending_;  // any spring event or break to emit
 
