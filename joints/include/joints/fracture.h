@@ -15,7 +15,8 @@
 //   Never                    the joint only loses springs
 // A broken joint transmits no force from the next step on; its pair is
 // released from BondedPairs in finish_step (ascending joint id) and the
-// energy still stored in its springs is booked as dissipated (plastic).
+// energy still stored in its springs is booked as dissipated (plastic),
+// with their last force's work over the step after (joint_system.h, Energy).
 #pragma once
 
 #include <cstdint>

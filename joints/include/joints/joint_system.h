@@ -41,7 +41,11 @@
 // plastic = work done minus stored (work by the trapezoid rule on each
 // step's deformation increment, kept only once a spring has left its initial
 // linear branch -- until then work equals stored exactly) plus energy
-// released at deletion/breaking;
+// released at deletion/breaking: what the spring stored at the last step it
+// acted, plus the work of that last force over the next deformation
+// increment by the trapezoid with the 0 that follows (the dynamics applied
+// it for that whole step; for a joint's break booked at the next
+// evaluation, close_broken_joint_books_; joints/README.md "Fracture book");
 // viscous = sum over steps of dt P_d(v_n), P_d the power the dashpot forces
 // (and their share of the frame torque) take from the bodies, evaluated on
 // the geometry of step n with v_n = (v(n-1/2) + v(n+1/2))/2 -- exactly the
