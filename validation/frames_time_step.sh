@@ -54,11 +54,11 @@ print("# Frames A, B, C at time steps around the stable estimate\n")
 print("Produced by `bash validation/frames_time_step.sh`. The estimate is the one `framequake info` prints")
 print("(central difference, 2/omega_max with the dashpot correction); the cases ship with dt = 1e-5 s.")
 print("Dashpot loss: dissipated_viscous_J / scale_J (negative: the dashpots gained energy).")
-print("Warnings: the ledger's (io/case_runner.h), besides the forced-step warning of every run above the estimate.")
+print("Warnings: the run's own (the ledger's and the storeys', summary.json `warnings`, each up to its first ':' or ';'), besides the forced-step warning of every run above the estimate.")
 print("Engine: the step's stages without output (summary.json stage_seconds minus observe), one thread, two runs at a time.\n")
 for c in "ABC":
     print(f"## Frame {c}\n")
-    print("| dt / estimate | dt (s) | steps | engine (s) | status | storey 1 peak drift (rad), verdict | storey 2 | broken joints | balance error | dashpot loss | ledger warnings |")
+    print("| dt / estimate | dt (s) | steps | engine (s) | status | storey 1 peak drift (rad), verdict | storey 2 | broken joints | balance error | dashpot loss | warnings |")
     print("|---|---|---|---|---|---|---|---|---|---|---|")
     for f in ["shipped", "1", "1.5", "2", "2.5", "3", "4"]:
         path = os.path.join(work, f"out_{c}_{f}", "summary.json")
