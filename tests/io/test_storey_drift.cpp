@@ -83,13 +83,10 @@ TEST(StoreyDrift, StoreysAreTheBandsBetweenColumnLevels) {
 }
 
 // A one-storey portal on a hillside: feet at z = 0 and 0.1 m, both tops at
-// 0.39 m. One storey (a foot is no level; the geometry probe got a storey
-// 0-0.1 m of the long column alone), both columns in it, the short one
-// counted from its foot: turned by theta about their feet, the columns
-// drift 0.39 sin(theta) and 0.29 sin(theta), the storey their mean.
-TEST(StoreyDrift, AColumnOnAHillsideStepCountsFromItsFoot) {
+// 0.39 m (columns 'long' and 'short', then 'beam').
+Model hillside_portal_model() {
   TempDir dir;
-  Model model = build_model(load_case_file(dir.write("hillside.yaml",
+  return build_model(load_case_file(dir.write("hillside.yaml",
       "framequake_case: 1\n"
       "time: {dt_s: 1.0e-5, duration_s: 0.01}\n"
       "materials: [{name: wood, density_kg_per_m3: 450}]\n"
@@ -103,6 +100,15 @@ TEST(StoreyDrift, AColumnOnAHillsideStepCountsFromItsFoot) {
       "  - {id: long, kind: column, nodes: [a0, a1], section: col, material: wood}\n"
       "  - {id: short, kind: column, nodes: [b0, b1], section: col, material: wood}\n"
       "  - {id: beam, kind: beam, nodes: [a1, b1], section: col, material: wood}\n")));
+}
+
+// A one-storey portal on a hillside: feet at z = 0 and 0.1 m, both tops at
+// 0.39 m. One storey (a foot is no level; the geometry probe got a storey
+// 0-0.1 m of the long column alone), both columns in it, the short one
+// counted from its foot: turned by theta about their feet, the columns
+// drift 0.39 sin(theta) and 0.29 sin(theta), the storey their mean.
+TEST(StoreyDrift, AColumnOnAHillsideStepCountsFromItsFoot) {
+  Model model = hillside_portal_model();
   const std::vector<Storey> storeys = find_storeys(model);
   ASSERT_EQ(storeys.size(), 1u);
   EXPECT_DOUBLE_EQ(storeys[0].bottom_z_m, 0.0);
@@ -125,21 +131,7 @@ TEST(StoreyDrift, AColumnOnAHillsideStepCountsFromItsFoot) {
 // would be damaged (geometry probe, 2026-11-27: over the storey's height
 // it read 0.19 / 0.29 of its tilt and no warning came).
 TEST(StoreyDrift, AShortColumnsDriftRatioIsOverItsOwnHeight) {
-  TempDir dir;
-  Model model = build_model(load_case_file(dir.write("hillside.yaml",
-      "framequake_case: 1\n"
-      "time: {dt_s: 1.0e-5, duration_s: 0.01}\n"
-      "materials: [{name: wood, density_kg_per_m3: 450}]\n"
-      "sections: [{name: col, width_m: 0.010, depth_m: 0.020}]\n"
-      "nodes:\n"
-      "  - {id: a0, xyz_m: [0, 0, 0]}\n"
-      "  - {id: a1, xyz_m: [0, 0, 0.39]}\n"
-      "  - {id: b0, xyz_m: [0.5, 0, 0.1]}\n"
-      "  - {id: b1, xyz_m: [0.5, 0, 0.39]}\n"
-      "members:\n"
-      "  - {id: long, kind: column, nodes: [a0, a1], section: col, material: wood}\n"
-      "  - {id: short, kind: column, nodes: [b0, b1], section: col, material: wood}\n"
-      "  - {id: beam, kind: beam, nodes: [a1, b1], section: col, material: wood}\n")));
+  Model model = hillside_portal_model();
   const std::vector<Storey> storeys = find_storeys(model);
   ASSERT_EQ(storeys.size(), 1u);
   ASSERT_EQ(storeys[0].columns.size(), 2u);
