@@ -247,6 +247,9 @@ struct WindowUse {
   double applied_s;     // record seconds run
   double record_s;      // the shortest record's duration (record s)
   double unshortened_s; // record seconds the run would have applied without --window-length
+  // time.duration_s ends the run before the window (and the record) end:
+  // the run's simulated seconds then, else negative.
+  double duration_limit_s = -1.0;
   bool cut() const { return applied_s < unshortened_s; }
 };
 
@@ -270,6 +273,11 @@ WindowUse window_use(std::string label, const fq::CaseDef& job_def, const Unshor
   u.start_s = gm.window_start_s;
   u.applied_s = applied_window_s(gm, gm.window_length_s, job_def.time.duration_s);
   u.unshortened_s = applied_window_s(gm, before.window_length_s, before.duration_s);
+  // The duration, not the window or the record, ended the run (a review
+  // probe's case ran 0.0063 of its 0.05 record seconds and was said to
+  // have run its whole window, not cut by a 0.02 s option).
+  if (job_def.time.duration_s && u.applied_s < applied_window_s(gm, gm.window_length_s, std::nullopt))
+    u.duration_limit_s = *job_def.time.duration_s;
   u.record_s = std::numeric_limits<double>::infinity();
   for (const fq::GroundMotionComponentDef& c : gm.components) u.record_s = std::min(u.record_s, c.record.duration_s());
   return u;
@@ -872,6 +880,12 @@ std::string window_length_note(const StudyArgs& args, const std::vector<WindowUs
     if (u.cut()) {
       note << "cut to the first " << length_s << " record seconds of its window; " << what
            << " hold for that part of the record only";
+      continue;
+    }
+    if (u.duration_limit_s >= 0.0) {
+      note << "not cut: its time.duration_s of " << u.duration_limit_s << " s ended the run after record seconds "
+           << u.start_s << " to " << u.start_s + u.applied_s << " (" << u.applied_s << " s), before " << length_s
+           << " s of its window";
       continue;
     }
     note << "not cut (its window is not longer than " << length_s << " s): it ran ";

@@ -1090,6 +1090,26 @@ TEST(StudyCommands, TheWindowNoteSaysWhatEachRunApplied) {
             std::string::npos)
       << md025;
 
+  // A run its time.duration_s ends after 0.05 record seconds, inside the
+  // 0.1 s the option leaves of its 0.2 s window: not cut by the option,
+  // and not its whole window either (review probe: it was said to have run
+  // its whole window).
+  std::string brief_text = read_text(windowed);
+  brief_text.replace(brief_text.find("name: windowed"), 14, "name: brief");
+  brief_text.replace(brief_text.find("time: {dt_s: 1.0e-4}"), 20, "time: {dt_s: 1.0e-4, duration_s: 0.05}");
+  brief_text.replace(brief_text.find("window_start_s: 0.05"), 20, "window_start_s: 0.0");
+  std::ofstream(dir.path() / "brief.yaml") << brief_text;
+  const auto limited = run_app({"compare", (dir.path() / "brief.yaml").string(), windowed, "--window-length", "0.1",
+                                "--no-figure", "--out", (dir.path() / "cmp01").string()},
+                               dir.path());
+  ASSERT_EQ(limited.code, 0) << limited.err;
+  const std::string md01 = read_text(dir.path() / "cmp01" / "comparison.md");
+  EXPECT_NE(md01.find("- brief: not cut: its time.duration_s of 0.05 s ended the run after record seconds 0 to 0.05 "
+                      "(0.05 s), before 0.1 s of its window\n"
+                      "- windowed: cut to the first 0.1 record seconds of its window"),
+            std::string::npos)
+      << md01;
+
   // A sweep's collapse table says the same.
   const auto sweep = run_app({"sweep", whole, "--scales", "1", "--window-length", "100", "--no-figure", "--out",
                               (dir.path() / "sweep100").string()},
