@@ -281,8 +281,14 @@ constexpr const char* kLineFourLayouts =
 long long npts_value(const std::string& file, std::string_view tok) {
   constexpr int kLine = 4;
   long long npts = 0;
-  const char* const end = tok.data() + tok.size();
-  const auto [ptr, ec] = std::from_chars(tok.data(), end, npts);
+  // std::from_chars reads no '+' sign, which the layouts allow ("+100" was
+  // refused as "expected a whole number"; review probe).
+  std::string_view digits = tok;
+  if (!digits.empty() && digits.front() == '+') digits.remove_prefix(1);
+  const char* const end = digits.data() + digits.size();
+  const auto [ptr, ec] = std::from_chars(digits.data(), end, npts);
+  if (ec == std::errc::result_out_of_range && ptr == end)
+    throw InputError(file, kLine, "NPTS", "expected a number of samples a record can hold, got " + quoted(tok));
   if (ec != std::errc() || ptr != end)
     throw InputError(file, kLine, "NPTS", "expected a whole number of samples, got " + quoted(tok));
   if (npts <= 0) throw InputError(file, kLine, "NPTS", "expected a positive number of samples, got " + quoted(tok));

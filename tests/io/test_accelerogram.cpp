@@ -271,6 +271,9 @@ TEST(PeerAt2, ReadsTheOlderAndReversedLineFourLayouts) {
       {"reversed_keywords_spaced", "dt = .0050 sec , npts = 5 ,", 0.005},
       {"bare", "5 0.0100", 0.01},
       {"bare_exponent", "   5   1.0E-02", 0.01},
+      // A '+' sign on NPTS (std::from_chars reads none; review probe).
+      {"bare_plus_sign", "+5 0.0100", 0.01},
+      {"keywords_plus_sign", "NPTS= +5, DT= .0100 SEC", 0.01},
   };
   const double expected_g[] = {0.001, 0.002, -0.003, 0.004, 0.005};
   for (const Layout& l : layouts) {
@@ -435,6 +438,8 @@ std::vector<BadInput> bad_inputs() {
       {"at2_reversed_dt_negative", F::PeerAt2, kHead + "DT= -.01 SEC, NPTS= 5\n" + five, 4, "DT", "'-.01'"},
       {"at2_bare_one_sample", F::PeerAt2, kHead + "1 .0100\n  .1E-02\n", 4, "NPTS", "at least 2"},
       {"at2_bare_npts_negative", F::PeerAt2, kHead + "-5 .0100\n" + five, 4, "NPTS", "'-5'"},
+      {"at2_npts_beyond_long_long", F::PeerAt2, kHead + "NPTS= 99999999999999999999, DT= .01 SEC\n" + five, 4, "NPTS",
+       "expected a number of samples a record can hold"},
       {"at2_bare_dt_zero", F::PeerAt2, kHead + "5 0.0\n" + five, 4, "DT", "positive"},
       // Lines 4 in none of the layouts, or bare numbers that could be read
       // either way round, are refused with the layouts listed.
