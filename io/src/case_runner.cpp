@@ -21,6 +21,7 @@
 #include "io/json_writer.h"
 #include "io/model.h"
 #include "io/run_output.h"
+#include "io/utf8_text.h"
 #include "scene_output.h"
 
 namespace fq {
@@ -1307,7 +1308,7 @@ void describe_case(const CaseDef& case_def, std::ostream& out, std::optional<Int
   }
   const SimulationSettings& s = sim.settings();
   out << "case        " << def.name << "  (" << def.source_file.string() << ")\n";
-  if (!def.description.empty()) out << "            " << def.description << "\n";
+  if (!def.description.empty()) out << "            " << utf8_repaired(def.description) << "\n";
   out << "bodies      " << bodies.size() << " (" << free_bodies << " free, " << bodies.size() - free_bodies
       << " fixed)\n";
   out << "total mass  " << total_mass << " kg (free bodies)\n";

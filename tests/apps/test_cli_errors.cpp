@@ -227,6 +227,32 @@ TEST(CliErrors, WindowShorterThanOneStepIsRefused) {
   EXPECT_NE(o.app.err.find("less than one time step"), std::string::npos) << o.app.err;
 }
 
+// Text of the user's that is not UTF-8 (typed in Latin-1: "D\xFCzce") is
+// shown with U+FFFD where it is quoted in an error or printed by info; the
+// raw byte reached the terminal (review probe). U+FFFD is EF BF BD.
+TEST(CliErrors, TextThatIsNotUtf8IsShownWithReplacementCharacters) {
+  const std::string fffd = "\xEF\xBF\xBD";
+  std::string text = kBaseCase;
+  const std::string name = "name: cli_errors\n";
+  ASSERT_NE(text.find(name), std::string::npos);
+  text.replace(text.find(name), name.size(), "name: d\xFCzce\n");
+  const Outcome o = run_case(text, kBaseRecord);
+  EXPECT_EQ(o.app.code, 2) << o.app.err;
+  EXPECT_NE(o.app.err.find("field 'name'"), std::string::npos) << o.app.err;
+  EXPECT_NE(o.app.err.find("d" + fffd + "zce"), std::string::npos) << o.app.err;
+  EXPECT_EQ(o.app.err.find("\xFC"), std::string::npos) << o.app.err;
+
+  TempDir dir;
+  std::string described = kBaseCase;
+  described.replace(described.find(name), name.size(), name + "description: shaken at D\xFCzce\n");
+  std::ofstream(dir.path() / "case.yaml") << described;
+  std::ofstream(dir.path() / "rec.AT2") << kBaseRecord;
+  const auto r = run_app({"info", (dir.path() / "case.yaml").string()}, dir.path());
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("shaken at D" + fffd + "zce"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("\xFC"), std::string::npos) << r.out;
+}
+
 // info prints a ground-motion direction as the unit vector it is: axis -z
 // is (0 0 -1), without the negative zeros the sign flip leaves in x and y.
 TEST(CliInfo, NegativeAxisPrintsWithoutNegativeZeros) {

@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "io/utf8_text.h"
+
 namespace fq {
 
 class InputError : public std::runtime_error {
@@ -41,7 +43,10 @@ class InputError : public std::runtime_error {
       s += "': ";
     }
     s += message;
-    return s;
+    // The message quotes the user's text, which may not be UTF-8 (a case
+    // name typed in Latin-1 reached the terminal as a raw byte; review
+    // probe): ill-formed bytes are shown as U+FFFD.
+    return utf8_repaired(s);
   }
   std::string file_;
   int line_;
