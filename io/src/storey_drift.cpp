@@ -152,16 +152,25 @@ std::vector<Storey> find_storeys(const Model& model) {
   }
   // Each column end within its floor's tolerance is taken at the floor's
   // height: for which storeys the column belongs to and for its top and
-  // bottom points (a column ending 5 mm above its floor reaches it).
-  auto snapped = [&](double z) {
+  // bottom points (a column ending 5 mm above its floor reaches it). An end
+  // where beams frame in may lie anywhere on their section as well: within
+  // the depth of the deepest of them. (Scale probe, 2026-11-27: columns
+  // whose tops were typed 3 mm above the floor beams, on nodes of their
+  // own, made the floor's level 0.293 m with the least tolerance, and the
+  // storey above, standing on the beams' nodes at 0.29, was counted into
+  // the storey below as 3 mm columns that halved its mean drift.)
+  auto snapped = [&](double z, int node) {
+    const double beam_m = beam_height_m[std::size_t(node)];
     const Level* best = nullptr;
     for (const Level& l : levels)
-      if (std::abs(z - l.z_m) < l.tolerance_m && (!best || std::abs(z - l.z_m) < std::abs(z - best->z_m))) best = &l;
+      if (std::abs(z - l.z_m) < std::max(l.tolerance_m, beam_m) &&
+          (!best || std::abs(z - l.z_m) < std::abs(z - best->z_m)))
+        best = &l;
     return best ? best->z_m : z;
   };
   for (ColumnSegment& c : segments) {
-    c.low_z_m = snapped(c.low_m.z());
-    c.high_z_m = snapped(c.high_m.z());
+    c.low_z_m = snapped(c.low_m.z(), c.low_node);
+    c.high_z_m = snapped(c.high_m.z(), c.high_node);
   }
   // Column segments whose two ends snap to one floor span no storey.
   segments.erase(std::remove_if(segments.begin(), segments.end(),

@@ -327,6 +327,41 @@ TEST(StoreyDrift, AColumnTopTypedAboveItsFloorWithoutABeamReachesTheFloor) {
     EXPECT_NEAR(storey_drift_m(s, model.bodies).x() / s.height_m(), std::sin(0.02), 1e-12) << s.number;
 }
 
+// Every first-storey column top typed 3 mm above the floor on a node of
+// its own (no beam there, no column continuing up: each a level of its own
+// with the least tolerance, 1 mm), the floor beams and the upper columns
+// on the nodes at 0.29 (scale probe: the upper columns were counted into
+// storey 1 as 3 mm columns, halving its mean drift). The upper columns'
+// feet, where the 10 mm beams frame in, lie within those beams' depth of
+// the level at 0.293: they stand on that floor. Storey 1 has its three
+// columns, storey 2 the upper three, and a rigid sway by theta drifts both
+// by sin(theta).
+TEST(StoreyDrift, ColumnsStandingOnTheBeamsBelowTopsTypedAboveThemAreOfTheStoreyAbove) {
+  TempDir dir;
+  std::string text = three_bay_frame(0.29, 0.010);
+  for (const char* line : {"a", "b", "c"}) {
+    const std::string l(line);
+    const std::string lower = "  - {id: col_" + l + "1, kind: column, nodes: [" + l + "0, " + l + "1]";
+    ASSERT_NE(text.find(lower), std::string::npos) << l;
+    text.replace(text.find(lower), lower.size(),
+                 "  - {id: col_" + l + "1, kind: column, nodes: [" + l + "0, " + l + "1t]");
+    const std::string node = "  - {id: " + l + "2, xyz_m: [";
+    const double x = l == "a" ? 0.0 : l == "b" ? 0.5 : 1.0;
+    std::ostringstream top;
+    top << "  - {id: " << l << "1t, xyz_m: [" << x << ", 0, 0.293]}\n";
+    text.replace(text.find(node), 0, top.str());
+  }
+  Model model = build_model(load_case_file(dir.write("tops_3mm.yaml", text)));
+  const std::vector<Storey> storeys = find_storeys(model);
+  ASSERT_EQ(storeys.size(), 2u);
+  EXPECT_DOUBLE_EQ(storeys[0].top_z_m, 0.293);
+  EXPECT_EQ(storeys[0].column_names, (std::vector<std::string>{"col_a1", "col_b1", "col_c1"}));
+  EXPECT_EQ(storeys[1].column_names, (std::vector<std::string>{"col_a2", "col_b2", "col_c2"}));
+  sway_whole_frame(model, 0.02);
+  for (const Storey& s : storeys)
+    EXPECT_NEAR(storey_drift_m(s, model.bodies).x() / s.height_m(), std::sin(0.02), 1e-12) << s.number;
+}
+
 TEST(StoreyDrift, TurnedColumnDriftsHeightTimesSine) {
   Model model = frame_model();
   const std::vector<Storey> storeys = find_storeys(model);
