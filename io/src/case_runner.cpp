@@ -1342,12 +1342,17 @@ void describe_case(const CaseDef& case_def, std::ostream& out, std::optional<Int
       const Storey& st = scene.storeys[i];
       out << "            " << i + 1 << " from z = " << st.bottom_z_m << " to " << st.top_z_m << " m, "
           << st.columns.size() << " column" << (st.columns.size() == 1 ? "" : "s") << ":";
-      for (std::size_t c = 0; c < st.column_names.size(); ++c) {
+      // The first kColumnsListed only, like the other lists of names: a
+      // 35x35 grid's storeys printed 1296 columns each, 12 KB a line.
+      constexpr std::size_t kColumnsListed = 12;
+      const std::size_t listed = std::min(st.column_names.size(), kColumnsListed);
+      for (std::size_t c = 0; c < listed; ++c) {
         out << (c ? ", " : " ") << st.column_names[c];
         // A column shorter than its storey (its foot inside the band) has
         // its drift ratio taken over its own height (io/storey_drift.h).
         if (st.height_m() - st.columns[c].height_m > kStoreyLevelTolerance_m) out << " (" << st.columns[c].height_m << " m)";
       }
+      if (st.column_names.size() > listed) out << ", ... and " << st.column_names.size() - listed << " more";
       out << "\n";
     }
     out << "            verdicts: damaged above " << def.assessment.safety_drift_ratio_rad

@@ -21,6 +21,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -703,6 +704,43 @@ TEST(RunWarnings, ALatin1RecordHeaderReachesSummaryJsonAsUtf8) {
       "sys.exit(0 if any('D\\u00fczce, Turkey' in w for w in d['warnings']) else 1)\" '" +
       summary_file.string() + "'";
   EXPECT_EQ(std::system(cmd.c_str()), 0) << summary;
+}
+
+// info lists a storey's first 12 columns and counts the rest, like its
+// other lists (a 35x35 grid printed 1296 names a storey, 12 KB a line;
+// scale probe). A row of 15 columns, c00 to c14, tops at 0.39 m joined by
+// beams; c01 and c13 stand on a 0.1 m step, so they are 0.29 m tall: c01,
+// listed, keeps its height note, c13 is one of the 3 not listed.
+TEST(RunWarnings, InfoListsAStoreysFirstTwelveColumns) {
+  test::TempDir dir;
+  std::ostringstream text;
+  text << "framequake_case: 1\n"
+          "time: {dt_s: 1.0e-5, duration_s: 0.001}\n"
+          "materials: [{name: wood, density_kg_per_m3: 450}]\n"
+          "sections: [{name: s, width_m: 0.010, depth_m: 0.020}]\n"
+          "nodes:\n";
+  char id[8];
+  for (int k = 0; k < 15; ++k) {
+    std::snprintf(id, sizeof id, "%02d", k);
+    text << "  - {id: f" << id << ", xyz_m: [" << 0.5 * k << ", 0, " << (k == 1 || k == 13 ? 0.1 : 0.0) << "]}\n"
+         << "  - {id: t" << id << ", xyz_m: [" << 0.5 * k << ", 0, 0.39]}\n";
+  }
+  text << "members:\n";
+  for (int k = 0; k < 15; ++k) {
+    std::snprintf(id, sizeof id, "%02d", k);
+    text << "  - {id: c" << id << ", kind: column, nodes: [f" << id << ", t" << id << "], section: s, material: wood}\n";
+    if (k == 0) continue;
+    char prev[8];
+    std::snprintf(prev, sizeof prev, "%02d", k - 1);
+    text << "  - {id: b" << id << ", kind: beam, nodes: [t" << prev << ", t" << id << "], section: s, material: wood}\n";
+  }
+  std::ostringstream info;
+  describe_case(load_case_file(dir.write("row.yaml", text.str())), info);
+  EXPECT_NE(info.str().find("1 from z = 0 to 0.39 m, 15 columns: c00, c01 (0.29 m), c02, c03, c04, c05, c06, c07, c08, "
+                            "c09, c10, c11, ... and 3 more\n"),
+            std::string::npos)
+      << info.str();
+  EXPECT_EQ(info.str().find("c12"), std::string::npos) << info.str();
 }
 
 }  // namespace
