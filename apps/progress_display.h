@@ -33,6 +33,8 @@ class ProgressDisplay : public StepObserver {
   std::chrono::steady_clock::time_point start_{};
   std::chrono::steady_clock::time_point last_draw_{};
   std::int64_t start_step_ = 0;
+  static constexpr std::int64_t kClockEvery = 8;
+  std::int64_t calls_ = 0;
 };
 
 }  // namespace fq

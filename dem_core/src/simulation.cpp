@@ -469,6 +469,7 @@ RunResult Simulation::run(const std::atomic<bool>* stop_requested) {
   initialize();
   RunResult result;
   const std::int64_t first = step_;  // 0, or the step a resumed run starts from
+  for (StepObserver* m : step_monitors_) m->on_start(*this);
   for (const ObserverSlot& o : observers_) o.observer->on_start(*this);
   if (step_ == 0) observe(true);
   const std::int64_t last = total_steps();
@@ -513,6 +514,7 @@ RunResult Simulation::run(const std::atomic<bool>* stop_requested) {
   result.simulated_s = time_s();
   result.wall_s = wall_seconds();
   for (const ObserverSlot& o : observers_) o.observer->on_finish(*this);
+  for (StepObserver* m : step_monitors_) m->on_finish(*this);
   return result;
 }
 

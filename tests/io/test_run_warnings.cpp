@@ -20,6 +20,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -741,6 +742,45 @@ TEST(RunWarnings, InfoListsAStoreysFirstTwelveColumns) {
             std::string::npos)
       << info.str();
   EXPECT_EQ(info.str().find("c12"), std::string::npos) << info.str();
+}
+
+// Sets `stop` once the run has taken `steps` steps; counts its calls and
+// the largest gap in steps between two of them.
+class StepCounter final : public StepObserver {
+ public:
+  StepCounter(std::atomic<bool>* stop, std::int64_t steps) : stop_(stop), steps_(steps) {}
+  void on_sample(const Simulation& sim) override {
+    if (calls > 0) largest_gap = std::max(largest_gap, sim.steps_done() - last_step);
+    last_step = sim.steps_done();
+    ++calls;
+    if (stop_ && sim.steps_done() >= steps_) stop_->store(true);
+  }
+  std::int64_t calls = 0, last_step = 0, largest_gap = 0;
+
+ private:
+  std::atomic<bool>* stop_;
+  std::int64_t steps_;
+};
+
+// The progress observer is asked after every step, whatever the output
+// intervals: asked every 1000 steps, which at dt = 1e-5 s were also the
+// history rows of 0.01 s, the display of a 19k-body frame changed every
+// 15-20 s (scale probe). 2000 steps with one row and one frame at the
+// start and one at the end: asked at step 0 and after each step.
+TEST(RunWarnings, ProgressIsAskedEveryStepWhateverTheOutputIntervals) {
+  test::TempDir dir;
+  CaseDef def = load_case_file(dir.write("cube.yaml", cube_case(1e-5)));
+  def.time.duration_s = 2000 * 1e-5;
+  def.output.history_interval_s = 1.0;
+  def.output.frame_interval_s = 1.0;
+  StepCounter counter(nullptr, 0);
+  CaseRunOptions options;
+  options.output_folder = dir.path() / "cube";
+  options.progress = &counter;
+  run_case(def, options);
+  EXPECT_EQ(counter.last_step, 2000);
+  EXPECT_EQ(counter.calls, 2001);
+  EXPECT_EQ(counter.largest_gap, 1);
 }
 
 }  // namespace

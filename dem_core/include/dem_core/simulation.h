@@ -107,7 +107,10 @@ class Simulation {
   // the observers: for cheap reads of the poses that must not miss a step
   // (a storey's peak drift). Unlike an observer due at that step it does
   // not make the providers gather their energies, and its time is not
-  // profiled; on_sample is the only call it gets.
+  // profiled. It gets on_start and on_finish like an observer (before the
+  // observers' on_start, after their on_finish): a progress display is one,
+  // asked every step so that it can redraw on wall time whatever the
+  // output intervals.
   void add_step_monitor(StepObserver* monitor);
 
   // Prepares providers, evaluates forces at t = 0 and shifts velocities back

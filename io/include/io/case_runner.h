@@ -31,7 +31,9 @@ namespace fq {
 struct CaseRunOptions {
   std::optional<std::filesystem::path> output_folder;  // overrides the case's output.folder
   bool allow_unstable_time_step = false;  // run even if dt exceeds the stable estimate (--force)
-  StepObserver* progress = nullptr;       // e.g. the terminal progress display
+  // E.g. the terminal progress display: asked after every step (and at the
+  // start and end), so its on_sample must be cheap.
+  StepObserver* progress = nullptr;
   const std::atomic<bool>* stop_requested = nullptr;  // set (e.g. by SIGINT) to stop after the current step
   std::optional<Integrator> integrator;   // overrides the case's time.integrator (--integrator)
   // Write OUT/checkpoint.bin (io/checkpoint.h) every so many simulated
