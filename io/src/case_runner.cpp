@@ -186,11 +186,12 @@ class StoreyPeakMonitor final : public StepObserver {
 };
 
 // How much more a run will write, said once it has written a few history
-// rows (OutputSizeCheck): the latest frame's size times the frames to come,
-// plus the rows to come at their mean length. A warning when that exceeds the space left on the
-// output's disk (a run that fills it ends with an output error, exit 3); a
-// note above kNoteOutputBytes. Frames grow as joints break and contacts
-// appear, so it is an estimate. (A probe's duration_s of 1e5 s on the
+// rows (OutputSizeCheck): an upper bound on the latest frame's size
+// (RunOutput::frame_bytes_bound) times the frames to come, plus the rows to
+// come at their mean length. A warning when that exceeds the space left on
+// the output's disk (a run that fills it ends with an output error, exit 3);
+// a note above kNoteOutputBytes. Frames grow as contacts appear, so it
+// bounds the output of the cells the run has at that point. (A probe's duration_s of 1e5 s on the
 // falling-block demo would have written some 67 GB without a word.)
 constexpr double kNoteOutputBytes = 1e9;
 
@@ -238,20 +239,21 @@ class OutputSizeCheck final : public StepObserver {
   OutputSizeCheck(const RunOutput* writer, std::int64_t total_steps, Say note, Say warn)
       : writer_(writer), total_steps_(total_steps), note_(std::move(note)), warn_(std::move(warn)) {}
   // Called at every history row: once this process has written
-  // kRowsMeasured rows, a row's size is their mean length and a frame's the
-  // size of the latest frame. (The size of history.csv over its rows, at
+  // kRowsMeasured rows and a frame, a row's size is their mean length and a
+  // frame's the bound on the latest frame's size. (Its file's size was 4.5-5
+  // times too small when that was frame 0, all of whose velocities and forces
+  // are zero: 2.28 GB announced for 10.7 GB; scale probe.) (The size of history.csv over its rows, at
   // the first row, counted the header in, 67 % too much for a probe's run,
   // and a resumed run's rows before the checkpoint: 18 GB announced for a
   // 16 MB run. The first row alone, mostly zeros, is short.)
   static constexpr std::int64_t kRowsMeasured = 10;
   void on_sample(const Simulation&) override {
-    if (done_ || writer_->history_rows_this_process() < kRowsMeasured || writer_->frames_written() == 0) return;
+    const double frame_bytes = writer_->frame_bytes_bound();
+    if (done_ || writer_->history_rows_this_process() < kRowsMeasured || frame_bytes <= 0.0) return;
     done_ = true;
     namespace fs = std::filesystem;
     std::error_code ec;
     const double history_bytes = writer_->history_mean_row_bytes();
-    const double frame_bytes = double(fs::file_size(frame_path(writer_->folder(), writer_->frames_written() - 1), ec));
-    if (ec) return;
     // What is still to come: a resumed run has written part of it.
     const double frames = double(std::max<std::int64_t>(
         0, samples_written(total_steps_, writer_->frame_every_steps()) - std::int64_t(writer_->frames_written())));
@@ -265,13 +267,14 @@ class OutputSizeCheck final : public StepObserver {
       return a.str();
     };
     std::ostringstream what;
-    what << std::setprecision(3) << "about " << amount(estimate) << " more output (" << std::llround(frames)
-         << " frames of about " << frame_bytes / 1e3 << " kB, " << std::llround(rows) << " history rows)";
+    what << std::setprecision(3) << "up to about " << amount(estimate) << " more output (" << std::llround(frames)
+         << " frames of up to about " << frame_bytes / 1e3 << " kB, their uncompressed size, " << std::llround(rows)
+         << " history rows; more if contacts multiply)";
     if (!ec && estimate > double(space.available)) {
       std::ostringstream w;
       w << std::setprecision(3) << "this run will write " << what.str() << " into " << writer_->folder().string()
         << ", whose disk has " << amount(double(space.available))
-        << " free: it will end with an output error when the disk is full; raise output.frame_interval_s or "
+        << " free: it may end with an output error when the disk is full; raise output.frame_interval_s or "
            "history_interval_s, or free space";
       if (warn_) warn_(w.str());
     } else if (estimate > kNoteOutputBytes && note_) {

@@ -574,5 +574,6 @@ std::size_t RunOutput::frames_written() const { return impl_->pvd.size(); }
 std::int64_t RunOutput::history_rows() const { return impl_->history.rows(); }
 std::int64_t RunOutput::history_rows_this_process() const { return impl_->history.rows_this_process(); }
 double RunOutput::history_mean_row_bytes() const { return impl_->history.mean_row_bytes(); }
+double RunOutput::frame_bytes_bound() const { return double(impl_->frames.last_frame_bound_bytes()); }
 
 }  // namespace fq

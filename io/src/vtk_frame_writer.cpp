@@ -205,6 +205,21 @@ void VtkFrameWriter::add_bodies(const Simulation& sim, VtkFrameBuilder& frame) {
   frame.add_field("member_kind_names", std::move(kinds));
 }
 
+namespace {
+// What one array of `count` values of `width` bytes each (binary) or of at
+// most `text` characters each, separators and line breaks included (ASCII),
+// can take in a frame: zlib's worst case on its 32 KiB blocks (compressBound:
+// n + n/4096 + n/16384 + 13 a block) and VTK's 64-bit block headers, and
+// 512 bytes for the array's XML element.
+std::uint64_t array_bound_bytes(std::uint64_t count, std::uint64_t width, std::uint64_t text, bool binary) {
+  constexpr std::uint64_t kXmlPerArray = 512;
+  if (!binary) return count * text + kXmlPerArray;
+  const std::uint64_t n = count * width;
+  const std::uint64_t blocks = n / 32768 + 1;
+  return n + n / 4096 + n / 16384 + 13 * blocks + 8 * (3 + blocks) + kXmlPerArray;
+}
+}  // namespace
+
 void VtkFrameWriter::write(const Simulation& sim, const std::filesystem::path& file, bool binary) {
   VtkFrameBuilder& f = builder_;
   f.clear();
@@ -216,6 +231,28 @@ void VtkFrameWriter::write(const Simulation& sim, const std::filesystem::path& f
   f.add_field("cell_block_names", names_);
 
   const vtkIdType n_cells = vtkIdType(f.cell_count());
+  {
+    // ASCII widths: a double takes at most 24 characters ("-2.2250738585072014e-308"),
+    // an int 11, an id 20, a byte 3, and a string's character is written as
+    // its code; 3 more each for separators and indentation.
+    const auto cells = std::uint64_t(n_cells);
+    std::uint64_t bound = 4096;  // the file's XML outside the arrays
+    bound += array_bound_bytes(f.points_m_.size(), 8, 27, binary);
+    bound += array_bound_bytes(f.connectivity_.size(), 8, 23, binary);
+    bound += array_bound_bytes(f.offsets_.size(), 8, 23, binary);
+    bound += array_bound_bytes(cells, 1, 6, binary);   // types
+    bound += array_bound_bytes(cells, 4, 14, binary);  // cell_block
+    for (const VtkFrameBuilder::CellArray& a : f.arrays_)
+      bound += array_bound_bytes(cells * std::uint64_t(a.components), a.type == VtkArrayType::Int32 ? 4 : 8,
+                                 a.type == VtkArrayType::Int32 ? 14 : 27, binary);
+    bound += f.double_fields_.size() * array_bound_bytes(1, 8, 27, binary);
+    for (const auto& field : f.string_fields_) {
+      std::uint64_t chars = 0;
+      for (const std::string& s : field.values) chars += s.size() + 1;  // and its terminator
+      bound += array_bound_bytes(chars, 1, 6, binary);
+    }
+    last_bound_bytes_ = bound;
+  }
   vtkNew<vtkUnstructuredGrid> grid;
 
   vtkNew<vtkDoubleArray> coords;

@@ -27,6 +27,7 @@
 #include <filesystem>
 #include <fstream>
 #include <optional>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -761,6 +762,43 @@ class StepCounter final : public StepObserver {
   std::atomic<bool>* stop_;
   std::int64_t steps_;
 };
+
+// The output estimate bounds the frames to come: frame B with a frame
+// every 20 steps and a row every step says it at its tenth row, when frame
+// 0 (every velocity and force zero, so it compresses best) is the only
+// frame; frames 1 to 3 on disk are each at most the size it gave. (It took
+// frame 0's own size, 4.5-5 times too small at scale; scale probe.) 1e7
+// steps of frames of some kB is above the 1 GB that earns a note (or a
+// warning where the disk has less free).
+TEST(RunWarnings, TheOutputEstimateBoundsTheFramesAfterAnAllZeroFrameZero) {
+  test::TempDir dir;
+  CaseDef def = load_case_file(std::filesystem::path(FQ_SOURCE_DIR) / "cases" / "frame_B.yaml");
+  def.time.duration_s = 1e7 * def.time.dt_s;
+  def.output.history_interval_s = def.time.dt_s;
+  def.output.frame_interval_s = 20 * def.time.dt_s;
+  std::atomic<bool> stop{false};
+  StepCounter stopper(&stop, 3 * 20);  // frames 0 to 3, then the stop's frame
+  CaseRunOptions options;
+  options.output_folder = dir.path() / "b";
+  options.stop_requested = &stop;
+  options.progress = &stopper;
+  std::vector<std::string> said;
+  options.on_note = [&](const std::string& n) { said.push_back(n); };
+  options.on_warning = [&](const std::string& w) { said.push_back(w); };
+  run_case(def, options);
+  std::smatch m;
+  const std::regex estimate("this run will write up to about [0-9.]+ [GM]B more output \\(([0-9]+) frames of up to "
+                            "about ([0-9.e+]+) kB");
+  const auto it = std::find_if(said.begin(), said.end(), [&](const std::string& s) { return std::regex_search(s, m, estimate); });
+  ASSERT_NE(it, said.end()) << said.size();
+  const double frame_bytes = std::stod(m[2].str()) * 1e3;
+  EXPECT_GE(std::stod(m[1].str()), 1e7 / 20 - 1);  // the frames still to come
+  for (std::size_t k = 1; k <= 3; ++k) {
+    const auto path = frame_path(dir.path() / "b", k);
+    ASSERT_TRUE(std::filesystem::exists(path)) << path;
+    EXPECT_LE(double(std::filesystem::file_size(path)), frame_bytes) << path << " against " << *it;
+  }
+}
 
 // The progress observer is asked after every step, whatever the output
 // intervals: asked every 1000 steps, which at dt = 1e-5 s were also the

@@ -152,6 +152,10 @@ class RunOutput {
   // and their mean length (bytes).
   std::int64_t history_rows_this_process() const;
   double history_mean_row_bytes() const;
+  // An upper bound on the size of the latest frame this process wrote and of
+  // later frames with as many cells (VtkFrameWriter::last_frame_bound_bytes);
+  // 0 before this process has written a frame.
+  double frame_bytes_bound() const;
 
  private:
   struct Impl;

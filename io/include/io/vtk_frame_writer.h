@@ -126,6 +126,14 @@ class VtkFrameWriter {
   // temporary name in the same folder, then renamed, so `file` is complete
   // whenever it exists. Throws std::runtime_error naming the file on failure.
   void write(const Simulation& sim, const std::filesystem::path& file, bool binary);
+  // An upper bound on the size of the last frame written, and of any frame
+  // with as many points, cells and names, whatever their values: its arrays
+  // at full width (binary: their bytes plus zlib's worst case; ASCII: the
+  // longest text of each value) and an allowance for the XML. The file's own
+  // size is no guide: a frame of zero velocities and forces (frame 0)
+  // compresses 4.5-5 times better than later ones (scale probe). 0 before
+  // the first frame.
+  std::uint64_t last_frame_bound_bytes() const { return last_bound_bytes_; }
 
   // The body-block callback (also usable to build a frame without writing).
   static void add_bodies(const Simulation& sim, VtkFrameBuilder& frame);
@@ -134,6 +142,7 @@ class VtkFrameWriter {
   std::vector<std::string> names_;
   std::vector<VtkCellBlock> blocks_;
   VtkFrameBuilder builder_;  // reused from frame to frame
+  std::uint64_t last_bound_bytes_ = 0;
 };
 
 }  // namespace fq
