@@ -1165,14 +1165,14 @@ TEST(RunOutput, StoppedRunEndsWithAFrameOfTheLastState) {
 // nothing it does not hold: history.csv cut back to whole rows, case.pvd
 // listing only frames on disk, and summary.json saying output_failed with
 // the step reached. The failure is made portably (root ignores file modes):
-// at step 2000 an observer replaces frames/ by a regular file, so the frame
-// due at step 2100 cannot be created.
+// after step 2000 (whose frame is written) an observer replaces frames/ by a
+// regular file, so the frame due at step 2100 cannot be created.
 namespace {
 class ReplaceFramesFolderWithAFile : public fq::StepObserver {
  public:
   explicit ReplaceFramesFolderWithAFile(fs::path folder) : folder_(std::move(folder)) {}
   void on_sample(const fq::Simulation& sim) override {
-    if (done_ || sim.steps_done() < 2000) return;
+    if (done_ || sim.steps_done() <= 2000) return;
     done_ = true;
     fs::remove_all(folder_ / "frames");
     std::ofstream(folder_ / "frames") << "not a folder\n";
@@ -1198,7 +1198,7 @@ TEST(RunOutput, AWriteFailingMidRunEndsWithAnOutputErrorWholeRowsAndASummarySayi
   ReplaceFramesFolderWithAFile saboteur(out);
   fq::CaseRunOptions options;
   options.output_folder = out;
-  options.progress = &saboteur;  // asked every 1000 steps
+  options.progress = &saboteur;  // asked after every step, before the frames
   std::string message;
   try {
     fq::run_case(fq::load_case_file(file), options);
