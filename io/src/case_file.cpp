@@ -13,6 +13,7 @@
 #include <sstream>
 #include <string>
 #include <string_view>
+#include <unordered_set>
 #include <vector>
 
 #include "io/input_error.h"
@@ -381,30 +382,35 @@ void parse_sections(const Reader& r, const Field& f, CaseDef& def) {
 
 void parse_nodes(const Reader& r, const Field& f, CaseDef& def) {
   r.to_list(f, "nodes", false);
+  NameIndex ids(def.nodes, &NodeDef::id);
   for_each_item(r, f, "a node: id, xyz_m", {"id", "xyz_m"},
                 [&](const YAML::Node& n, const std::string& path, int line, std::size_t) {
                   NodeDef nd;
                   nd.line = line;
                   const Field id = r.require(n, "id", path, "the node's id");
                   nd.id = r.to_name(id, "a node id");
-                  if (const int other = def.node_index(nd.id); other >= 0)
+                  if (const int other = ids.find(nd.id); other >= 0)
                     r.fail(id, "node id '" + nd.id + "' is already used by nodes[" + std::to_string(other) +
                                    "] (line " + std::to_string(def.nodes[std::size_t(other)].line) + ")");
                   const Field xyz = r.require(n, "xyz_m", path, "position x, y, z in m");
                   nd.xyz_m = r.to_vec3(xyz, "x, y, z in m");
                   if (const std::string why = coordinate_out_of_range(nd.xyz_m); !why.empty()) r.fail(xyz, why);
+                  ids.add(nd.id, static_cast<int>(def.nodes.size()));
                   def.nodes.push_back(nd);
                 });
 }
 
 // Members and blocks share one id space: both become bodies named by id.
-std::string body_id_owner(const CaseDef& def, const std::string& id) {
-  for (std::size_t i = 0; i < def.members.size(); ++i)
-    if (def.members[i].id == id)
-      return "members[" + std::to_string(i) + "] (line " + std::to_string(def.members[i].line) + ")";
-  for (std::size_t i = 0; i < def.blocks.size(); ++i)
-    if (def.blocks[i].id == id)
-      return "blocks[" + std::to_string(i) + "] (line " + std::to_string(def.blocks[i].line) + ")";
+// Indexed, as it is asked once per member and block.
+struct BodyIds {
+  NameIndex members, blocks;
+  explicit BodyIds(const CaseDef& def) : members(def.members, &MemberDef::id), blocks(def.blocks, &BlockDef::id) {}
+};
+std::string body_id_owner(const CaseDef& def, const BodyIds& ids, const std::string& id) {
+  if (const int i = ids.members.find(id); i >= 0)
+    return "members[" + std::to_string(i) + "] (line " + std::to_string(def.members[std::size_t(i)].line) + ")";
+  if (const int i = ids.blocks.find(id); i >= 0)
+    return "blocks[" + std::to_string(i) + "] (line " + std::to_string(def.blocks[std::size_t(i)].line) + ")";
   return {};
 }
 
@@ -427,6 +433,8 @@ std::string reference_message(const std::string& kind, const std::string& given,
 
 void parse_members(const Reader& r, const Field& f, CaseDef& def) {
   r.to_list(f, "members", false);
+  const NameIndex node_ids(def.nodes, &NodeDef::id);
+  BodyIds body_ids(def);
   for_each_item(
       r, f, "a member: id, kind, nodes, section, material, roll_deg, trim_m",
       {"id", "kind", "nodes", "section", "material", "roll_deg", "trim_m"},
@@ -435,7 +443,7 @@ void parse_members(const Reader& r, const Field& f, CaseDef& def) {
         m.line = line;
         const Field id = r.require(n, "id", path, "the member's id");
         m.id = r.to_name(id, "a member id");
-        if (const std::string owner = body_id_owner(def, m.id); !owner.empty())
+        if (const std::string owner = body_id_owner(def, body_ids, m.id); !owner.empty())
           r.fail(id, "id '" + m.id + "' is already used by " + owner);
 
         const Field kind = r.require(n, "kind", path, "column, beam, brace or other");
@@ -453,7 +461,7 @@ void parse_members(const Reader& r, const Field& f, CaseDef& def) {
         for (std::size_t k = 0; k < 2; ++k) {
           const Field e = Reader::item(nodes, k);
           *end_id[k] = r.to_name(e, "a node id");
-          end_index[k] = def.node_index(*end_id[k]);
+          end_index[k] = node_ids.find(*end_id[k]);
           if (end_index[k] < 0) r.fail(e, reference_message("node", *end_id[k], def.nodes, &NodeDef::id, "nodes"));
         }
         if (m.node_a == m.node_b) r.fail(nodes, "a member needs two different nodes, got '" + m.node_a + "' twice");
@@ -479,12 +487,14 @@ void parse_members(const Reader& r, const Field& f, CaseDef& def) {
           m.trim_a_m = r.to_non_negative(Reader::item(*trim, 0));
           m.trim_b_m = r.to_non_negative(Reader::item(*trim, 1));
         }
+        body_ids.members.add(m.id, static_cast<int>(def.members.size()));
         def.members.push_back(m);
       });
 }
 
 void parse_blocks(const Reader& r, const Field& f, CaseDef& def) {
   r.to_list(f, "blocks", false);
+  BodyIds body_ids(def);
   for_each_item(
       r, f, "a block: id, size_m, center_m, material, ...",
       {"id", "kind", "size_m", "center_m", "rotation_deg", "material", "fixed", "velocity_mps",
@@ -494,7 +504,7 @@ void parse_blocks(const Reader& r, const Field& f, CaseDef& def) {
         b.line = line;
         const Field id = r.require(n, "id", path, "the block's id");
         b.id = r.to_name(id, "a block id");
-        if (const std::string owner = body_id_owner(def, b.id); !owner.empty())
+        if (const std::string owner = body_id_owner(def, body_ids, b.id); !owner.empty())
           r.fail(id, "id '" + b.id + "' is already used by " + owner);
         if (const auto kind = r.get(n, "kind", path)) {
           if (!parse_member_kind(r.to_text(*kind), b.kind) || b.kind == MemberKind::Ground)
@@ -522,6 +532,7 @@ void parse_blocks(const Reader& r, const Field& f, CaseDef& def) {
         if (b.fixed && (b.velocity_mps.norm() > 0.0 || b.angular_velocity_radps.norm() > 0.0))
           r.fail(*r.get(n, b.velocity_mps.norm() > 0.0 ? "velocity_mps" : "angular_velocity_radps", path),
                  "a fixed block never moves, so it cannot have an initial velocity");
+        body_ids.blocks.add(b.id, static_cast<int>(def.blocks.size()));
         def.blocks.push_back(b);
       });
 }
@@ -749,6 +760,8 @@ void parse_joints(const Reader& r, const Field& f, CaseDef& def) {
   }
   if (const auto overrides = r.get(f.value, "overrides", f.path)) {
     r.to_list(*overrides, "overrides", false);
+    const NameIndex node_ids(def.nodes, &NodeDef::id);
+    const NameIndex member_ids(def.members, &MemberDef::id);
     for_each_item(
         r, *overrides, "an override: node, members, type", {"node", "members", "type"},
         [&](const YAML::Node& n, const std::string& path, int line, std::size_t) {
@@ -756,7 +769,7 @@ void parse_joints(const Reader& r, const Field& f, CaseDef& def) {
           o.line = line;
           const Field node = r.require(n, "node", path, "the node where the two members meet");
           o.node = r.to_name(node, "a node id");
-          if (def.node_index(o.node) < 0)
+          if (node_ids.find(o.node) < 0)
             r.fail(node, reference_message("node", o.node, def.nodes, &NodeDef::id, "nodes"));
           const Field members = r.require(n, "members", path, "the two member ids");
           if (!members.value.IsSequence() || members.value.size() != 2)
@@ -764,9 +777,9 @@ void parse_joints(const Reader& r, const Field& f, CaseDef& def) {
           for (std::size_t i = 0; i < 2; ++i) {
             const Field m = Reader::item(members, i);
             const std::string id = r.to_name(m, "a member id");
-            const auto it = std::find_if(def.members.begin(), def.members.end(),
-                                         [&](const MemberDef& md) { return md.id == id; });
-            if (it == def.members.end()) r.fail(m, "unknown member '" + id + "'");
+            const int k = member_ids.find(id);
+            if (k < 0) r.fail(m, "unknown member '" + id + "'");
+            const auto it = def.members.begin() + k;
             if (it->node_a != o.node && it->node_b != o.node)
               r.fail(m, "member '" + id + "' does not end at node '" + o.node + "'");
             (i == 0 ? o.member_1 : o.member_2) = id;
@@ -855,6 +868,14 @@ void parse_contact(const Reader& r, const Field& f, CaseDef& def) {
 
 void parse_supports(const Reader& r, const Field& f, CaseDef& def) {
   r.to_list(f, "supports", false);
+  // Indexed: a support is checked against every node, member and support.
+  const NameIndex node_ids(def.nodes, &NodeDef::id);
+  NameIndex supported(def.supports, &SupportDef::node);
+  std::unordered_set<std::string_view> member_ends;
+  for (const MemberDef& m : def.members) {
+    member_ends.insert(m.node_a);
+    member_ends.insert(m.node_b);
+  }
   for_each_item(
       r, f, "a support: node, joint_type", {"node", "joint_type"},
       [&](const YAML::Node& n, const std::string& path, int line, std::size_t) {
@@ -863,17 +884,14 @@ void parse_supports(const Reader& r, const Field& f, CaseDef& def) {
         if (const auto jt = r.get(n, "joint_type", path)) s.joint_type = joint_type_reference(r, *jt, def);
         const Field node = r.require(n, "node", path, "the id of the supported node");
         s.node = r.to_name(node, "a node id");
-        if (def.node_index(s.node) < 0)
+        if (node_ids.find(s.node) < 0)
           r.fail(node, reference_message("node", s.node, def.nodes, &NodeDef::id, "nodes"));
-        for (std::size_t i = 0; i < def.supports.size(); ++i)
-          if (def.supports[i].node == s.node)
-            r.fail(node, "node '" + s.node + "' is already supported by supports[" + std::to_string(i) + "] (line " +
-                             std::to_string(def.supports[i].line) + ")");
-        const bool is_member_end = std::any_of(def.members.begin(), def.members.end(), [&](const MemberDef& m) {
-          return m.node_a == s.node || m.node_b == s.node;
-        });
-        if (!is_member_end)
+        if (const int i = supported.find(s.node); i >= 0)
+          r.fail(node, "node '" + s.node + "' is already supported by supports[" + std::to_string(i) + "] (line " +
+                           std::to_string(def.supports[std::size_t(i)].line) + ")");
+        if (!member_ends.count(s.node))
           r.fail(node, "node '" + s.node + "' is not an end of any member, so a support there would hold nothing");
+        supported.add(s.node, static_cast<int>(def.supports.size()));
         def.supports.push_back(s);
       });
 }

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <map>
+#include <string_view>
+#include <unordered_map>
+#include <vector>
 
 #include "io/input_error.h"
 
@@ -107,11 +110,16 @@ std::vector<PlannedJoint> plan_joints(const Model& model) {
   auto type_named = [&](const std::string& name) -> const JointTypeDef& {
     return def.joint_types[std::size_t(def.joint_type_index(name))];
   };
+  // Overrides by node, in file order (the first that fits wins): asked per
+  // pair of members at a node, a scan of all of them grew with the case.
+  std::unordered_map<std::string_view, std::vector<const JointOverrideDef*>> overrides_at;
+  for (const JointOverrideDef& o : def.joints.overrides) overrides_at[o.node].push_back(&o);
   auto override_for = [&](const std::string& node, const std::string& m1,
                           const std::string& m2) -> const JointOverrideDef* {
-    for (const JointOverrideDef& o : def.joints.overrides)
-      if (o.node == node && ((o.member_1 == m1 && o.member_2 == m2) || (o.member_1 == m2 && o.member_2 == m1)))
-        return &o;
+    const auto at = overrides_at.find(node);
+    if (at == overrides_at.end()) return nullptr;
+    for (const JointOverrideDef* o : at->second)
+      if ((o->member_1 == m1 && o->member_2 == m2) || (o->member_1 == m2 && o->member_2 == m1)) return o;
     return nullptr;
   };
   auto rule_for = [&](MemberKind k1, MemberKind k2) -> const JointRuleDef* {
@@ -185,13 +193,14 @@ std::vector<PlannedJoint> plan_joints(const Model& model) {
     }
   }
 
+  const NameIndex node_ids(def.nodes, &NodeDef::id);
   for (std::size_t si = 0; si < def.supports.size(); ++si) {
     const SupportDef& s = def.supports[si];
     const std::string type = !s.joint_type.empty() ? s.joint_type : def.joints.support_type;
     if (type.empty())
       throw InputError(file, s.line, "supports[" + std::to_string(si) + "].joint_type",
                        "support at node '" + s.node + "' has no joint type: give joint_type here or joints.support_type");
-    const NodeDef& node = def.nodes[std::size_t(def.node_index(s.node))];
+    const NodeDef& node = def.nodes[std::size_t(node_ids.find(s.node))];
     for (const MemberEnd& e : ends[s.node]) {
       const MemberDef& m = def.members[std::size_t(e.member)];
       PlannedJoint p;

@@ -176,6 +176,7 @@ Model build_model(const CaseDef& def_in) {
       fail(m.line, item_path("materials", std::size_t(i)) + ".density_kg_per_m3", why);
     return m.density_kg_per_m3;
   };
+  const NameIndex member_ids(def.members, &MemberDef::id), block_ids(def.blocks, &BlockDef::id);
   auto check_unique_id = [&](const std::string& id, std::size_t upto_members, std::size_t upto_blocks, int line,
                              const std::string& path) {
     // The ground body is named "ground" in every output (body names, joint
@@ -183,13 +184,13 @@ Model build_model(const CaseDef& def_in) {
     // would be told from it by nothing (review probe: two joints of one name).
     if (id == "ground")
       fail(line, path + ".id", "id 'ground' is the ground body's name in the outputs; give this one another id");
-    for (std::size_t j = 0; j < upto_members; ++j)
-      if (def.members[j].id == id)
-        fail(line, path + ".id", "id '" + id + "' is already used by " + item_path("members", j));
-    for (std::size_t j = 0; j < upto_blocks; ++j)
-      if (def.blocks[j].id == id)
-        fail(line, path + ".id", "id '" + id + "' is already used by " + item_path("blocks", j));
+    // The first holder of the id (indexed: this runs per member and block).
+    if (const int j = member_ids.find(id); j >= 0 && std::size_t(j) < upto_members)
+      fail(line, path + ".id", "id '" + id + "' is already used by " + item_path("members", std::size_t(j)));
+    if (const int j = block_ids.find(id); j >= 0 && std::size_t(j) < upto_blocks)
+      fail(line, path + ".id", "id '" + id + "' is already used by " + item_path("blocks", std::size_t(j)));
   };
+  const NameIndex node_ids(def.nodes, &NodeDef::id);
 
   // Box definitions first, so the ground body can be sized to them.
   std::vector<BoxBodyDef> member_boxes;
@@ -201,8 +202,8 @@ Model build_model(const CaseDef& def_in) {
     const std::string path = item_path("members", i);
     if (m.id.empty()) fail(m.line, path + ".id", "expected a member id");
     check_unique_id(m.id, i, 0, m.line, path);
-    const int a = def.node_index(m.node_a);
-    const int b = def.node_index(m.node_b);
+    const int a = node_ids.find(m.node_a);
+    const int b = node_ids.find(m.node_b);
     if (a < 0) fail(m.line, path + ".nodes[0]", "no node named '" + m.node_a + "'");
     if (b < 0) fail(m.line, path + ".nodes[1]", "no node named '" + m.node_b + "'");
     const Vec3 pa = def.nodes[std::size_t(a)].xyz_m;
@@ -258,7 +259,7 @@ Model build_model(const CaseDef& def_in) {
   }
   for (std::size_t i = 0; i < def.supports.size(); ++i) {
     const SupportDef& s = def.supports[i];
-    if (def.node_index(s.node) < 0) fail(s.line, item_path("supports", i) + ".node", "no node named '" + s.node + "'");
+    if (node_ids.find(s.node) < 0) fail(s.line, item_path("supports", i) + ".node", "no node named '" + s.node + "'");
   }
 
   // Ground body. Its top face is the ground surface. In plan it covers the
