@@ -20,6 +20,7 @@
 #include "io/joint_builder.h"
 #include "io/json_writer.h"
 #include "io/model.h"
+#include "io/point_grid.h"
 #include "io/run_output.h"
 #include "io/utf8_text.h"
 #include "scene_output.h"
@@ -578,6 +579,26 @@ std::vector<NodeInMember> nodes_inside_members(const CaseDef& def) {
         if (nodes.count(*id) && seen.insert(*id).second) ends.push_back(nodes.at(*id));
   }
   constexpr double kEndClearance_m = 1e-3;
+  // The end nodes in a grid, so each member meets only the nodes near its
+  // box, not all of them (quadratic: a large share of the 90 s set-up of a
+  // 100k-body grid). Cells of a typical member's length keep both the cells
+  // a member covers and the nodes per cell few.
+  std::vector<double> lengths;
+  lengths.reserve(def.members.size());
+  for (const MemberDef& m : def.members) {
+    const auto a = nodes.find(m.node_a), b = nodes.find(m.node_b);
+    if (a != nodes.end() && b != nodes.end()) lengths.push_back((b->second->xyz_m - a->second->xyz_m).norm());
+  }
+  double cell_m = 1.0;
+  if (!lengths.empty()) {
+    std::nth_element(lengths.begin(), lengths.begin() + std::ptrdiff_t(lengths.size() / 2), lengths.end());
+    cell_m = lengths[lengths.size() / 2];
+  }
+  std::vector<Vec3> end_xyz;
+  end_xyz.reserve(ends.size());
+  for (const NodeDef* n : ends) end_xyz.push_back(n->xyz_m);
+  const PointGrid grid(std::move(end_xyz), cell_m);
+  std::vector<int> near;
   std::vector<NodeInMember> inside;
   for (const MemberDef& m : def.members) {
     const auto a = nodes.find(m.node_a), b = nodes.find(m.node_b);
@@ -594,7 +615,16 @@ std::vector<NodeInMember> nodes_inside_members(const CaseDef& def) {
     const Mat3 frame = member_orientation(pa, b->second->xyz_m, m.roll_rad).toRotationMatrix();
     const double half_width = 0.5 * sec->second->width_m + kEndClearance_m;
     const double half_depth = 0.5 * sec->second->depth_m + kEndClearance_m;
-    for (const NodeDef* n : ends) {
+    // A node passing the test below lies within half_width + half_depth of
+    // the axis between the ends (more than the box's half diagonal); 1 um
+    // more covers rounding. The candidates come in `ends` order, as the
+    // warning lists them.
+    const double reach_m = half_width + half_depth + 1e-6;
+    near.clear();
+    grid.candidates(pa.cwiseMin(b->second->xyz_m) - Vec3::Constant(reach_m),
+                    pa.cwiseMax(b->second->xyz_m) + Vec3::Constant(reach_m), near);
+    for (const int k : near) {
+      const NodeDef* n = ends[std::size_t(k)];
       if (n->id == m.node_a || n->id == m.node_b) continue;
       const double along = (n->xyz_m - pa).dot(dir);
       if (along <= kEndClearance_m || along >= length - kEndClearance_m) continue;
@@ -674,10 +704,24 @@ std::string near_nodes_warning(const CaseDef& def) {
   std::sort(ends.begin(), ends.end(), [](const NodeDef* a, const NodeDef* b) {
     return a->xyz_m.x() < b->xyz_m.x() || (a->xyz_m.x() == b->xyz_m.x() && a->line < b->line);
   });
+  // The pairs in sweep order, but each node meets only the later nodes in
+  // the cells around it: a sweep alone is quadratic when many nodes share
+  // an x (a floor, a frame drawn in the y-z plane).
+  std::vector<Vec3> end_xyz;
+  end_xyz.reserve(ends.size());
+  for (const NodeDef* n : ends) end_xyz.push_back(n->xyz_m);
+  const PointGrid grid(std::move(end_xyz), reach_m);
+  std::vector<int> near;
   std::vector<std::string> found;
   std::size_t count = 0;
   for (std::size_t i = 0; i < ends.size(); ++i) {
-    for (std::size_t j = i + 1; j < ends.size() && ends[j]->xyz_m.x() - ends[i]->xyz_m.x() <= reach_m; ++j) {
+    near.clear();
+    // 1 um beyond the reach covers rounding of the box's bounds.
+    const Vec3 reach = Vec3::Constant(reach_m + 1e-6);
+    grid.candidates(ends[i]->xyz_m - reach, ends[i]->xyz_m + reach, near);
+    for (const int k : near) {
+      const std::size_t j = std::size_t(k);
+      if (j <= i || !(ends[j]->xyz_m.x() - ends[i]->xyz_m.x() <= reach_m)) continue;
       const NodeDef& a = *ends[i];
       const NodeDef& b = *ends[j];
       const double gap_m = (a.xyz_m - b.xyz_m).norm();
