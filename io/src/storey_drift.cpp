@@ -5,6 +5,10 @@
 #include <iomanip>
 #include <sstream>
 #include <stdexcept>
+#include <unordered_map>
+#include <vector>
+
+#include "io/point_grid.h"
 
 namespace fq {
 
@@ -53,10 +57,10 @@ struct Level {
 
 // Vertical extent of a member's section (m): of a horizontal beam, the
 // section's depth as rolled (width_m at a roll of 90 degrees).
-double section_height_m(const CaseDef& def, const MemberDef& m) {
+double section_height_m(const CaseDef& def, const MemberDef& m, int node_a, int node_b) {
   const SectionDef& sec = def.sections[std::size_t(def.section_index(m.section))];
-  const Vec3 a = def.nodes[std::size_t(def.node_index(m.node_a))].xyz_m;
-  const Vec3 b = def.nodes[std::size_t(def.node_index(m.node_b))].xyz_m;
+  const Vec3 a = def.nodes[std::size_t(node_a)].xyz_m;
+  const Vec3 b = def.nodes[std::size_t(node_b)].xyz_m;
   const Mat3 r = member_orientation(a, b, m.roll_rad).toRotationMatrix();
   return std::abs(r(2, 1)) * sec.width_m + std::abs(r(2, 2)) * sec.depth_m;
 }
@@ -69,11 +73,12 @@ std::vector<Storey> find_storeys(const Model& model) {
   std::vector<ColumnSegment> segments;
   std::vector<double> beam_height_m(def.nodes.size(), -1.0);  // deepest beam at each node; < 0: none
   std::vector<char> column_goes_up(def.nodes.size(), 0);        // a column has its low end here
+  const NameIndex node_ids(def.nodes, &NodeDef::id);
   for (std::size_t i = 0; i < def.members.size(); ++i) {
     const MemberDef& m = def.members[i];
-    const int na = def.node_index(m.node_a), nb = def.node_index(m.node_b);
+    const int na = node_ids.find(m.node_a), nb = node_ids.find(m.node_b);
     if (m.kind == MemberKind::Beam) {
-      const double h = section_height_m(def, m);
+      const double h = section_height_m(def, m, na, nb);
       for (const int n : {na, nb}) beam_height_m[std::size_t(n)] = std::max(beam_height_m[std::size_t(n)], h);
       continue;
     }
@@ -177,6 +182,11 @@ std::vector<Storey> find_storeys(const Model& model) {
                                 [&](const ColumnSegment& c) { return c.high_z_m - c.low_z_m < tol; }),
                  segments.end());
 
+  // Segments by their high node, in order: a column line is followed down
+  // through its joints once per storey, and a scan of all segments per
+  // joint grew with the square of the frame.
+  std::unordered_map<int, std::vector<std::size_t>> ending_at;
+  for (std::size_t b = 0; b < segments.size(); ++b) ending_at[segments[b].high_node].push_back(b);
   std::vector<Storey> storeys;
   for (std::size_t k = 1; k < levels.size(); ++k) {
     Storey s;
@@ -196,8 +206,12 @@ std::vector<Storey> find_storeys(const Model& model) {
       while (segments[line.back()].low_z_m > s.bottom_z_m + tol) {
         const int joint = segments[line.back()].low_node;
         std::size_t below = segments.size();
-        for (std::size_t b = 0; b < segments.size() && below == segments.size(); ++b)
-          if (segments[b].high_node == joint && segments[b].low_z_m < segments[line.back()].low_z_m) below = b;
+        if (const auto at = ending_at.find(joint); at != ending_at.end())
+          for (const std::size_t b : at->second)
+            if (segments[b].low_z_m < segments[line.back()].low_z_m) {
+              below = b;
+              break;
+            }
         if (below == segments.size()) break;
         line.push_back(below);
       }
@@ -271,12 +285,25 @@ StoreyDriftMonitor::StoreyDriftMonitor(std::vector<Storey> storeys, AssessmentDe
     // setback floor on beams), the whole floor below's mean.
     if (storey_below_[i] >= 0) {
       const Storey& below = storeys_[std::size_t(storey_below_[i])];
-      for (std::size_t k = 0; k < below.columns.size(); ++k)
-        for (const StoreyColumn& c : storeys_[i].columns)
-          if ((below.columns[k].top_start_m.head<2>() - c.bottom_start_m.head<2>()).norm() < kStoreyLevelTolerance_m) {
+      // This storey's column feet in plan in a grid: each column below
+      // meets only the feet near it, not all (quadratic at 10k columns).
+      std::vector<Vec3> feet;
+      feet.reserve(storeys_[i].columns.size());
+      for (const StoreyColumn& c : storeys_[i].columns)
+        feet.emplace_back(c.bottom_start_m.x(), c.bottom_start_m.y(), 0.0);
+      const PointGrid grid(std::move(feet), kStoreyLevelTolerance_m);
+      std::vector<int> near;
+      for (std::size_t k = 0; k < below.columns.size(); ++k) {
+        const Eigen::Vector2d top = below.columns[k].top_start_m.head<2>();
+        const Vec3 reach(kStoreyLevelTolerance_m + 1e-6, kStoreyLevelTolerance_m + 1e-6, 0.0);
+        near.clear();
+        grid.candidates(Vec3(top.x(), top.y(), 0.0) - reach, Vec3(top.x(), top.y(), 0.0) + reach, near);
+        for (const int c : near)
+          if ((top - storeys_[i].columns[std::size_t(c)].bottom_start_m.head<2>()).norm() < kStoreyLevelTolerance_m) {
             columns_below_[i].push_back(k);
             break;
           }
+      }
       if (columns_below_[i].empty())
         for (std::size_t k = 0; k < below.columns.size(); ++k) columns_below_[i].push_back(k);
     }
