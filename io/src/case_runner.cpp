@@ -636,6 +636,19 @@ std::vector<NodeInMember> nodes_inside_members(const CaseDef& def) {
   return inside;
 }
 
+// The form of the case's list warnings: "<file>: <count> <what> (<the
+// first items>[, ...]): <advice>", `what` in its singular and plural forms,
+// `items` the first three at most, joined by `separator`.
+std::string list_warning(const CaseDef& def, std::size_t count, const char* what_one, const char* what_many,
+                         const std::vector<std::string>& items, const char* separator, const char* advice) {
+  std::ostringstream w;
+  w << def.source_file.string() << ": " << count << (count == 1 ? what_one : what_many) << " (";
+  for (std::size_t k = 0; k < items.size(); ++k) w << (k ? separator : "") << items[k];
+  if (count > items.size()) w << separator << "...";
+  w << "): " << advice;
+  return w.str();
+}
+
 }  // namespace
 
 std::string nodes_inside_members_warning(const CaseDef& def) {
@@ -649,14 +662,10 @@ std::string nodes_inside_members_warning(const CaseDef& def) {
     found.push_back(f.str());
   }
   if (count == 0) return {};
-  std::ostringstream w;
-  w << def.source_file.string() << ": " << count << (count == 1 ? " node lies" : " nodes lie")
-    << " inside or on a member without being one of its ends (";
-  for (std::size_t k = 0; k < found.size(); ++k) w << (k ? "; " : "") << found[k];
-  if (count > found.size()) w << "; ...";
-  w << "): joints join members only where they end, so the members ending at such a node are not held to the "
-       "member it lies in; split that member at the node if they should be joined";
-  return w.str();
+  return list_warning(def, count, " node lies inside or on a member without being one of its ends",
+                      " nodes lie inside or on a member without being one of its ends", found, "; ",
+                      "joints join members only where they end, so the members ending at such a node are not held to "
+                      "the member it lies in; split that member at the node if they should be joined");
 }
 
 std::string unused_nodes_warning(const CaseDef& def) {
@@ -669,14 +678,11 @@ std::string unused_nodes_warning(const CaseDef& def) {
   for (const NodeDef& n : def.nodes)
     if (!used.count(n.id)) unused.push_back(&n);
   if (unused.empty()) return "";
-  std::ostringstream w;
-  w << def.source_file.string() << ": " << unused.size() << (unused.size() == 1 ? " node is" : " nodes are")
-    << " the end of no member (";
+  std::vector<std::string> found;
   for (std::size_t k = 0; k < unused.size() && k < 3; ++k)
-    w << (k ? ", " : "") << "'" << unused[k]->id << "' (line " << unused[k]->line << ")";
-  if (unused.size() > 3) w << ", ...";
-  w << "): a member meant to end there names another node, or the node is a leftover";
-  return w.str();
+    found.push_back("'" + unused[k]->id + "' (line " + std::to_string(unused[k]->line) + ")");
+  return list_warning(def, unused.size(), " node is the end of no member", " nodes are the end of no member", found,
+                      ", ", "a member meant to end there names another node, or the node is a leftover");
 }
 
 std::string near_nodes_warning(const CaseDef& def) {
@@ -739,14 +745,12 @@ std::string near_nodes_warning(const CaseDef& def) {
     }
   }
   if (count == 0) return {};
-  std::ostringstream w;
-  w << def.source_file.string() << ": " << count << (count == 1 ? " pair" : " pairs")
-    << " of member end nodes lie closer than half the thinnest section of their members (";
-  for (std::size_t k = 0; k < found.size(); ++k) w << (k ? "; " : "") << found[k];
-  if (count > found.size()) w << "; ...";
-  w << "): joints form only where members share a node, so the members ending at them are not joined; use one "
-       "node if they should meet";
-  return w.str();
+  return list_warning(def, count,
+                      " pair of member end nodes lie closer than half the thinnest section of their members",
+                      " pairs of member end nodes lie closer than half the thinnest section of their members", found,
+                      "; ",
+                      "joints form only where members share a node, so the members ending at them are not joined; use "
+                      "one node if they should meet");
 }
 
 std::string slender_members_warning(const CaseDef& def) {
@@ -836,14 +840,10 @@ std::string unjoined_members_warning(const CaseDef& def, const Scene& scene) {
     if (found.size() < 3) found.push_back("'" + bodies.info[i].name + "' (line " + std::to_string(line->second) + ")");
   }
   if (count == 0) return {};
-  std::ostringstream w;
-  w << def.source_file.string() << ": " << count << (count == 1 ? " member is" : " members are")
-    << " held by no joint or support (";
-  for (std::size_t k = 0; k < found.size(); ++k) w << (k ? ", " : "") << found[k];
-  if (count > found.size()) w << ", ...";
-  w << "): such a member stands only on its contacts, or falls where it has none; if it should be joined, end it "
-       "at the nodes of the members it meets";
-  return w.str();
+  return list_warning(def, count, " member is held by no joint or support", " members are held by no joint or support",
+                      found, ", ",
+                      "such a member stands only on its contacts, or falls where it has none; if it should be joined, "
+                      "end it at the nodes of the members it meets");
 }
 
 std::vector<std::string> case_warnings(const CaseDef& def, const Scene& scene) {
@@ -890,14 +890,9 @@ std::string brace_free_ends_warning(const CaseDef& def, const Scene& scene) {
                       std::to_string(node_line[free_node]) + ")");
   }
   if (count == 0) return {};
-  std::ostringstream w;
-  w << def.source_file.string() << ": " << count << (count == 1 ? " brace is" : " braces are")
-    << " joined at one end only (";
-  for (std::size_t k = 0; k < found.size(); ++k) w << (k ? ", " : "") << found[k];
-  if (count > found.size()) w << ", ...";
-  w << "): no other member ends at that node and no support holds it, so the brace hangs from its other end and "
-       "braces nothing; end it at the node of the corner it should reach";
-  return w.str();
+  return list_warning(def, count, " brace is joined at one end only", " braces are joined at one end only", found, ", ",
+                      "no other member ends at that node and no support holds it, so the brace hangs from its other "
+                      "end and braces nothing; end it at the node of the corner it should reach");
 }
 
 std::string unused_joint_rules_warning(const CaseDef& def) {
