@@ -116,14 +116,11 @@ TEST(JointFracture, AllNormalSpringsDeletedNeedsEveryNormalSpring) {
   EXPECT_STREQ(log.all().back().mode, "normal_spring_deleted");
 }
 
-TEST(JointFracture, AJointThatSlidOutBreaksWithTheShearMode) {
-  // Linear normal springs, trilinear shear springs (ultimate 5 mm): a slip
-  // of 6 mm along x deletes the shear springs along x, and any_spring_deleted
-  // breaks the joint with mode shear_spring_deleted (no normal spring went).
-  BondedPairs bonded;
-  BodyStore store = test::two_boxes();
-  JointSystem js(&bonded);
-  const TrilinearParams t = breaking_law(0.05, 0.05);  // 5 mm
+// A four-corner joint between the two boxes: linear normal springs,
+// trilinear shear springs with an ultimate slip of 5 mm (strain 0.05 over
+// 0.1 m), broken by any deleted spring.
+void add_shear_breaking_joint(JointSystem& js, BodyStore& store) {
+  const TrilinearParams t = breaking_law(0.05, 0.05);
   JointDef d;
   d.body_a = 0;
   d.body_b = 1;
@@ -131,6 +128,16 @@ TEST(JointFracture, AJointThatSlidOutBreaksWithTheShearMode) {
   d.fracture.criterion = BreakCriterion::AnySpringDeleted;
   js.add_joint(store, d);
   js.prepare(store);
+}
+
+TEST(JointFracture, AJointThatSlidOutBreaksWithTheShearMode) {
+  // Linear normal springs, trilinear shear springs (ultimate 5 mm): a slip
+  // of 6 mm along x deletes the shear springs along x, and any_spring_deleted
+  // breaks the joint with mode shear_spring_deleted (no normal spring went).
+  BondedPairs bonded;
+  BodyStore store = test::two_boxes();
+  JointSystem js(&bonded);
+  add_shear_breaking_joint(js, store);
   EventLog log;
   test::drive(js, store, 1, store.position_m[1], store.orientation[1], Vec3(0.006, 0, 0), Vec3::Zero(),
               Vec3::Zero(), 0);
@@ -156,14 +163,7 @@ TEST(JointFracture, SpringsOfABrokenJointAreNotReportedAsDeleted) {
   BondedPairs bonded;
   BodyStore store = test::two_boxes();
   JointSystem js(&bonded);
-  const TrilinearParams t = breaking_law(0.05, 0.05);  // 5 mm over 0.1 m
-  JointDef d;
-  d.body_a = 0;
-  d.body_b = 1;
-  d.layout = four_corner_layout(0.04, 0.04, 1.0, linear_spring(1e6), trilinear_spring(t, 0.1));
-  d.fracture.criterion = BreakCriterion::AnySpringDeleted;
-  js.add_joint(store, d);
-  js.prepare(store);
+  add_shear_breaking_joint(js, store);
   EventLog log;
   test::drive(js, store, 1, store.position_m[1], store.orientation[1], Vec3(0.006, 0.002, 0), Vec3::Zero(),
               Vec3::Zero(), 0);
@@ -194,8 +194,7 @@ TEST(JointFracture, SpringsOfABrokenJointAreNotReportedAsDeleted) {
   BondedPairs bonded2;
   BodyStore store2 = test::two_boxes();
   JointSystem js2(&bonded2);
-  js2.add_joint(store2, d);
-  js2.prepare(store2);
+  add_shear_breaking_joint(js2, store2);
   StateReader in(out.bytes());
   js2.load_state(in);
   check(js2, "after a checkpoint");
