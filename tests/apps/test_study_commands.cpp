@@ -34,6 +34,31 @@ using fq_test::TempDir;
 
 const fs::path kSource = FQ_SOURCE_DIR;
 
+// A 0.1 m spruce cube resting on the ground (contacts of restitution 0.5,
+// friction 0.4): `head` lines after the format line (a name), the time
+// section's flow map, `extra` lines before the blocks, and the
+// ground_motion section's lines.
+std::string cube_case(const std::string& head, const std::string& time, const std::string& extra,
+                      const std::string& ground_motion) {
+  std::string text = "framequake_case: 1\n";
+  text.append(head).append("time: ").append(time).append("\n");
+  text.append("materials: [{name: spruce, density_kg_per_m3: 450}]\n").append(extra);
+  text.append("blocks: [{id: cube, size_m: [0.1, 0.1, 0.1], center_m: [0, 0, 0.05], material: spruce}]\n");
+  text.append("contact:\n  ground: {normal_stiffness_N_per_m: 1.0e6, restitution: 0.5, friction_coefficient: 0.4}\n");
+  text.append("ground_motion:\n").append(ground_motion);
+  return text;
+}
+
+// Its ground_motion lines for the JMA Kobe NS record along `axis`.
+std::string kobe_ns_along(const std::string& axis) {
+  std::string text = "  components:\n    - {file: ";
+  text.append((kSource / "cases/ground_motions/RSN1106_KOBE_KJM000.AT2").string())
+      .append(", format: peer_at2, axis: ")
+      .append(axis)
+      .append("}\n");
+  return text;
+}
+
 using Table = std::vector<std::map<std::string, std::string>>;
 
 Table read_csv(const fs::path& file) {
@@ -182,17 +207,7 @@ TEST(StudyCommands, SweepPgaDoesNotDependOnTheRecordsHorizontalDirection) {
   for (const char* axis : {"x", "[1, 1, 0]", "[-0.6, 0.8, 0]"}) {
     const std::string name = std::string("cube_") + (axis[0] == 'x' ? "x" : axis[1] == '1' ? "diagonal" : "oblique");
     std::ofstream(dir.path() / (name + ".yaml"))
-        << "framequake_case: 1\n"
-           "time: {dt_s: 1.0e-4, duration_s: 0.2}\n"
-           "materials: [{name: spruce, density_kg_per_m3: 450}]\n"
-           "blocks: [{id: cube, size_m: [0.1, 0.1, 0.1], center_m: [0, 0, 0.05], material: spruce}]\n"
-           "contact:\n"
-           "  ground: {normal_stiffness_N_per_m: 1.0e6, restitution: 0.5, friction_coefficient: 0.4}\n"
-           "ground_motion:\n"
-           "  window_start_s: 8.4\n"
-           "  components:\n"
-           "    - {file: "
-        << (kSource / "cases/ground_motions/RSN1106_KOBE_KJM000.AT2").string() << ", format: peer_at2, axis: " << axis << "}\n";
+        << cube_case("", "{dt_s: 1.0e-4, duration_s: 0.2}", "", "  window_start_s: 8.4\n" + kobe_ns_along(axis));
     const fs::path out = dir.path() / ("sweep_" + name);
     const auto r = run_app({"sweep", (dir.path() / (name + ".yaml")).string(), "--scales", "1", "--out",
                             out.string(), "--no-figure"},
@@ -210,17 +225,7 @@ TEST(StudyCommands, SweepPgaDoesNotDependOnTheRecordsHorizontalDirection) {
 // record's own header names the component 'UP' (the fact the warning uses).
 TEST(StudyCommands, SweepWarnsOfAVerticalRecordAlongXBeforeItsRuns) {
   TempDir dir;
-  std::ofstream(dir.path() / "cube.yaml")
-      << "framequake_case: 1\n"
-         "time: {dt_s: 1.0e-4, duration_s: 0.05}\n"
-         "materials: [{name: spruce, density_kg_per_m3: 450}]\n"
-         "blocks: [{id: cube, size_m: [0.1, 0.1, 0.1], center_m: [0, 0, 0.05], material: spruce}]\n"
-         "contact:\n"
-         "  ground: {normal_stiffness_N_per_m: 1.0e6, restitution: 0.5, friction_coefficient: 0.4}\n"
-         "ground_motion:\n"
-         "  components:\n"
-         "    - {file: "
-      << (kSource / "cases/ground_motions/RSN1106_KOBE_KJM000.AT2").string() << ", format: peer_at2, axis: x}\n";
+  std::ofstream(dir.path() / "cube.yaml") << cube_case("", "{dt_s: 1.0e-4, duration_s: 0.05}", "", kobe_ns_along("x"));
   const fs::path out = dir.path() / "sweep";
   const auto r = run_app({"sweep", (dir.path() / "cube.yaml").string(), "--scales", "0.5,1", "--record",
                           (kSource / "cases/ground_motions/RSN1106_KOBE_KJM-UP.AT2").string(), "--out", out.string(),
@@ -245,18 +250,8 @@ TEST(StudyCommands, SweepWarnsOfAVerticalRecordAlongXBeforeItsRuns) {
 // a sweep of two scales said it twice, of six scales six times).
 TEST(StudyCommands, ACasesOwnWarningIsSaidOnceBeforeTheRuns) {
   TempDir dir;
-  std::ofstream(dir.path() / "cube.yaml")
-      << "framequake_case: 1\n"
-         "time: {dt_s: 1.0e-4, duration_s: 0.05}\n"
-         "materials: [{name: spruce, density_kg_per_m3: 450}]\n"
-         "nodes: [{id: spare, xyz_m: [1, 1, 0]}]\n"
-         "blocks: [{id: cube, size_m: [0.1, 0.1, 0.1], center_m: [0, 0, 0.05], material: spruce}]\n"
-         "contact:\n"
-         "  ground: {normal_stiffness_N_per_m: 1.0e6, restitution: 0.5, friction_coefficient: 0.4}\n"
-         "ground_motion:\n"
-         "  components:\n"
-         "    - {file: "
-      << (kSource / "cases/ground_motions/RSN1106_KOBE_KJM000.AT2").string() << ", format: peer_at2, axis: x}\n";
+  std::ofstream(dir.path() / "cube.yaml") << cube_case("", "{dt_s: 1.0e-4, duration_s: 0.05}",
+                                                       "nodes: [{id: spare, xyz_m: [1, 1, 0]}]\n", kobe_ns_along("x"));
   const fs::path out = dir.path() / "sweep";
   const auto r = run_app({"sweep", (dir.path() / "cube.yaml").string(), "--scales", "0.5,1", "--out", out.string(),
                           "--no-figure"},
@@ -312,14 +307,8 @@ TEST(StudyCommands, SweepPgaIsThatOfThePartOfTheWindowTheRunFelt) {
     for (int k = 0; k <= 100; ++k) record << 0.1 * k << " " << 1.0 * k << "\n";
   }
   std::ofstream(dir.path() / "short.yaml")
-      << "framequake_case: 1\n"
-         "time: {dt_s: 1.0e-4, duration_s: 0.25}\n"
-         "materials: [{name: spruce, density_kg_per_m3: 450}]\n"
-         "blocks: [{id: cube, size_m: [0.1, 0.1, 0.1], center_m: [0, 0, 0.05], material: spruce}]\n"
-         "contact:\n"
-         "  ground: {normal_stiffness_N_per_m: 1.0e6, restitution: 0.5, friction_coefficient: 0.4}\n"
-         "ground_motion:\n"
-         "  components: [{file: ramp.txt, format: two_column, axis: x}]\n";
+      << cube_case("", "{dt_s: 1.0e-4, duration_s: 0.25}", "",
+                   "  components: [{file: ramp.txt, format: two_column, axis: x}]\n");
   const fs::path out = dir.path() / "sweep";
   const auto r = run_app({"sweep", (dir.path() / "short.yaml").string(), "--scales", "1", "--out", out.string(),
                           "--no-figure"},
@@ -1052,14 +1041,8 @@ TEST(StudyCommands, TheWindowNoteSaysWhatEachRunApplied) {
   }
   auto block = [&](const std::string& name, const std::string& window) {
     std::ofstream(dir.path() / (name + ".yaml"))
-        << "framequake_case: 1\n"
-           "name: " << name << "\n"
-           "time: {dt_s: 1.0e-4}\n"
-           "materials: [{name: spruce, density_kg_per_m3: 450}]\n"
-           "blocks: [{id: cube, size_m: [0.1, 0.1, 0.1], center_m: [0, 0, 0.05], material: spruce}]\n"
-           "contact:\n"
-           "  ground: {normal_stiffness_N_per_m: 1.0e6, restitution: 0.5, friction_coefficient: 0.4}\n"
-           "ground_motion:\n" << window << "  components: [{file: short.txt, format: two_column, axis: x}]\n";
+        << cube_case("name: " + name + "\n", "{dt_s: 1.0e-4}", "",
+                     window + "  components: [{file: short.txt, format: two_column, axis: x}]\n");
     return (dir.path() / (name + ".yaml")).string();
   };
   const std::string whole = block("whole", ""),
