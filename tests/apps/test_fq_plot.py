@@ -66,7 +66,9 @@ def traces(ax):
             if not line.get_label().startswith("_")}
 
 
-class CompareFigure(unittest.TestCase):
+class FigureTest(unittest.TestCase):
+    """A temporary study folder and the figures' style, closed afterwards."""
+
     def setUp(self):
         plt.rcParams.update(fq_plot.STYLE)
         self.dir = tempfile.TemporaryDirectory()
@@ -75,6 +77,9 @@ class CompareFigure(unittest.TestCase):
     def tearDown(self):
         plt.close("all")
         self.dir.cleanup()
+
+
+class CompareFigure(FigureTest):
 
     def make_study(self):
         """Two two-storey frames shaken along y (EW): 'bare' sways along y;
@@ -212,15 +217,7 @@ class CompareFigure(unittest.TestCase):
         self.assertEqual(fig.axes[0].get_legend().get_title().get_text(), "storey 1 (clipped at 0.30 rad)")
 
 
-class SweepFigure(unittest.TestCase):
-    def setUp(self):
-        plt.rcParams.update(fq_plot.STYLE)
-        self.dir = tempfile.TemporaryDirectory()
-        self.folder = self.dir.name
-
-    def tearDown(self):
-        plt.close("all")
-        self.dir.cleanup()
+class SweepFigure(FigureTest):
 
     def test_each_distinct_pair_of_limits_is_drawn_once_and_labelled(self):
         rows = []
