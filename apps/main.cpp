@@ -38,6 +38,7 @@
 #include "io/case_runner.h"
 #include "io/input_error.h"
 #include "progress_display.h"
+#include "run_outcome.h"
 #include "study_commands.h"
 #include "render/render_command.h"
 
@@ -289,6 +290,7 @@ int command_run(int argc, char** argv) {
   std::cout << "framequake: " << def.name << ": " << fq::run_status_name(r.status) << " after " << r.steps
             << " steps, t = " << r.simulated_s << " s, wall " << r.wall_s << " s\n"
             << "framequake: output in " << report.output_folder.string() << " (open case.pvd in ParaView)\n";
+  fq_app::print_run_outcome(report, std::cout);
   switch (r.status) {
     case fq::RunStatus::Completed: return kExitOk;
     case fq::RunStatus::Stopped: return interrupted_exit_code();
@@ -357,6 +359,7 @@ int command_resume(int argc, char** argv) {
   const fq::RunResult& r = report.result;
   std::cout << "framequake: resumed " << folder << ": " << fq::run_status_name(r.status) << " after " << r.steps
             << " steps, t = " << r.simulated_s << " s, wall " << r.wall_s << " s\n";
+  fq_app::print_run_outcome(report, std::cout);
   switch (r.status) {
     case fq::RunStatus::Completed: return kExitOk;
     case fq::RunStatus::Stopped: return interrupted_exit_code();

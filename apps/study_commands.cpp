@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "collapse_bracket.h"
+#include "run_outcome.h"
 #include "fq_config.h"
 #include "io/accelerogram.h"
 #include "io/atomic_file.h"
@@ -488,19 +489,6 @@ int run_figure(const std::string& kind, const fs::path& folder, const char* file
 std::string outcome_status(const fq::BatchOutcome& o) {
   if (o.ok) return fq::run_status_name(o.report.result.status);
   return o.exit_code == kExitInterrupted ? "not run" : "failed";
-}
-
-// A storey's verdict as the tables print it. A run stopped before its end
-// has collapsed for good if it collapsed, but is standing or damaged only
-// "so far": the rest of the record might have changed that. A run that
-// became unstable is not assessed: its drifts after the blow-up are the
-// arithmetic's, not the structure's (a probe's unstable portal read
-// "collapsed, 0.7583").
-std::string verdict_text(const fq::CaseRunReport& r, const fq::StoreyOutcome& s) {
-  if (r.result.status == fq::RunStatus::Unstable) return "not assessed (unstable)";
-  std::string text = fq::storey_verdict_name(s.verdict);
-  if (r.result.status != fq::RunStatus::Completed && s.verdict != fq::StoreyVerdict::Collapsed) text += " so far";
-  return text;
 }
 
 // The verdict in the csv tables: the bare name, or not_assessed for an

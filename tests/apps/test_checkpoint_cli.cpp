@@ -77,6 +77,11 @@ TEST(CheckpointCli, KilledRunResumedGivesTheUninterruptedOutput) {
   for (const char* name : {"history.csv", "events.csv", "case.pvd"})
     EXPECT_TRUE(read_text(out / name) == read_text(ref / name)) << name << " differs from the uninterrupted run";
   EXPECT_NE(read_text(out / "events.csv").find("joint_broken"), std::string::npos) << "the run must span the break";
+  // It ends with the lines a run ends with (apps/run_outcome.cpp): the
+  // joint that broke, named, and the energy balance.
+  EXPECT_NE(r.out.find(" broken); first failure: "), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("first failure: none"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("framequake: energy balance error "), std::string::npos) << r.out;
   // The resumed process's speed counts its own steps, those after the
   // checkpoint, over its own wall time (it divided all the run's steps by
   // it before).

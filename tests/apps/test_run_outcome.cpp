@@ -1,0 +1,96 @@
+// What `framequake run` says on the terminal at the end of a run: each
+// storey's peak drift ratio and verdict, the joints, the energy balance.
+// Expected verdicts come from statics: a post whose centre of mass lies
+// beyond the edge of its base topples (collapsed), the same post upright
+// stands. The printed numbers must be those of summary.json, the run's
+// record, to the six digits printed.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <string>
+
+#include "app_process.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using fq_test::read_text;
+using fq_test::run_app;
+using fq_test::TempDir;
+
+// A 20 x 20 mm post 0.3 m tall, its foot 4 mm above the ground (so that no
+// corner of the foot starts inside it), its head `lean_m` beside its foot.
+// Leaning 0.1 m, its centre of mass is 0.05 m beside its foot, five times
+// the half-width of its section: it cannot stand.
+std::string post_case(const std::string& name, double lean_m) {
+  return "framequake_case: 1\n"
+         "name: " + name + "\n"
+         "time: {dt_s: 1.0e-5, duration_s: 1.0}\n"
+         "materials: [{name: wood, density_kg_per_m3: 450}]\n"
+         "sections: [{name: post, width_m: 0.02, depth_m: 0.02}]\n"
+         "ground: {level_m: 0.0}\n"
+         "nodes:\n"
+         "  - {id: foot, xyz_m: [0, 0, 0.004]}\n"
+         "  - {id: head, xyz_m: [" + std::to_string(lean_m) + ", 0, 0.304]}\n"
+         "members:\n"
+         "  - {id: post, kind: column, nodes: [foot, head], section: post, material: wood}\n"
+         "contact: {ground: {normal_stiffness_N_per_m: 1.0e5, restitution: 0.3, friction_coefficient: 0.6}}\n";
+}
+
+// summary.json's value of `key` in its first storey (a number or a string).
+std::string storey1_field(const fs::path& summary, const std::string& key) {
+  const std::string s = read_text(summary);
+  const std::size_t at = s.find("\"storeys\"");
+  std::smatch m;
+  const std::string rest = at == std::string::npos ? "" : s.substr(at);
+  if (!std::regex_search(rest, m, std::regex("\"" + key + "\": *\"?([^,\"}]+)"))) return "";
+  return m[1];
+}
+
+// The number printed after `label` on the terminal's storey 1 line.
+double printed_after(const std::string& out, const std::string& label) {
+  std::smatch m;
+  if (!std::regex_search(out, m, std::regex("storey 1 \\([^)]*\\): .*" + label + " ([-0-9.e+]+)"))) return NAN;
+  return std::stod(m[1]);
+}
+
+TEST(RunOutcome, AToppledPostIsCollapsedAndAnUprightOneStandsOnTheTerminalAsInTheSummary) {
+  TempDir dir;
+  struct Case {
+    std::string name;
+    double lean_m;
+    std::string verdict;
+  };
+  for (const Case& c : {Case{"leaning_post", 0.1, "collapsed"}, Case{"upright_post", 0.0, "standing"}}) {
+    SCOPED_TRACE(c.name);
+    const fs::path file = dir.path() / (c.name + ".yaml"), out = dir.path() / c.name;
+    std::ofstream(file) << post_case(c.name, c.lean_m);
+    const fq_test::AppResult r = run_app({"run", file.string(), "--out", out.string(), "--quiet"}, dir.path());
+    ASSERT_EQ(r.code, 0) << r.err;
+    const fs::path summary = out / "summary.json";
+    ASSERT_EQ(storey1_field(summary, "verdict"), c.verdict);
+    EXPECT_NE(r.out.find("storey 1 (0.3 m): peak drift ratio "), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find(", " + c.verdict), std::string::npos) << r.out;
+    const double peak = std::stod(storey1_field(summary, "peak_drift_ratio_rad"));
+    EXPECT_NEAR(printed_after(r.out, "peak drift ratio"), peak, 1e-5 * std::max(peak, 1e-12)) << r.out;
+    EXPECT_NE(r.out.find("verdict limits: damaged beyond 0.0333333 rad, collapsed from 0.1 rad"), std::string::npos)
+        << r.out;
+    // The post has no joints: no joints line.
+    EXPECT_EQ(r.out.find("framequake: joints:"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("framequake: energy balance error "), std::string::npos) << r.out;
+    if (c.verdict == "collapsed") {
+      // 1/n is a drift limit's form, not a fallen post's.
+      EXPECT_EQ(r.out.find("(1/"), std::string::npos) << r.out;
+      const double limit_at = printed_after(r.out, "reached the collapse limit at t =");
+      EXPECT_NEAR(limit_at, std::stod(storey1_field(summary, "collapse_time_s")), 1e-5) << r.out;
+      EXPECT_GT(limit_at, 0.0);
+    } else {
+      EXPECT_EQ(r.out.find("collapse limit at"), std::string::npos) << r.out;
+    }
+  }
+}
+
+}  // namespace
