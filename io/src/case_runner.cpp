@@ -11,6 +11,8 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <string>
+#include <string_view>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -56,7 +58,10 @@ int line_of(const CaseDef& def, const std::string& key) {
   return it == def.section_line.end() ? 0 : it->second;
 }
 
-StableTimeStep estimate_stable_time_step(const Simulation& sim) {
+// joint_names: per joint id, its name as events.csv and `info --joints` give
+// it ("node:member_a-member_b"), added to a joint's description: ids change
+// from case to case, names do not (stable-step probe).
+StableTimeStep estimate_stable_time_step(const Simulation& sim, const std::vector<std::string>& joint_names) {
   // One network of every provider's spring-dashpots acting now (joints and
   // the contacts present at the start: a column held by its support joint
   // and standing on the ground gets both stiffnesses), and each provider's
@@ -84,6 +89,9 @@ StableTimeStep estimate_stable_time_step(const Simulation& sim) {
     const std::size_t p = std::size_t(std::upper_bound(owner_end.begin(), owner_end.end(), net.stiffest) -
                                        owner_end.begin());
     s.stiffest_element = sim.providers()[p]->describe_linearised_spring(bodies, rows[net.stiffest].element);
+    const auto element = std::size_t(rows[net.stiffest].element);
+    if (std::string_view(sim.providers()[p]->name()) == "joints" && element < joint_names.size())
+      s.stiffest_element += ", named '" + joint_names[element] + "'";
   }
   for (std::size_t k = 0; k < sim.providers().size(); ++k) {
     // A provider without linearised terms (none acting now, or one that
@@ -1053,7 +1061,7 @@ Scene build_scene(const CaseDef& def) {
     scene.contacts = contacts.get();
     sim.add_force_provider(std::move(contacts));
   }
-  scene.stable_time_step = estimate_stable_time_step(*scene.simulation);
+  scene.stable_time_step = estimate_stable_time_step(*scene.simulation, scene.joint_names);
   return scene;
 }
 

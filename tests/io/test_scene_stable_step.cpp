@@ -124,6 +124,19 @@ TEST(SceneStableStep, ColumnOnAJointAndOnTheGroundAddsBoth) { check(0.0, 1.0, "u
 
 TEST(SceneStableStep, ColumnOnADampedJointAndADampedContact) { check(0.05, 0.5, "damped joint and contact"); }
 
+// The refusal names the stiffest joint by its name (node:member_a-member_b,
+// as events.csv and `info --joints` give it), not only by its id, which
+// changes from case to case (stable-step probe).
+TEST(SceneStableStep, TheStiffestJointIsNamed) {
+  TempDir dir;
+  std::string text = column_case(0.0, 1.0);
+  text = text.substr(0, text.find("ground: {level_m"));  // the joint alone
+  const Scene scene = build_scene(load_case_file(dir.write("column.yaml", text)));
+  const std::string& where = scene.stable_time_step.stiffest_element;
+  EXPECT_NE(where.find("joint 0 "), std::string::npos) << where;
+  EXPECT_NE(where.find("named 'base:ground-col'"), std::string::npos) << where;
+}
+
 }  // namespace
 // Frame A forced to 20 times its time step (2e-4 s, about 8.6 times its
 // stable estimate) blows up: its members reach rms speeds of 1 600 m/s
