@@ -1018,6 +1018,15 @@ std::vector<std::string> energy_warnings(const EnergyLedger& l, bool has_dashpot
          "joint) is unstable at this time step: run again with a smaller dt_s";
     warnings.push_back(w.str());
   }
+  if (!has_dashpots && std::fabs(l.dissipated_viscous_J) > kWarnContactDiscretisationRelative * l.scale_J) {
+    std::ostringstream w;
+    w << std::setprecision(3) << "the contact springs' discretisation error reached " << l.dissipated_viscous_J
+      << " J (" << l.dissipated_viscous_J / l.scale_J
+      << " of the largest energy in play; summary.json's dissipated_viscous_J, which holds only this error in a "
+         "scene without dashpots); the time step does not resolve the contacts, which can gain energy below the "
+         "stable estimate when they open and close: run again with a smaller dt_s";
+    warnings.push_back(w.str());
+  }
   return warnings;
 }
 

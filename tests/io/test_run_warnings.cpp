@@ -187,6 +187,22 @@ TEST(RunWarnings, LedgerChecksFireAtTheirThresholds) {
   // A scene without dashpots: the viscous book is the contact springs'
   // discretisation error, and a negative one is no dashpot's doing.
   EXPECT_TRUE(energy_warnings(gained, /*has_dashpots=*/false).empty());
+  // ... but a large one, of either sign, says the contacts are not resolved.
+  for (const double sign : {-1.0, 1.0}) {
+    EnergyLedger unresolved = l;
+    unresolved.dissipated_viscous_J = sign * 2.0 * kWarnContactDiscretisationRelative;
+    unresolved.kinetic_J = 1.0 - unresolved.dissipated_viscous_J;
+    unresolved.update_scale();
+    ASSERT_LT(std::fabs(unresolved.balance_error_relative()), 1e-12);
+    const std::vector<std::string> u = energy_warnings(unresolved, /*has_dashpots=*/false);
+    ASSERT_EQ(u.size(), 1u) << sign;
+    EXPECT_NE(u[0].find("discretisation error"), std::string::npos) << u[0];
+    EnergyLedger resolved = unresolved;
+    resolved.dissipated_viscous_J = sign * 0.5 * kWarnContactDiscretisationRelative * resolved.scale_J;
+    resolved.kinetic_J = 1.0 - resolved.dissipated_viscous_J;
+    resolved.update_scale();
+    EXPECT_TRUE(energy_warnings(resolved, /*has_dashpots=*/false).empty()) << sign;
+  }
   // Forward Euler's balance warning does not advise a smaller dt_s.
   const std::vector<std::string> euler = energy_warnings(open, true, Integrator::ForwardEuler);
   ASSERT_EQ(euler.size(), 1u);
