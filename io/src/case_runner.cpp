@@ -862,7 +862,43 @@ std::vector<std::string> case_warnings(const CaseDef& def, const Scene& scene) {
                         horizontal_columns_warning(def), no_columns_warning(def)})
     if (!w.empty()) out.push_back(std::move(w));
   for (std::string& w : ground_motion_direction_warnings(scene.simulation->ground_motion())) out.push_back(std::move(w));
+  if (std::string w = ground_motion_sampling_warning(*scene.simulation); !w.empty()) out.push_back(std::move(w));
   return out;
+}
+
+std::string ground_motion_sampling_warning(const Simulation& sim) {
+  const GroundMotion& motion = sim.ground_motion();
+  const double dt = sim.settings().dt_s;
+  // The record's finest interval as the run plays it (record seconds times
+  // time_scale); a step no longer than it meets every sample's
+  // neighbourhood, a longer one steps over samples.
+  const GroundMotionComponent* coarsest = nullptr;
+  double interval_s = HUGE_VAL;
+  for (const GroundMotionComponent& c : motion.components()) {
+    const double played = c.record.dt_s * c.time_scale;
+    if (played < interval_s) {
+      interval_s = played;
+      coarsest = &c;
+    }
+  }
+  if (coarsest == nullptr || !(dt > interval_s * (1.0 + 1e-9))) return {};
+  // What the run applies: the motion at its step times (forces are taken at
+  // t = n dt), against what the record holds over the same span. A step
+  // longer than a sample means no more steps than samples here.
+  const std::int64_t steps = sim.total_steps();
+  const double end_s = double(steps) * dt;
+  Vec3 applied = Vec3::Zero();
+  for (std::int64_t n = 0; n <= steps; ++n) applied = applied.cwiseMax(motion.acceleration(double(n) * dt).cwiseAbs());
+  const Vec3 recorded = motion.peak_abs_mps2(end_s);
+  Eigen::Index axis = 0;
+  recorded.maxCoeff(&axis);
+  std::ostringstream w;
+  w << std::setprecision(4) << "time.dt_s = " << dt << " s is longer than the sample interval of "
+    << coarsest->record.source << " as the run plays it (" << coarsest->record.dt_s << " s x time_scale "
+    << coarsest->time_scale << " = " << interval_s << " s): the run steps over samples, and applies a peak "
+    << "ground acceleration of " << applied[axis] << " m/s^2 along " << "xyz"[axis] << " where the record holds "
+    << recorded[axis] << " m/s^2 (summary.json gives the record's); give dt_s at most " << interval_s << " s";
+  return w.str();
 }
 
 std::string brace_free_ends_warning(const CaseDef& def, const Scene& scene) {

@@ -681,6 +681,48 @@ TEST(RunWarnings, AVerticalRecordAppliedHorizontallyAndTheReverseAreNamed) {
   }
 }
 
+// A time step longer than the record's sample interval as the run plays it
+// (dt x time_scale) steps over samples: a 5 m/s^2 spike sampled at 0.01 s,
+// between steps of 0.02 s, is never applied (the motion at the step times
+// 0, 0.02, 0.04... is zero: linear interpolation between zero samples), and
+// the warning says so with both peaks. At dt = 0.01 s every sample is a
+// step; at time_scale 0.5 the same dt is twice the played interval
+// (stable-step probe: no warning, and summary.json gave 5 m/s^2 as the peak).
+TEST(RunWarnings, AStepLongerThanTheRecordsSamplesIsNamedWithThePeakItApplies) {
+  test::TempDir dir;
+  std::ofstream(dir.path() / "spike.txt") << "0 0\n0.01 5\n0.02 0\n0.03 0\n0.04 0\n0.05 0\n0.06 0\n0.07 0\n0.08 0\n";
+  auto warning_for = [&](double dt_s, double time_scale) {
+    std::ostringstream text;
+    text << "framequake_case: 1\n"
+            "time: {dt_s: " << dt_s << ", duration_s: 0.08}\n"
+            "materials: [{name: spruce, density_kg_per_m3: 450}]\n"
+            "blocks: [{id: b, size_m: [0.1, 0.1, 0.1], center_m: [0, 0, 1], material: spruce}]\n"
+            "ground_motion: {time_scale: " << time_scale
+         << ", components: [{file: spike.txt, format: two_column, axis: x}]}\n";
+    const CaseDef def = load_case_file(dir.write("gm.yaml", text.str()));
+    return ground_motion_sampling_warning(*build_scene(def).simulation);
+  };
+  const std::string w = warning_for(0.02, 1.0);
+  EXPECT_NE(w.find("time.dt_s = 0.02 s is longer than the sample interval of"), std::string::npos) << w;
+  EXPECT_NE(w.find("= 0.01 s)"), std::string::npos) << w;
+  EXPECT_NE(w.find("applies a peak ground acceleration of 0 m/s^2 along x where the record holds 5 m/s^2"),
+            std::string::npos)
+      << w;
+  EXPECT_EQ(warning_for(0.01, 1.0), "");
+  EXPECT_EQ(warning_for(0.001, 1.0), "");
+  const std::string scaled = warning_for(0.01, 0.5);
+  EXPECT_NE(scaled.find("x time_scale 0.5 = 0.005 s"), std::string::npos) << scaled;
+  // Steps at 0, 0.01, 0.02... simulated s play the record at 0, 0.02,
+  // 0.04... record s: the spike at 0.01 record s is missed again.
+  EXPECT_NE(scaled.find("peak ground acceleration of 0 m/s^2"), std::string::npos) << scaled;
+  // The shipped frames play Kobe's 0.02 s samples at 0.3162 x 0.02 s, far
+  // longer than their 1e-5 s step.
+  for (const char* name : {"frame_A.yaml", "frame_B.yaml", "frame_C.yaml"}) {
+    const CaseDef shipped = load_case_file(std::filesystem::path(FQ_SOURCE_DIR) / "cases" / name);
+    EXPECT_EQ(ground_motion_sampling_warning(*build_scene(shipped).simulation), "") << name;
+  }
+}
+
 // A record header in Latin-1 ("D\xFCzce", as older files carry) reaches
 // summary.json through the vertical-component warning that quotes it. The
 // file must be UTF-8 JSON holding "Düzce" (records probe: the raw byte FC
