@@ -375,9 +375,12 @@ Model build_model(const CaseDef& def_in) {
              " s); give a longer window or a duration_s");
   }
   if (const double steps = model.settings.duration_s / model.settings.dt_s; !(steps <= kMaxSimulationSteps))
-    fail(time_line, def.time.duration_s ? "time.duration_s" : "time.dt_s",
+    // Which of the two is off: a step below 10 ns is no time step a frame
+    // needs (a probe's 1e-300 s was blamed on a 2 s duration).
+    fail(time_line, def.time.duration_s && model.settings.dt_s >= 1e-8 ? "time.duration_s" : "time.dt_s",
          "duration " + fmt(model.settings.duration_s) + " s at dt_s = " + fmt(model.settings.dt_s) + " s is " +
-             fmt(steps) + " steps; at most " + fmt(kMaxSimulationSteps) +
+             (std::isfinite(steps) ? fmt(steps) : "more than " + fmt(kMaxSimulationSteps)) + " steps; at most " +
+             fmt(kMaxSimulationSteps) +
              " are accepted (check the units of dt_s and duration_s)");
   return model;
 }

@@ -692,19 +692,32 @@ TEST(CaseFile, BuilderRejectsBlockBelowGround) {
 TEST(CaseFile, BuilderRejectsMoreStepsThanTheLimit) {
   // dt_s in the wrong unit: 0.2 s at 1e-300 s would be 2e299 steps (past
   // 2^63 the step count overflowed and the run "completed" after 0 steps).
-  TempDir dir;
-  const fs::path file = dir.write("steps.yaml", "framequake_case: 1\ntime: {dt_s: 1.0e-300, duration_s: 0.2}\n"
-                                                "materials: [{name: spruce, density_kg_per_m3: 450}]\n" +
-                                                    kBlock);
-  try {
-    fq::build_model(fq::load_case_file(file));
-    FAIL();
-  } catch (const fq::InputError& e) {
-    EXPECT_EQ(e.file(), file.string());
-    EXPECT_EQ(e.line(), 2);
-    EXPECT_EQ(e.field(), "time.duration_s");
-    for (const char* phrase : {"2e+299 steps", "at most 1e+12", "units of dt_s and duration_s"})
-      EXPECT_NE(std::string(e.what()).find(phrase), std::string::npos) << e.what();
+  // A step below 10 ns is blamed on dt_s; a plausible step with a duration
+  // of 1e8 s (a unit slip in duration_s) on the duration; a step so small
+  // that the count is infinite says "more than" the limit, not "inf".
+  struct Bad {
+    const char* time;
+    const char* field;
+    const char* count;
+  };
+  for (const Bad& b : {Bad{"{dt_s: 1.0e-300, duration_s: 0.2}", "time.dt_s", "2e+299 steps"},
+                       Bad{"{dt_s: 1.0e-5, duration_s: 1.0e8}", "time.duration_s", "1e+13 steps"},
+                       Bad{"{dt_s: 5.0e-324, duration_s: 0.2}", "time.dt_s", "is more than 1e+12 steps"}}) {
+    SCOPED_TRACE(b.time);
+    TempDir dir;
+    const fs::path file = dir.write("steps.yaml", std::string("framequake_case: 1\ntime: ") + b.time +
+                                                      "\nmaterials: [{name: spruce, density_kg_per_m3: 450}]\n" +
+                                                      kBlock);
+    try {
+      fq::build_model(fq::load_case_file(file));
+      FAIL();
+    } catch (const fq::InputError& e) {
+      EXPECT_EQ(e.file(), file.string());
+      EXPECT_EQ(e.line(), 2);
+      EXPECT_EQ(e.field(), b.field);
+      for (const char* phrase : {b.count, "at most 1e+12", "units of dt_s and duration_s"})
+        EXPECT_NE(std::string(e.what()).find(phrase), std::string::npos) << e.what();
+    }
   }
 }
 
