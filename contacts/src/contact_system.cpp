@@ -1008,7 +1008,7 @@ StiffestMode ContactSystem::later_stiffest_mode(const BodyStore& bodies) const {
                                                      surface.tangential_stiffness_N_per_m);
       if (!std::isfinite(lk)) {
         not_finite = true;
-        where = "a later face contact of '" + bodies.info[i].name + "' on a fixed surface (if it lands flat on one)";
+        where = "a later face contact of '" + bodies.info[i].name + "' on a fixed surface (on its worst face, should it land flat on one: a contact that may form later)";
         where_sc = surface;
       }
       if (!(lk > 0.0)) continue;
@@ -1025,7 +1025,7 @@ StiffestMode ContactSystem::later_stiffest_mode(const BodyStore& bodies) const {
                                      2.0 / std::sqrt(box.lambda_k));
       if (dt < best_dt) {
         best_dt = dt;
-        where = "a later face contact of '" + bodies.info[box.i].name + "' on a fixed surface (if it lands flat on one)";
+        where = "a later face contact of '" + bodies.info[box.i].name + "' on a fixed surface (on its worst face, should it land flat on one: a contact that may form later)";
         where_sc = surface;
       }
     }
@@ -1043,7 +1043,7 @@ StiffestMode ContactSystem::later_stiffest_mode(const BodyStore& bodies) const {
                                                      pair.tangential_stiffness_N_per_m);
       if (!std::isfinite(lk)) {
         not_finite = true;
-        where = "a later face contact of '" + bodies.info[i].name + "' on another free box (if it lands flat on one)";
+        where = "a later face contact of '" + bodies.info[i].name + "' on another free box (on its worst face, should it land flat on one: a contact that may form later)";
         where_sc = pair;
       }
       if (lk > top1) {
@@ -1064,7 +1064,7 @@ StiffestMode ContactSystem::later_stiffest_mode(const BodyStore& bodies) const {
           0.0, 2.0 / std::sqrt(top1 + top2));
       if (dt < best_dt) {
         best_dt = dt;
-        where = "a later face contact of '" + bodies.info[top1_body].name + "' on another free box (if it lands flat on one)";
+        where = "a later face contact of '" + bodies.info[top1_body].name + "' on another free box (on its worst face, should it land flat on one: a contact that may form later)";
         where_sc = pair;
       }
     }

@@ -182,6 +182,12 @@ TEST(ContactStableStep, LaterContactsUseOnlyCoefficientsTheirBodiesCanHave) {
   const StiffestMode soft = estimate(0.1 * kKn), stiff = estimate(100.0 * kKn);
   EXPECT_GT(soft.omega_radps, 0.0);
   EXPECT_EQ(soft.omega_radps, stiff.omega_radps) << soft.where << "\n" << stiff.where;
+  // A bound on contacts not yet made says so, and that it takes the box's
+  // worst face (a slab lying flat was told "if it lands flat on one" of a
+  // bound set by its edge face; stable-step probe).
+  EXPECT_NE(soft.where.find("on its worst face, should it land flat on one: a contact that may form later"),
+            std::string::npos)
+      << soft.where;
 }
 
 // The linearised terms of the contacts present now carry each pair's own
