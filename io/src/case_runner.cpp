@@ -818,6 +818,66 @@ std::string horizontal_columns_warning(const CaseDef& def) {
   return w.str();
 }
 
+std::string turned_column_sections_warning(const CaseDef& def, const Scene& scene) {
+  const auto [nodes, sections] = nodes_and_sections_by_name(def);
+  const BodyStore& bodies = scene.simulation->bodies();
+  std::unordered_map<std::string, BodyId> body_of;
+  for (std::size_t i = 0; i < bodies.size(); ++i) body_of.emplace(bodies.info[i].name, BodyId(i));
+  // The plan direction of every member that is not a column, by end node.
+  std::unordered_map<std::string, std::vector<Vec3>> plan_directions_at;
+  for (const MemberDef& m : def.members) {
+    if (m.kind == MemberKind::Column) continue;
+    const auto a = nodes.find(m.node_a), b = nodes.find(m.node_b);
+    if (a == nodes.end() || b == nodes.end()) continue;
+    Vec3 d = b->second->xyz_m - a->second->xyz_m;
+    d.z() = 0.0;
+    if (d.norm() < 1e-6) continue;  // vertical: no plan direction
+    plan_directions_at[m.node_a].push_back(d.normalized());
+    plan_directions_at[m.node_b].push_back(d.normalized());
+  }
+  std::size_t count = 0;
+  std::vector<std::string> found;
+  for (const MemberDef& m : def.members) {
+    if (m.kind != MemberKind::Column) continue;
+    const auto section = sections.find(m.section);
+    const auto body = body_of.find(m.id);
+    if (section == sections.end() || body == body_of.end()) continue;
+    const double w = section->second->width_m, d = section->second->depth_m;
+    if (std::abs(w - d) <= 0.01 * std::max(w, d)) continue;  // square: every plan angle alike
+    const Mat3 r = bodies.orientation[body->second].toRotationMatrix();
+    const Vec3 width_axis = r.col(1), depth_axis = r.col(2);
+    if (std::abs(width_axis.z()) > 0.2 || std::abs(depth_axis.z()) > 0.2) continue;  // not upright
+    // The turn (deg) that brings the section's width or depth onto the
+    // nearest member framing into the column, in (-45, 45]; roll_deg turns
+    // local y towards local z, so that turn is what roll_deg should add.
+    double best_deg = HUGE_VAL;
+    for (const std::string* node : {&m.node_a, &m.node_b}) {
+      const auto at = plan_directions_at.find(*node);
+      if (at == plan_directions_at.end()) continue;
+      for (const Vec3& dir : at->second) {
+        double deg = std::atan2(dir.dot(depth_axis), dir.dot(width_axis)) * 180.0 / M_PI;
+        deg = std::remainder(deg, 90.0);
+        if (std::abs(deg) < std::abs(best_deg)) best_deg = deg;
+      }
+    }
+    if (!(std::abs(best_deg) > kTurnedSectionTolerance_deg) || !std::isfinite(best_deg)) continue;
+    ++count;
+    if (found.size() < 3) {
+      std::ostringstream f;
+      f << std::setprecision(3) << "'" << m.id << "' (line " << m.line << "), " << best_deg
+        << " deg off: roll_deg " << (m.roll_rad * 180.0 / M_PI + best_deg);
+      found.push_back(f.str());
+    }
+  }
+  if (count == 0) return {};
+  return list_warning(def, count, " column of rectangular section is turned against every member framing into it",
+                      " columns of rectangular section are turned against every member framing into them", found,
+                      "; ",
+                      "a column's section keeps its width along world x whatever the plan's angle (cases/README.md, "
+                      "members), so in a plan turned off the axes it bends about other axes than its beams do; give "
+                      "the roll_deg named to align it, or ignore this if the turn is meant");
+}
+
 std::string no_columns_warning(const CaseDef& def) {
   if (def.members.empty()) return {};  // blocks only: no frame to assess
   for (const MemberDef& m : def.members)
@@ -859,7 +919,8 @@ std::vector<std::string> case_warnings(const CaseDef& def, const Scene& scene) {
   for (std::string w : {nodes_inside_members_warning(def), near_nodes_warning(def), unused_nodes_warning(def),
                         slender_members_warning(def), unjoined_members_warning(def, scene),
                         brace_free_ends_warning(def, scene), unused_joint_rules_warning(def),
-                        horizontal_columns_warning(def), no_columns_warning(def)})
+                        horizontal_columns_warning(def), turned_column_sections_warning(def, scene),
+                        no_columns_warning(def)})
     if (!w.empty()) out.push_back(std::move(w));
   for (std::string& w : ground_motion_direction_warnings(scene.simulation->ground_motion())) out.push_back(std::move(w));
   if (std::string w = ground_motion_sampling_warning(*scene.simulation); !w.empty()) out.push_back(std::move(w));

@@ -121,6 +121,10 @@ struct CaseRunReport {
 //  - a joint rule makes no joint (unused_joint_rules_warning);
 //  - a member of kind column is horizontal, so it spans no storey
 //    (horizontal_columns_warning);
+//  - a column of rectangular section is turned by more than
+//    kTurnedSectionTolerance_deg against every member framing into it, as
+//    in a plan drawn off the axes without roll_deg
+//    (turned_column_sections_warning);
 //  - a case with members has none of kind column, so it has no storeys,
 //    no storey drift and no verdict (no_columns_warning);
 //  - a member is more than kSlenderMemberRatio times longer than its
@@ -232,6 +236,17 @@ std::string horizontal_columns_warning(const CaseDef& def);
 // storeys, so a run gives no storey drift and no verdict, which it did
 // silently (geometry probe: posts given kind other). A case of blocks
 // only has no frame to assess and gets none. Empty otherwise.
+// The warning for columns of rectangular section (width and depth 1 %
+// apart or more) whose section axes lie more than kTurnedSectionTolerance_deg
+// from the plan direction of every member (beam, brace, other) ending at
+// their nodes: a column's width runs along world x unless roll_deg turns
+// it, so a frame drawn at 30 degrees in plan gets columns bending about
+// other axes than its beams (torsion probe: peak drift 1.54 times the
+// aligned frame's, with no warning). Names up to three with the roll_deg
+// that aligns each; empty otherwise.
+constexpr double kTurnedSectionTolerance_deg = 5.0;
+std::string turned_column_sections_warning(const CaseDef& def, const Scene& scene);
+
 std::string no_columns_warning(const CaseDef& def);
 
 // The warning for members that no joint holds, in a case that has joints (a
