@@ -220,6 +220,8 @@ void add_storey_summary(RunOutput& output, const StoreyDriftMonitor& monitor, bo
         .value(r.peak_time_s)
         .key("peak_floor_drift_ratio_rad")
         .value(r.peak_floor_ratio_rad)
+        .key("peak_top_slip_m")
+        .value(r.peak_top_slip_m)
         .key("peak_base_slip_m")
         .value(r.peak_base_slip_m)
         .key("peak_twist_ratio_rad")

@@ -5,6 +5,7 @@
 #include <iomanip>
 #include <sstream>
 #include <stdexcept>
+#include <string_view>
 #include <unordered_map>
 #include <vector>
 
@@ -73,10 +74,18 @@ std::vector<Storey> find_storeys(const Model& model) {
   std::vector<ColumnSegment> segments;
   std::vector<double> beam_height_m(def.nodes.size(), -1.0);  // deepest beam at each node; < 0: none
   std::vector<char> column_goes_up(def.nodes.size(), 0);        // a column has its low end here
+  // Per node, the members ending there (all kinds, for the joints) and
+  // those of them that may carry a floor there: neither columns nor braces.
+  std::vector<int> ends_at(def.nodes.size(), 0);
+  std::vector<std::vector<std::size_t>> floor_members_at(def.nodes.size());
   const NameIndex node_ids(def.nodes, &NodeDef::id);
   for (std::size_t i = 0; i < def.members.size(); ++i) {
     const MemberDef& m = def.members[i];
     const int na = node_ids.find(m.node_a), nb = node_ids.find(m.node_b);
+    for (const int n : {na, nb}) {
+      ++ends_at[std::size_t(n)];
+      if (m.kind != MemberKind::Column && m.kind != MemberKind::Brace) floor_members_at[std::size_t(n)].push_back(i);
+    }
     if (m.kind == MemberKind::Beam) {
       const double h = section_height_m(def, m, na, nb);
       for (const int n : {na, nb}) beam_height_m[std::size_t(n)] = std::max(beam_height_m[std::size_t(n)], h);
@@ -182,6 +191,25 @@ std::vector<Storey> find_storeys(const Model& model) {
                                 [&](const ColumnSegment& c) { return c.high_z_m - c.low_z_m < tol; }),
                  segments.end());
 
+  // Whether a joint holds member `m` at node `node`, by the rules of
+  // plan_joints (io/joint_builder.h): without joint types nothing is
+  // joined; automatic joints join every member ending at a node that two
+  // or more members end at (each to the node's hub); an override joins the
+  // two members it names at its node. A member ending at a column top that
+  // nothing holds there is no floor of that column.
+  std::unordered_map<std::string_view, std::vector<const JointOverrideDef*>> overrides_at;
+  for (const JointOverrideDef& o : def.joints.overrides) overrides_at[o.node].push_back(&o);
+  const bool any_joints = !def.joint_types.empty() || !def.joints.overrides.empty();
+  auto joined_at = [&](std::size_t m, int node) {
+    if (!any_joints) return false;
+    if (def.joints.automatic && ends_at[std::size_t(node)] >= 2) return true;
+    const auto at = overrides_at.find(def.nodes[std::size_t(node)].id);
+    if (at == overrides_at.end()) return false;
+    for (const JointOverrideDef* o : at->second)
+      if (o->member_1 == def.members[m].id || o->member_2 == def.members[m].id) return true;
+    return false;
+  };
+
   // Segments by their high node, in order: a column line is followed down
   // through its joints once per storey, and a scan of all segments per
   // joint grew with the square of the frame.
@@ -227,6 +255,17 @@ std::vector<Storey> find_storeys(const Model& model) {
                           (sc.bottom_start_m - model.bodies.position_m[sc.bottom_body]);
       sc.top_local_m =
           model.bodies.rotation[sc.top_body].transpose() * (sc.top_start_m - model.bodies.position_m[sc.top_body]);
+      // The floor at this line's top: the members joined at its top node,
+      // where that node is of the band's top level (StoreyColumn).
+      if (std::abs(top.high_z_m - s.top_z_m) < tol)
+        for (const std::size_t m : floor_members_at[std::size_t(top.high_node)]) {
+          if (!joined_at(m, top.high_node)) continue;
+          StoreyColumn::FloorPoint f;
+          f.body = model.member_body[m];
+          f.start_m = def.nodes[std::size_t(top.high_node)].xyz_m;
+          f.local_m = model.bodies.rotation[f.body].transpose() * (f.start_m - model.bodies.position_m[f.body]);
+          sc.floor_points.push_back(f);
+        }
       s.columns.push_back(sc);
       // Named after its segments, lowest first ("c1a+c1b").
       std::string name;
@@ -324,9 +363,11 @@ StoreyDriftMonitor::StoreyDriftMonitor(std::vector<Storey> storeys, AssessmentDe
   }
   top_m_.resize(storeys_.size());
   bottom_m_.resize(storeys_.size());
+  floor_m_.resize(storeys_.size());
   for (std::size_t i = 0; i < storeys_.size(); ++i) {
     top_m_[i].resize(storeys_[i].columns.size());
     bottom_m_[i].resize(storeys_[i].columns.size());
+    floor_m_[i].resize(storeys_[i].columns.size());
   }
   const double window_steps = std::max(1.0, std::round(residual_window_s / dt_s));
   block_steps_ = std::max<std::int64_t>(1, std::int64_t(window_steps / 1000.0));
@@ -340,13 +381,20 @@ void StoreyDriftMonitor::sample(const BodyStore& bodies, std::int64_t step, doub
 }
 
 void StoreyDriftMonitor::track(const BodyStore& bodies, double time_s) {
-  // Every column's two points first: the floor drift of a storey needs the
-  // tops of the storey below.
+  // Every column's points and its floor first: the floor drift of a storey
+  // needs the floor at the tops of the storey below.
   for (std::size_t i = 0; i < storeys_.size(); ++i)
     for (std::size_t k = 0; k < storeys_[i].columns.size(); ++k) {
       const StoreyColumn& c = storeys_[i].columns[k];
       top_m_[i][k] = (bodies.to_world(c.top_body, c.top_local_m) - c.top_start_m).head<2>();
       bottom_m_[i][k] = (bodies.to_world(c.bottom_body, c.bottom_local_m) - c.bottom_start_m).head<2>();
+      if (c.floor_points.empty()) {
+        floor_m_[i][k] = top_m_[i][k];
+        continue;
+      }
+      Vec3 floor = Vec3::Zero();
+      for (const StoreyColumn::FloorPoint& f : c.floor_points) floor += bodies.to_world(f.body, f.local_m) - f.start_m;
+      floor_m_[i][k] = floor.head<2>() / double(c.floor_points.size());
     }
   for (std::size_t i = 0; i < storeys_.size(); ++i) {
     const Storey& s = storeys_[i];
@@ -367,18 +415,28 @@ void StoreyDriftMonitor::track(const BodyStore& bodies, double time_s) {
         r.peak_column = int(c);
       }
     }
-    // Floor drift and base slip (StoreyDriftRecord).
+    // Floor drift, top slip and base slip (StoreyDriftRecord): the floor
+    // below where this storey stands on it, this storey's floor and its
+    // column tops and bottoms, each as the mean over its points.
     Eigen::Vector2d below_m = Eigen::Vector2d::Zero();
     if (storey_below_[i] >= 0) {
-      for (const std::size_t k : columns_below_[i]) below_m += top_m_[std::size_t(storey_below_[i])][k];
+      for (const std::size_t k : columns_below_[i]) below_m += floor_m_[std::size_t(storey_below_[i])][k];
       below_m /= double(columns_below_[i].size());
     }
-    Eigen::Vector2d top_mean_m = Eigen::Vector2d::Zero();
-    for (const Eigen::Vector2d& t : top_m_[i]) top_mean_m += t;
-    top_mean_m /= double(top_m_[i].size());
-    const Eigen::Vector2d floor_m = top_mean_m - below_m;
-    r.peak_floor_ratio_rad = std::max(r.peak_floor_ratio_rad, floor_m.norm() / height_m);
-    r.peak_base_slip_m = std::max(r.peak_base_slip_m, (floor_m - drift_m).norm());
+    Eigen::Vector2d floor_mean_m = Eigen::Vector2d::Zero(), top_mean_m = Eigen::Vector2d::Zero(),
+                    bottom_mean_m = Eigen::Vector2d::Zero();
+    for (std::size_t c = 0; c < s.columns.size(); ++c) {
+      floor_mean_m += floor_m_[i][c];
+      top_mean_m += top_m_[i][c];
+      bottom_mean_m += bottom_m_[i][c];
+    }
+    const double n = double(s.columns.size());
+    floor_mean_m /= n;
+    top_mean_m /= n;
+    bottom_mean_m /= n;
+    r.peak_floor_ratio_rad = std::max(r.peak_floor_ratio_rad, (floor_mean_m - below_m).norm() / height_m);
+    r.peak_top_slip_m = std::max(r.peak_top_slip_m, (floor_mean_m - top_mean_m).norm());
+    r.peak_base_slip_m = std::max(r.peak_base_slip_m, (bottom_mean_m - below_m).norm());
     // Twist: least-squares turns of the top and bottom points about z.
     const TwistGeometry& g = twist_[i];
     if (g.top_r2 > 0.0 && g.bottom_r2 > 0.0) {
@@ -403,8 +461,8 @@ void StoreyDriftMonitor::save_state(StateWriter& out) const {
     const StoreyDriftRecord& r = records_[i];
     for (const double v : {r.peak_ratio_x_rad, r.peak_ratio_y_rad, r.peak_ratio_rad, r.peak_time_s, r.collapse_time_s,
                            r.final_ratio_x_rad, r.final_ratio_y_rad, r.residual_ratio_x_rad, r.residual_ratio_y_rad,
-                           r.residual_window_s, r.peak_column_ratio_rad, r.peak_floor_ratio_rad, r.peak_base_slip_m,
-                           r.peak_twist_ratio_rad})
+                           r.residual_window_s, r.peak_column_ratio_rad, r.peak_floor_ratio_rad, r.peak_top_slip_m,
+                           r.peak_base_slip_m, r.peak_twist_ratio_rad})
       out.f64(v);
     out.i64(r.peak_column);
     out.f64(drift_m_[i].x());
@@ -441,8 +499,8 @@ void StoreyDriftMonitor::load_state(StateReader& in) {
     StoreyDriftRecord& r = records_[i];
     for (double* v : {&r.peak_ratio_x_rad, &r.peak_ratio_y_rad, &r.peak_ratio_rad, &r.peak_time_s, &r.collapse_time_s,
                       &r.final_ratio_x_rad, &r.final_ratio_y_rad, &r.residual_ratio_x_rad, &r.residual_ratio_y_rad,
-                      &r.residual_window_s, &r.peak_column_ratio_rad, &r.peak_floor_ratio_rad, &r.peak_base_slip_m,
-                      &r.peak_twist_ratio_rad})
+                      &r.residual_window_s, &r.peak_column_ratio_rad, &r.peak_floor_ratio_rad, &r.peak_top_slip_m,
+                      &r.peak_base_slip_m, &r.peak_twist_ratio_rad})
       *v = in.f64("storey record");
     r.peak_column = int(in.i64("peak column"));
     if (r.peak_column < -1 || r.peak_column >= int(storeys_[i].columns.size())) in.fail("peak column out of range");

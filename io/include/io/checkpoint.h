@@ -16,8 +16,9 @@
 //              frames listed in case.pvd, byte lengths and row counts of
 //              history.csv and events.csv)
 //   "storeys"  each storey's peak drift ratios (x, y, magnitude), the time
-//              of the peak, the collapse time, the final drift and the
-//              residual's block sums (StoreyDriftMonitor::save_state)
+//              of the peak, the collapse time, the final drift, the peaks of
+//              its column, floor drift, top and base slips and twist, and
+//              the residual's block sums (StoreyDriftMonitor::save_state)
 //   simulation state (Simulation::save_state: bodies, ledger, events,
 //              bonded pairs, then each force provider's own state)
 // The file is written under a temporary name and renamed (atomic_file.h), so
@@ -40,7 +41,10 @@ namespace fq {
 // twist.
 // Version 5: the residual's window is in record seconds (its blocks are
 // of another length than a version 4 file's).
-inline constexpr std::uint32_t kCheckpointFormatVersion = 5;
+// Version 6: each storey's record adds its peak top slip (the floor's
+// movement off its column tops), and its base slip and floor drift are
+// taken from the floor's own points.
+inline constexpr std::uint32_t kCheckpointFormatVersion = 6;
 inline constexpr const char* kCheckpointFileName = "checkpoint.bin";
 
 // A checkpoint file that cannot be used: missing, damaged, truncated,

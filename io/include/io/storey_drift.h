@@ -26,6 +26,15 @@
 // DESIGN.md). After the joints fail the points follow the columns that
 // carried the storey: a storey that drops upright onto a collapsed storey
 // below keeps a small drift.
+//
+// The floor itself is measured apart from the columns: at each column
+// line's top node, a point on every member that is neither a column nor a
+// brace (a beam, an `other`) ending and joined there, fixed in its body at
+// the node (StoreyColumn::floor_points). A floor that slides on column tops
+// whose joints stay whole but give in shear (a tenon soft across its
+// shoulder) moves while the column points stay put: measured on the
+// columns alone, it drifted nothing (top-slip probe: a floor 12.5 mm,
+// 0.042 rad, off its columns read 4e-6 rad without a warning).
 #pragma once
 
 #include <deque>
@@ -57,6 +66,20 @@ struct StoreyColumn {
   // it was (geometry probe, 2026-11-27: a hillside column tilting 0.0404
   // rad, past the safety limit, was reported at 0.0272 without a warning).
   double height_m = 0.0;
+  // The floor where this line's top carries it: a point on each member
+  // that is neither a column nor a brace, ends at the top segment's top
+  // node and is joined there (a joint at that node holds it: joints
+  // generated at the node, or an override naming it), fixed in that
+  // member's body at the node. The floor's displacement at this column is
+  // the mean of theirs; empty (no such member, or a top that is no node at
+  // the band's top level: a column running on through the floor) means
+  // the column's own top point.
+  struct FloorPoint {
+    BodyId body = kNoBody;
+    Vec3 local_m = Vec3::Zero();  // in body's frame (m)
+    Vec3 start_m = Vec3::Zero();  // the node: its world position at t = 0 (m)
+  };
+  std::vector<FloorPoint> floor_points;
 };
 
 struct Storey {
@@ -120,19 +143,28 @@ struct StoreyDriftRecord {
   // given a worse one (StoreyDriftMonitor::twist_warning).
   double peak_column_ratio_rad = 0.0;
   int peak_column = -1;
-  // The storey's drift follows its columns' tilt: a column whose foot
-  // slides keeps its drift. The floor's own movement: its drift relative to
-  // the floor below, the mean horizontal displacement of the storey's top
-  // points less that of the floor below's (the storey whose top level is
-  // this one's bottom level; the foundation, which does not move relative
-  // to the ground, for the lowest), as a ratio of the height (rad); and the
-  // base slip, how far the mean of the storey's bottom points moved off the
-  // floor below (m): the floor drift is the column drift plus the slip.
-  // While the joints hold the slip is zero and the two drifts agree;
-  // after the column feet break loose they slide (acceptance probe: frame B
-  // under Takatori x0.75, feet slid 34.6 mm, column drift 0.038, floor
-  // drift 0.119 rad). Peaks taken at every step.
+  // The storey's drift follows its columns' tilt: a floor that slides on
+  // its column tops, or columns whose feet slide on the floor below, leave
+  // it as it was. The floor's own movement: its drift relative to the floor
+  // below, the mean horizontal displacement of the storey's floor points
+  // (StoreyColumn::floor_points; a column top without them counts its own
+  // top point) less that of the floor below's (the storey whose top level
+  // is this one's bottom level, at the columns this storey stands on; the
+  // foundation, which does not move relative to the ground, for the
+  // lowest), as a ratio of the height (rad). The top slip: how far the mean
+  // of the floor points moved off the mean of the storey's column top
+  // points (m); the base slip: how far the mean of its column bottom
+  // points moved off the floor below's floor points (m). As vectors the
+  // floor drift is the top slip plus the column drift plus the base slip.
+  // While the joints stay stiff in shear both slips stay near zero and the
+  // two drifts agree; a floor slides on its column tops where their joints
+  // are soft in shear or broken (top-slip probe: 12.5 mm on joints of
+  // 40 N/m in shear, whole), and column feet slide where the joints at the
+  // feet are (acceptance probe: frame B under Takatori x0.75, feet slid
+  // 34.6 mm, column drift 0.038, floor drift 0.119 rad, the floor then
+  // taken at the column tops). Peaks taken at every step.
   double peak_floor_ratio_rad = 0.0;
+  double peak_top_slip_m = 0.0;
   double peak_base_slip_m = 0.0;
   // Twist: the turn about z of the storey's top points (least squares)
   // less that of its bottom points, times the distance of its farthest
@@ -244,9 +276,9 @@ class StoreyDriftMonitor {
   void record_peaks(std::size_t i, const Eigen::Vector2d& ratio, double time_s);
   void record_residual(std::size_t i, const Eigen::Vector2d& ratio);
   // Scratch of track(): each column's top and bottom point displacements
-  // (m), turned into the world once per step for the drifts, the floor
-  // drift and the twist alike.
-  std::vector<std::vector<Eigen::Vector2d>> top_m_, bottom_m_;
+  // and the floor's displacement at its top (m), turned into the world once
+  // per step for the drifts, the floor drift and the twist alike.
+  std::vector<std::vector<Eigen::Vector2d>> top_m_, bottom_m_, floor_m_;
   // Per storey: the storey whose top level is its bottom level (-1: the
   // foundation), the columns of that storey whose tops carry this storey's
   // columns (the floor below, where this storey stands on it; all of them
