@@ -598,14 +598,21 @@ std::string StoreyDriftMonitor::slip_warning(std::size_t i) const {
   const StoreyVerdict storey = verdict(i), floor = verdict_for_peak(r.peak_floor_ratio_rad, limits_);
   if (int(floor) <= int(storey)) return "";
   const Storey& s = storeys_[i];
+  const char* below = storey_below_[i] < 0 ? "the foundation" : "the floor below";
+  // Which slid (kSlipShareNamed): at least one of the two always is named.
+  const double excess_m = (r.peak_floor_ratio_rad - r.peak_ratio_rad) * s.height_m();
+  const bool top = r.peak_top_slip_m >= kSlipShareNamed * excess_m;
+  const bool base = r.peak_base_slip_m >= kSlipShareNamed * excess_m;
   std::ostringstream w;
   w << std::setprecision(3) << "storey " << s.number << "'s floor moved " << r.peak_floor_ratio_rad
-    << " rad of its height relative to " << (storey_below_[i] < 0 ? "the foundation" : "the floor below")
-    << ", which would make it " << storey_verdict_name(floor) << ", while its columns tilted " << r.peak_ratio_rad
-    << " rad (" << storey_verdict_name(storey) << "): its columns' bottoms slid up to " << 1e3 * r.peak_base_slip_m
-    << " mm off " << (storey_below_[i] < 0 ? "the foundation" : "the floor below")
-    << ", as where their joints break; the verdict is that of the tilt (peak_floor_drift_ratio_rad and "
-       "peak_base_slip_m in summary.json; cases/README.md, assessment)";
+    << " rad of its height relative to " << below << ", which would make it " << storey_verdict_name(floor)
+    << ", while its columns tilted " << r.peak_ratio_rad << " rad (" << storey_verdict_name(storey) << "): ";
+  if (top) w << "the floor slid up to " << 1e3 * r.peak_top_slip_m << " mm on its column tops";
+  if (top && base) w << " and ";
+  if (base) w << "the columns' feet slid up to " << 1e3 * r.peak_base_slip_m << " mm on " << below;
+  w << " (events.csv lists the joints that broke; a joint soft in shear lets its members slide while it holds); "
+       "the verdict is that of the tilt (peak_floor_drift_ratio_rad, peak_top_slip_m and peak_base_slip_m in "
+       "summary.json; cases/README.md, assessment)";
   return w.str();
 }
 

@@ -586,8 +586,8 @@ TEST(StoreyDrift, AStoreyThatSlidOffItsFoundationIsWarnedOf) {
   EXPECT_NEAR(monitor.records()[1].peak_floor_ratio_rad, (2.0 / 3.0) * d / h, 1e-12);
   const std::string w = monitor.slip_warning(0);
   EXPECT_NE(w.find("storey 1's floor moved 0.172 rad of its height relative to the foundation, which would make it "
-                   "collapsed, while its columns tilted 0 rad (standing): its columns' bottoms slid up to 50 mm off "
-                   "the foundation"),
+                   "collapsed, while its columns tilted 0 rad (standing): the columns' feet slid up to 50 mm on the "
+                   "foundation ("),
             std::string::npos)
       << w;
   // A rigid sway (columns turned about their feet) slides nothing: no warning.

@@ -210,6 +210,16 @@ inline constexpr double kTwistColumnExcess = 0.10;
 // turn moved for another reason (its foot slid or broke loose while the
 // others stood), and the warning says so instead of calling it a twist.
 
+// The share of the floor drift's excess over the column drift (peaks, in
+// m: their difference times the height) that a slip's peak must reach for
+// the slip warning to name it as a cause. The floor drift's vector is the
+// top slip's plus the column drift's plus the base slip's, so at the floor
+// drift's peak the two slips' peaks add to at least the excess: one of
+// them is at least half of it and is always named, and a quarter names
+// the other as well when it carried a fair part of the excess, not when
+// it is the play of joints that held.
+inline constexpr double kSlipShareNamed = 0.25;
+
 // A storey's peak within this fraction of the run's end (a retrofit probe:
 // frame B at 1.25 times the Kobe record peaked at 6.316 s of a 6.324 s run,
 // still growing, while the record's window went on shaking) is reported as
@@ -262,8 +272,13 @@ class StoreyDriftMonitor {
   // largest column passes.
   std::string twist_warning(std::size_t i) const;
   // The warning for storey i when its floor drift (the column drift plus
-  // the base slip) would give a worse verdict than its column drift: the
-  // storey slid off the floor below; empty otherwise.
+  // the top and base slips) would give a worse verdict than its column
+  // drift; empty otherwise. It says which slid: the floor on its column
+  // tops, the columns' feet on the floor below, or both (each named when
+  // its peak is at least kSlipShareNamed of the floor drift's excess over
+  // the column drift, times the height), and that the verdict stays the
+  // column drift's. It does not say the joints broke: a joint soft in
+  // shear lets a floor slide while it holds.
   std::string slip_warning(std::size_t i) const;
   // The warning for storey i, not collapsed, whose peak drift ratio of at
   // least half the safety limit came in the last kPeakAtEndFraction of a
