@@ -62,6 +62,14 @@ Model frame_model() {
   return build_model(load_case_file(dir.write("frame.yaml", kFrame)));
 }
 
+// A monitor of `model`'s storeys (default limits, steps of 1e-5 s, a
+// residual window of 1 s), tracked once at rest (t = 0).
+StoreyDriftMonitor monitor_at_rest(const Model& model) {
+  StoreyDriftMonitor monitor(find_storeys(model), AssessmentDef{}, 1e-5, 1.0);
+  monitor.track(model.bodies, 0.0);
+  return monitor;
+}
+
 // kFrame with joints (a rigid default type): its beams are held at the
 // column tops they end at, and so measure the floor there (StoreyColumn::
 // floor_points). kFrame alone has no joint types: nothing is joined, and
@@ -814,7 +822,7 @@ TEST(StoreyDrift, ColumnFeetSlidingOnTheFoundationAreItsBaseSlip) {
 // both drifts are sin(0.05) = 0.04998 rad, damaged alike: no slip warning.
 TEST(StoreyDrift, WhereNothingSlipsTheFloorDriftIsTheColumnDrift) {
   Model model = jointed_frame_model();
-  StoreyDriftMonitor monitor(find_storeys(model), AssessmentDef{}, 1e-5, 1.0);
+  StoreyDriftMonitor monitor = monitor_at_rest(model);
   ASSERT_EQ(monitor.storeys().size(), 2u);
   const BodyId beam_1 = model.member_body[5], beam_2 = model.member_body[6];
   for (std::size_t k = 0; k < 2; ++k) {
@@ -828,7 +836,6 @@ TEST(StoreyDrift, WhereNothingSlipsTheFloorDriftIsTheColumnDrift) {
     }
     EXPECT_TRUE(s.columns[2].floor_points.empty());
   }
-  monitor.track(model.bodies, 0.0);
   const double theta = 0.05, h = 0.29;
   const Vec3 d(h * std::sin(theta), 0.0, h * (std::cos(theta) - 1.0));
   // Members in kFrame's order: col_a1, col_a2, col_b1, col_b2, col_c, beam_1, beam_2.
@@ -863,8 +870,7 @@ TEST(StoreyDrift, WhereNothingSlipsTheFloorDriftIsTheColumnDrift) {
 // same records, and saves the same bytes.
 TEST(StoreyDrift, AFloorOffItsColumnTopsIsItsStoreysTopSlipAndTheBaseSlipOfTheStoreyAbove) {
   Model model = jointed_frame_model();
-  StoreyDriftMonitor monitor(find_storeys(model), AssessmentDef{}, 1e-5, 1.0);
-  monitor.track(model.bodies, 0.0);
+  StoreyDriftMonitor monitor = monitor_at_rest(model);
   const double d = 0.02, h = 0.29;
   model.bodies.position_m[model.member_body[5]] += Vec3(d, 0, 0);
   monitor.track(model.bodies, 0.1);
@@ -893,6 +899,34 @@ TEST(StoreyDrift, AFloorOffItsColumnTopsIsItsStoreysTopSlipAndTheBaseSlipOfTheSt
   StateWriter again;
   resumed.save_state(again);
   EXPECT_TRUE(again.bytes() == saved.bytes());
+}
+
+// A storey whose columns' feet slid and whose floor slid on the column
+// tops as well: jointed kFrame, storey 1's three columns moved d = 10 mm
+// along x upright, beam_1 moved 2d. Column drift nothing (standing); base
+// slip d; the floor is beam_1 at lines a and b (2d) and col_c's own top
+// (d): 5d/3, top slip 5d/3 - d = 2d/3, floor drift 5d/3 / h = 0.0575 rad
+// (damaged). Each slip carries more than a quarter of the floor drift's
+// excess (5d/3) over the column drift (kSlipShareNamed): the warning names
+// both.
+TEST(StoreyDrift, AFloorThatSlidOnItsColumnTopsWhileTheirFeetSlidNamesBoth) {
+  Model model = jointed_frame_model();
+  StoreyDriftMonitor monitor = monitor_at_rest(model);
+  const double d = 0.01, h = 0.29;
+  for (std::size_t m : {0, 2, 4}) model.bodies.position_m[model.member_body[m]] += Vec3(d, 0, 0);
+  model.bodies.position_m[model.member_body[5]] += Vec3(2.0 * d, 0, 0);
+  monitor.track(model.bodies, 0.1);
+  const StoreyDriftRecord& r = monitor.records()[0];
+  EXPECT_NEAR(r.peak_ratio_rad, 0.0, 1e-15);
+  EXPECT_NEAR(r.peak_base_slip_m, d, 1e-15);
+  EXPECT_NEAR(r.peak_top_slip_m, 2.0 * d / 3.0, 1e-15);
+  EXPECT_NEAR(r.peak_floor_ratio_rad, 5.0 * d / 3.0 / h, 1e-14);
+  const std::string w = monitor.slip_warning(0);
+  EXPECT_NE(w.find("storey 1's floor moved 0.0575 rad of its height relative to the foundation, which would make it "
+                   "damaged, while its columns tilted 0 rad (standing): the floor slid up to 6.67 mm on its column "
+                   "tops and the columns' feet slid up to 10 mm on the foundation ("),
+            std::string::npos)
+      << w;
 }
 
 // A storey whose peak comes in the last 2 % of the run may still have been
