@@ -16,6 +16,7 @@
 // loop set-up of the generic point chunks.
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <type_traits>
 
@@ -81,9 +82,10 @@ template <bool Full>
 struct PointGroup {
   std::size_t first;
   int n;
-  [[gnu::always_inline]] v4d in(const std::vector<double>& column) const {
-    if constexpr (Full) return lanes::load(column.data() + first);
-    return lanes::load_partial(column.data() + first, n);
+  [[gnu::always_inline]] v4d in(const std::vector<double>& column) const { return in(column.data()); }
+  [[gnu::always_inline]] v4d in(const double* column) const {
+    if constexpr (Full) return lanes::load(column + first);
+    return lanes::load_partial(column + first, n);
   }
   [[gnu::always_inline]] void out(std::vector<double>& column, v4d v) const {
     if constexpr (Full)
@@ -142,14 +144,16 @@ void JointSystem::FQ_LANE_KERNEL(joint_step_lanes_)(const BodyStore& bodies, std
   const double* const Vb = bodies.velocity_mps[b].data();
   const double* const Wa = bodies.angular_velocity_radps[a].data();
   const double* const Wb = bodies.angular_velocity_radps[b].data();
-  const double* law_n = &lane_laws_[std::size_t(joint_lane_law_[2 * j])].k0_t_Npm;
-  const double* law_s = &lane_laws_[std::size_t(joint_lane_law_[2 * j + 1])].k0_t_Npm;
-  const double c_n = joint_lane_dashpot_Nspm_[2 * j], c_s = joint_lane_dashpot_Nspm_[2 * j + 1];
+  // What every joint of its type shares (LaneType, joint_system.h).
+  const LaneType& type = lane_types_[std::size_t(joint_lane_type_[j])];
+  const double* law_n = &lane_laws_[std::size_t(type.law_n)].k0_t_Npm;
+  const double* law_s = &lane_laws_[std::size_t(type.law_s)].k0_t_Npm;
+  const double c_n = type.c_n_Nspm, c_s = type.c_s_Nspm;
 
-  const bool strain_limit = joint_break_[j].criterion == BreakCriterion::StrainLimit;
+  const bool strain_limit = type.fracture.criterion == BreakCriterion::StrainLimit;
   JointSpringSummary sum;
-  sum.springs = joint_spring_count_[j];
-  sum.normal_springs = joint_normal_count_[j];
+  sum.springs = type.springs;
+  sum.normal_springs = type.normal_springs;
   bool any_pending = false;
   // Sums over the points, in point order per component: lanes of
   // (F_x, F_y, F_z, T_x) and (T_y, T_z, M_y, M_z) of the force and torque
@@ -158,6 +162,14 @@ void JointSystem::FQ_LANE_KERNEL(joint_step_lanes_)(const BodyStore& bodies, std
   v4d sum_force_torque = lanes::splat(0.0), sum_torque_yz = lanes::splat(0.0), sum_dashpot = lanes::splat(0.0);
 
   const auto first_point = std::size_t(joint_first_point_[j]), last_point = std::size_t(joint_first_point_[j + 1]);
+  // The type's attachments, indexed like the joint's point columns.
+  const std::ptrdiff_t attach_shift = std::ptrdiff_t(type.first_attach) - std::ptrdiff_t(first_point);
+  const double* const la_x = lane_attach_a_m_.x.data() + attach_shift;
+  const double* const la_y = lane_attach_a_m_.y.data() + attach_shift;
+  const double* const la_z = lane_attach_a_m_.z.data() + attach_shift;
+  const double* const lb_x = lane_attach_b_m_.x.data() + attach_shift;
+  const double* const lb_y = lane_attach_b_m_.y.data() + attach_shift;
+  const double* const lb_z = lane_attach_b_m_.z.data() + attach_shift;
   // One group of up to four points (PointGroup); compiled twice, for a full
   // group (every load and store four wide, no test of n at each) and for
   // the last group of a joint whose point count is not a multiple of four.
@@ -167,8 +179,8 @@ void JointSystem::FQ_LANE_KERNEL(joint_step_lanes_)(const BodyStore& bodies, std
     const int n = full ? lanes::kWidth : points.n;  // a constant for the compiler when full
     // Stage 1: ends, arm of end a, separation d = p_b - p_a, relative
     // velocity, and d and v_rel along the joint axes (joint_step_).
-    const v4d la[3] = {points.in(point_attach_a_m_.x), points.in(point_attach_a_m_.y), points.in(point_attach_a_m_.z)};
-    const v4d lb[3] = {points.in(point_attach_b_m_.x), points.in(point_attach_b_m_.y), points.in(point_attach_b_m_.z)};
+    const v4d la[3] = {points.in(la_x), points.in(la_y), points.in(la_z)};
+    const v4d lb[3] = {points.in(lb_x), points.in(lb_y), points.in(lb_z)};
     v4d am[3], bm[3], d[3];
     for (int r = 0; r < 3; ++r) {
       am[r] = Ra[r] * la[0] + Ra[3 + r] * la[1] + Ra[6 + r] * la[2];
@@ -284,8 +296,8 @@ void JointSystem::FQ_LANE_KERNEL(joint_step_lanes_)(const BodyStore& bodies, std
   lanes::store(sums + lanes::kWidth, sum_torque_yz);
   lanes::store(sums + 2 * lanes::kWidth, sum_dashpot);
   const double dashpot_moment_a[3] = {sums[11], sums[6], sums[7]};
-  finish_joint_(j, Xa, Xb, sums, sums + 3, sums + 8, dashpot_moment_a, BodyVelocities{Va, Vb, Wa, Wb}, sum,
-                any_pending);
+  finish_joint_(j, Xa, Xb, sums, sums + 3, sums + 8, dashpot_moment_a, BodyVelocities{Va, Vb, Wa, Wb},
+                type.fracture, sum, any_pending);
 }
 
 }  // namespace fq

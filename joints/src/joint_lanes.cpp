@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <cstring>
 #include <limits>
+#include <string>
+#include <unordered_map>
 
 #include "dem_core/lane_isa.h"
 #include "joints/joint_system.h"
@@ -43,8 +45,11 @@ void JointSystem::refresh_point_plain_(std::size_t p) {
 void JointSystem::prepare_lanes_() {
   const std::size_t nj = joint_body_a_.size();
   joint_lanes_.assign(nj, 0);
-  joint_lane_law_.assign(2 * nj, -1);
-  joint_lane_dashpot_Nspm_.assign(2 * nj, 0.0);
+  joint_lane_type_.assign(nj, -1);
+  lane_types_.clear();
+  lane_attach_a_m_ = Vec3Columns{};
+  lane_attach_b_m_ = Vec3Columns{};
+  std::unordered_map<std::string, std::int32_t> type_lookup;  // bytes of a type -> index
   lane_laws_.clear();
   lane_form_ = active_lane_isa();
   point_plain_.assign(point_first_.empty() ? 0 : point_first_.size() - 1, 0);
@@ -96,12 +101,39 @@ void JointSystem::prepare_lanes_() {
     }
     if (!ok || !settings_.lane_kernel) continue;
     joint_lanes_[j] = 1;
+    std::int32_t law_id[2];
     for (int kind = 0; kind < 2; ++kind) {
       auto it = std::find_if(lane_laws_.begin(), lane_laws_.end(), [&](const LaneLaw& l) { return same(l, law[kind]); });
       if (it == lane_laws_.end()) it = lane_laws_.insert(lane_laws_.end(), law[kind]);
-      joint_lane_law_[2 * j + std::size_t(kind)] = std::int32_t(it - lane_laws_.begin());
-      joint_lane_dashpot_Nspm_[2 * j + std::size_t(kind)] = dashpot[kind];
+      law_id[kind] = std::int32_t(it - lane_laws_.begin());
     }
+    // The joint's type: every value the kernel reads of it but its bodies,
+    // as bytes (the same bytes, the same bits in every result).
+    std::string key;
+    auto put = [&key](const auto& v) { key.append(reinterpret_cast<const char*>(&v), sizeof v); };
+    put(law_id[0]), put(law_id[1]), put(dashpot[0]), put(dashpot[1]);
+    put(joint_break_[j].criterion), put(joint_break_[j].strain_limit);
+    put(joint_spring_count_[j]), put(joint_normal_count_[j]);
+    const auto first_point = std::size_t(joint_first_point_[j]), last_point = std::size_t(joint_first_point_[j + 1]);
+    for (std::size_t p = first_point; p < last_point; ++p) {
+      put(point_attach_a_m_.x[p]), put(point_attach_a_m_.y[p]), put(point_attach_a_m_.z[p]);
+      put(point_attach_b_m_.x[p]), put(point_attach_b_m_.y[p]), put(point_attach_b_m_.z[p]);
+    }
+    const auto [it, added] = type_lookup.emplace(key, std::int32_t(lane_types_.size()));
+    if (added) {
+      LaneType t;
+      t.law_n = law_id[0], t.law_s = law_id[1];
+      t.c_n_Nspm = dashpot[0], t.c_s_Nspm = dashpot[1];
+      t.fracture = joint_break_[j];
+      t.springs = joint_spring_count_[j], t.normal_springs = joint_normal_count_[j];
+      t.first_attach = std::int32_t(lane_attach_a_m_.size());
+      for (std::size_t p = first_point; p < last_point; ++p) {
+        lane_attach_a_m_.push_back(point_attach_a_m_[p]);
+        lane_attach_b_m_.push_back(point_attach_b_m_[p]);
+      }
+      lane_types_.push_back(t);
+    }
+    joint_lane_type_[j] = it->second;
   }
 }
 

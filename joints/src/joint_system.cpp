@@ -614,7 +614,7 @@ void JointSystem::joint_step_(const BodyStore& bodies, std::size_t j) {
       }
   }
   finish_joint_(j, xa.data(), xb.data(), force_on_a, torque_on_a, dashpot_on_a, dashpot_moment_a,
-                BodyVelocities{va.data(), vb.data(), wa.data(), wb.data()}, sum, any_pending);
+                BodyVelocities{va.data(), vb.data(), wa.data(), wb.data()}, joint_break_[j], sum, any_pending);
 }
 
 void JointSystem::materialise_spring_geometry_() const {

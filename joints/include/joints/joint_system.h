@@ -214,7 +214,8 @@ class JointSystem final : public ForceProvider {
                                                    const double force_on_a[3], const double torque_on_a[3],
                                                    const double dashpot_force_on_a[3],
                                                    const double dashpot_moment_a[3], const BodyVelocities& v,
-                                                   const JointSpringSummary& sum, bool any_event);
+                                                   const JointBreakDef& fracture, const JointSpringSummary& sum,
+                                                   bool any_event);
   // Law of spring s (alive) at deformation delta and rate: stores delta,
   // rate and the law force, keeps the books and flags, and returns the law
   // and dashpot forces (N). Returns false when the spring was deleted now;
@@ -272,9 +273,24 @@ class JointSystem final : public ForceProvider {
     // Only the strain-limit criterion reads it.
     if (strain_limit) sum.max_strain = std::max(sum.max_strain, std::abs(delta) / reference_length_m_[s]);
   }
-  std::vector<std::uint8_t> joint_lanes_;        // joint j runs joint_step_lanes_
-  std::vector<std::int32_t> joint_lane_law_;     // 2 j: its normal springs' law, 2 j + 1: shear (lane_laws_)
-  std::vector<double> joint_lane_dashpot_Nspm_;  // 2 j: normal, 2 j + 1: shear (N s/m)
+  std::vector<std::uint8_t> joint_lanes_;  // joint j runs joint_step_lanes_
+  // What the lane kernel reads of a joint that is the same for every joint
+  // of its type (layout, laws, dashpots, fracture rule, body geometry at the
+  // attachments) is stored once per distinct set, compared bit for bit, and
+  // a joint holds the index of its set: at 1e5 joints the kernel then reads
+  // 4 bytes per joint instead of 240 (two law indices, two dashpot
+  // coefficients, the fracture rule and spring counts, 48 bytes; six
+  // attachment coordinates per point, 192 bytes for four points), bytes
+  // that came from memory at every step (performance_history.md, change 52).
+  struct LaneType {
+    std::int32_t law_n, law_s;  // lane_laws_ of its normal and shear springs
+    double c_n_Nspm, c_s_Nspm;  // dashpot coefficients (N s/m)
+    JointBreakDef fracture;
+    std::int32_t springs, normal_springs;
+    std::int32_t first_attach;  // its points' attachments: lane_attach_*_m_[first_attach + k]
+  };
+  std::vector<LaneType> lane_types_;
+  std::vector<std::int32_t> joint_lane_type_;  // lane_types_ of joint j (-1: not a lane joint)
   std::vector<LaneLaw> lane_laws_;
   std::vector<std::uint8_t> point_plain_;  // every spring of point p is plain (see above)
   LaneIsa lane_form_ = LaneIsa::Sse2;      // the SIMD form of the kernels that runs (prepare_lanes_)
@@ -325,6 +341,7 @@ class JointSystem final : public ForceProvider {
     std::size_t size() const { return x.size(); }
   };
   Vec3Columns point_attach_a_m_, point_attach_b_m_;  // body frames (m)
+  Vec3Columns lane_attach_a_m_, lane_attach_b_m_;    // the same per LaneType (lane kernel)
   Vec3Columns point_end_a_m_, point_end_b_m_;        // world, this step (m)
   // Dashpot books per joint (see Energy above): the dashpot resultant of
   // step n -- force on a (N, world) and its moments about x_a and x_b (N m),
@@ -405,7 +422,8 @@ inline double JointSystem::dashpot_power_W_(const DashpotBooks& books, const dou
 inline void JointSystem::finish_joint_(std::size_t j, const double xa[3], const double xb[3], const double force_on_a[3],
                                        const double torque_on_a[3], const double dashpot_force_on_a[3],
                                        const double dashpot_moment_a[3], const BodyVelocities& v,
-                                       const JointSpringSummary& sum, bool any_event) {
+                                       const JointBreakDef& fracture, const JointSpringSummary& sum,
+                                       bool any_event) {
   // Torque on b: -(m - x_b) x F = -(m - x_a) x F + (x_b - x_a) x F, summed over points.
   const double* f = force_on_a;
   const double ab[3] = {xb[0] - xa[0], xb[1] - xa[1], xb[2] - xa[2]};
@@ -431,7 +449,7 @@ inline void JointSystem::finish_joint_(std::size_t j, const double xa[3], const 
   books.moment_b_Nm[1] = dashpot_moment_a[1] - (ab[2] * fd[0] - ab[0] * fd[2]);
   books.moment_b_Nm[2] = dashpot_moment_a[2] - (ab[0] * fd[1] - ab[1] * fd[0]);
   books.power_prev_W = dashpot_power_W_(books, v.va, v.vb, v.wa, v.wb);
-  const bool brk = joint_should_break(joint_break_[j], sum);
+  const bool brk = joint_should_break(fracture, sum);
   joint_break_pending_[j] = brk ? 1 : 0;
   // Kept until finish_step emits the events (an evaluation without a
   // finish_step in between must not lose them).
