@@ -67,17 +67,18 @@ struct NetworkStableStep {
   std::size_t stiffest = 0;
 };
 
-// The limit of the network `rows` over `n_bodies` bodies. The top
-// eigenvalues are found matrix-free by the Lanczos recurrence (from a
-// deterministic pseudo-random start with a component along every degree of
-// freedom), whose top Ritz value converges from below; it stops once that
-// value grows by less than 1e-8 of itself in each of 3 steps, or after 300
-// products (a chain of 3000 bodies, whose top two modes differ by 3e-7, is
-// then within 3e-6: tests/joints/test_stable_time_step.cpp). With
-// dashpots, dt is iterated to the root of
-// a dt^2 + 2 b dt = 4 (a, b the Rayleigh quotients of K~ and C~ in the top
-// eigenvector of dt^2 K~ + 2 dt C~ at the current dt), its only fixed point,
-// which lies between the lower bound
+// The limit of the network `rows` over `n_bodies` bodies. The terms are
+// summed once into 6x6 blocks (one per body, one per pair of bodies that
+// share a term), and the top eigenvalues are found by the Lanczos
+// recurrence on those blocks (from a deterministic pseudo-random start
+// with a component along every degree of freedom), whose top Ritz value
+// converges from below; it stops once that value grows by less than 1e-8
+// of itself in each of 3 steps, or after 300 products (a chain of 3000
+// bodies, whose top two modes differ by 3e-7, is then within 3e-6:
+// tests/joints/test_stable_time_step.cpp). With dashpots, dt is iterated
+// to the root of a dt^2 + 2 b dt = 4 (a, b the Rayleigh quotients of K~
+// and C~ in the top eigenvector of dt^2 K~ + 2 dt C~ at the current dt),
+// its only fixed point, which lies between the lower bound
 //   2 / (sqrt(omega^2 + lambda_C^2 / 4) + lambda_C / 2)
 // (lambda_max(A + B) <= lambda_max(A) + lambda_max(B)) and 2 / omega.
 NetworkStableStep network_stable_step(const std::vector<LinearisedSpring>& rows, std::size_t n_bodies);
