@@ -202,8 +202,12 @@ double top_eigenpair(const NetworkOperator& op, std::vector<Vec6>& x, int max_st
     const double a = dot(q, w);
     if (!std::isfinite(a)) return std::numeric_limits<double>::quiet_NaN();
     const double b_prev = j == 0 ? 0.0 : beta.back();
-    for (std::size_t i = 0; i < nb; ++i) w[i] -= a * q[i] + b_prev * q_prev[i];
-    const double b = std::sqrt(dot(w, w));
+    double ww = 0.0;  // dot(w, w), summed in the same order
+    for (std::size_t i = 0; i < nb; ++i) {
+      w[i] -= a * q[i] + b_prev * q_prev[i];
+      ww += w[i].dot(w[i]);
+    }
+    const double b = std::sqrt(ww);
     if (!std::isfinite(b)) return std::numeric_limits<double>::quiet_NaN();
     alpha.push_back(a);
     beta.push_back(b);
@@ -217,10 +221,9 @@ double top_eigenpair(const NetworkOperator& op, std::vector<Vec6>& x, int max_st
     theta = next;
     const bool breakdown = !(b > 1e-14 * std::max(theta, std::fabs(a)));
     if (settled_steps >= 3 || breakdown || !(theta > 0.0)) break;
-    for (std::size_t i = 0; i < nb; ++i) {
-      q_prev[i] = q[i];
-      q[i] = w[i] / b;
-    }
+    for (Vec6& v : w) v /= b;
+    q_prev.swap(q);  // q_prev <- q, q <- w / b; w is overwritten by the next product
+    q.swap(w);
   }
   if (!(theta > 0.0)) return 0.0;
   if (!want_vector) return theta;
