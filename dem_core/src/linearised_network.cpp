@@ -55,6 +55,11 @@ struct NetworkBlocks {
   std::vector<Mat6> diag_k, diag_c;  // block (i, i)
   bool has_dashpots = false;         // C~ != 0 (else off_c and diag_c are empty)
 
+  std::size_t bytes() const {
+    return (lo.size() + hi.size()) * sizeof(std::int32_t) +
+           (off_k.size() + off_c.size() + diag_k.size() + diag_c.size()) * sizeof(Mat6);
+  }
+
   NetworkBlocks(const std::vector<LinearisedSpring>& rows, std::size_t n_bodies) : nb(n_bodies) {
     for (const LinearisedSpring& r : rows) has_dashpots = has_dashpots || r.c_Nspm != 0.0;
     auto two_bodies = [](const LinearisedSpring& r) { return r.a != kNoBody && r.b != kNoBody && r.a != r.b; };
@@ -171,6 +176,12 @@ double top_tridiagonal_eigenvalue(const std::vector<double>& alpha, const std::v
   return hi;
 }
 
+// Products and steps of the searches (NetworkStableStep).
+struct LanczosWork {
+  int steps = 0;
+  int products = 0;
+};
+
 // Largest eigenvalue of the operator by the Lanczos recurrence, and its
 // Ritz vector, normalised, left in x (which holds the start on entry, and
 // the start normalised on return without want_vector).
@@ -183,22 +194,28 @@ double top_tridiagonal_eigenvalue(const std::vector<double>& alpha, const std::v
 // Computations, 4th ed., sections 10.1.5 and 10.1.6). Without
 // reorthogonalisation, lost orthogonality only repeats converged Ritz
 // values (Paige); the recurrence stops once the top value has settled.
-// The Lanczos vectors are not stored (at 1e5 bodies each is 4.8 MB): the
-// Ritz vector is summed on a second pass that repeats the recurrence with
-// the same numbers. Returns NaN when a product overflowed.
-double top_eigenpair(const NetworkOperator& op, std::vector<Vec6>& x, int max_steps, bool want_vector = true) {
+// The Ritz vector sums the Lanczos vectors q_0..q_k-1 with weights known
+// only at the end. The first max_kept of them are kept as the recurrence
+// makes them (with want_vector); the rest, if any, are made again by
+// repeating the recurrence from the last two kept, with the same numbers,
+// so the vector is the same bits however many were kept. Returns NaN when
+// a product overflowed.
+double top_eigenpair(const NetworkOperator& op, std::vector<Vec6>& x, int max_steps, std::size_t max_kept,
+                     LanczosWork& work, bool want_vector = true) {
   const std::size_t nb = op.size();
   const double norm0 = std::sqrt(dot(x, x));
   if (!(norm0 > 0.0) || !std::isfinite(norm0)) return 0.0;
   for (Vec6& v : x) v /= norm0;
-  const std::vector<Vec6> start = x;
+  std::vector<std::vector<Vec6>> kept{x};  // q_0 .. q_kept-1 (q_0, the start, always)
 
-  std::vector<Vec6> q_prev(nb, Vec6::Zero()), q = start, w(nb);
+  std::vector<Vec6> q_prev(nb, Vec6::Zero()), q = x, w(nb);
   std::vector<double> alpha, beta;  // beta[j]: between q_j and q_{j+1}
   double theta = 0.0;
   int settled_steps = 0;
   for (int j = 0; j < max_steps; ++j) {
     op.apply(q, w);
+    ++work.products;
+    ++work.steps;
     const double a = dot(q, w);
     if (!std::isfinite(a)) return std::numeric_limits<double>::quiet_NaN();
     const double b_prev = j == 0 ? 0.0 : beta.back();
@@ -224,28 +241,40 @@ double top_eigenpair(const NetworkOperator& op, std::vector<Vec6>& x, int max_st
     for (Vec6& v : w) v /= b;
     q_prev.swap(q);  // q_prev <- q, q <- w / b; w is overwritten by the next product
     q.swap(w);
+    if (want_vector && kept.size() < max_kept) kept.push_back(q);
   }
   if (!(theta > 0.0)) return 0.0;
   if (!want_vector) return theta;
 
-  // Second pass: the same recurrence, summing the Ritz vector, whose
-  // coefficients in q_0..q_k-1 are T_k's top eigenvector.
-  const int k = int(alpha.size());
+  // The Ritz vector, whose coefficients in q_0..q_k-1 are T_k's top
+  // eigenvector: the kept vectors, then the rest made again.
+  const std::size_t k = alpha.size();
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> tri;
-  tri.computeFromTridiagonal(Eigen::Map<const Eigen::VectorXd>(alpha.data(), k),
-                             Eigen::Map<const Eigen::VectorXd>(beta.data(), k - 1), Eigen::ComputeEigenvectors);
-  const Eigen::VectorXd ritz = tri.eigenvectors().col(k - 1);  // eigenvalues ascend
-  for (std::size_t i = 0; i < nb; ++i) x[i] = ritz(0) * start[i];
-  q = start;
-  for (Vec6& v : q_prev) v.setZero();
-  for (int j = 0; j + 1 < k; ++j) {
-    op.apply(q, w);
-    const double b_prev = j == 0 ? 0.0 : beta[std::size_t(j - 1)];
-    for (std::size_t i = 0; i < nb; ++i) {
-      w[i] -= alpha[std::size_t(j)] * q[i] + b_prev * q_prev[i];
-      q_prev[i] = q[i];
-      q[i] = w[i] / beta[std::size_t(j)];
-      x[i] += ritz(j + 1) * q[i];
+  tri.computeFromTridiagonal(Eigen::Map<const Eigen::VectorXd>(alpha.data(), Eigen::Index(k)),
+                             Eigen::Map<const Eigen::VectorXd>(beta.data(), Eigen::Index(k - 1)),
+                             Eigen::ComputeEigenvectors);
+  const Eigen::VectorXd ritz = tri.eigenvectors().col(Eigen::Index(k - 1));  // eigenvalues ascend
+  for (std::size_t i = 0; i < nb; ++i) x[i] = ritz(0) * kept[0][i];
+  std::size_t j = 1;
+  for (; j < k && j < kept.size(); ++j)
+    for (std::size_t i = 0; i < nb; ++i) x[i] += ritz(Eigen::Index(j)) * kept[j][i];
+  if (j < k) {  // q_j from q_j-1 and q_j-2, as the recurrence made it
+    q = kept[j - 1];
+    if (j >= 2)
+      q_prev = kept[j - 2];
+    else
+      for (Vec6& v : q_prev) v.setZero();
+    kept.clear();
+    for (; j < k; ++j) {
+      op.apply(q, w);
+      ++work.products;
+      const double b_prev = j == 1 ? 0.0 : beta[j - 2];
+      for (std::size_t i = 0; i < nb; ++i) {
+        w[i] -= alpha[j - 1] * q[i] + b_prev * q_prev[i];
+        q_prev[i] = q[i];
+        q[i] = w[i] / beta[j - 1];
+        x[i] += ritz(Eigen::Index(j)) * q[i];
+      }
     }
   }
   const double norm = std::sqrt(dot(x, x));
@@ -256,7 +285,8 @@ double top_eigenpair(const NetworkOperator& op, std::vector<Vec6>& x, int max_st
 
 }  // namespace
 
-NetworkStableStep network_stable_step(const std::vector<LinearisedSpring>& rows, std::size_t nb) {
+NetworkStableStep network_stable_step(const std::vector<LinearisedSpring>& rows, std::size_t nb,
+                                      std::optional<std::size_t> kept_vector_bytes) {
   NetworkStableStep result;
   result.stiffest = rows.size();
   if (rows.empty() || nb == 0) return result;
@@ -279,12 +309,26 @@ NetworkStableStep network_stable_step(const std::vector<LinearisedSpring>& rows,
       }
   };
   constexpr int kMaxSteps = 300;
+  // Lanczos vectors kept for the Ritz vectors (top_eigenpair): as many as
+  // fit, with the blocks, in the memory the terms take (which the caller
+  // holds), and at least 64 MiB's worth. On the frame-B-style grid of
+  // 97 606 bodies the terms take 638 MB, the blocks 268 MB, and 79 vectors
+  // of 4.7 MB are kept: the searches' 360 steps need 402 products instead
+  // of 551.
+  const std::size_t row_bytes = rows.size() * sizeof(LinearisedSpring);
+  const std::size_t kept_bytes =
+      kept_vector_bytes.value_or(std::max(row_bytes - std::min(row_bytes, blocks.bytes()), std::size_t(64) << 20));
+  const std::size_t max_kept = std::max<std::size_t>(1, kept_bytes / (nb * sizeof(Vec6)));  // q_0 always
+  LanczosWork work;
   reset_start();
   const double lambda_c = blocks.has_dashpots ? top_eigenpair(NetworkOperator{blocks, 0.0, 1.0}, x, kMaxSteps,
-                                                              /*want_vector=*/false)
+                                                              max_kept, work, /*want_vector=*/false)
                                               : 0.0;
   reset_start();
-  const double omega2 = top_eigenpair(NetworkOperator{blocks, 1.0, 0.0}, x, kMaxSteps);  // x: top stiffness mode
+  const double omega2 =
+      top_eigenpair(NetworkOperator{blocks, 1.0, 0.0}, x, kMaxSteps, max_kept, work);  // x: top stiffness mode
+  result.lanczos_steps = work.steps;
+  result.operator_products = work.products;
   if (std::isnan(omega2) || std::isnan(lambda_c)) {
     result.omega_radps = std::numeric_limits<double>::quiet_NaN();
     result.dt_crit_s = std::numeric_limits<double>::quiet_NaN();
@@ -303,7 +347,9 @@ NetworkStableStep network_stable_step(const std::vector<LinearisedSpring>& rows,
     double dt = dt_bound;
     for (int outer = 0; outer < 12; ++outer) {
       // Warm start: the top vector of the previous dt (or of K~).
-      const double top = top_eigenpair(NetworkOperator{blocks, dt * dt, 2.0 * dt}, x, kMaxSteps);
+      const double top = top_eigenpair(NetworkOperator{blocks, dt * dt, 2.0 * dt}, x, kMaxSteps, max_kept, work);
+      result.lanczos_steps = work.steps;
+      result.operator_products = work.products;
       if (!(top > 0.0)) break;
       double a = 0.0, b = 0.0;
       for (const LinearisedSpring& r : rows) {

@@ -27,6 +27,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -65,6 +66,13 @@ struct NetworkStableStep {
   // The term storing most energy (dt^2 k + 2 dt c weighted) in the mode
   // that sets the limit; rows.size() when none.
   std::size_t stiffest = 0;
+  // The work of the eigenvalue searches: Lanczos steps over all of them,
+  // and products of the network's operator (each reads every block). The
+  // products exceed the steps only where a search's Lanczos vectors did
+  // not all fit in the memory kept for them (network_stable_step) and some
+  // were made again to sum its Ritz vector.
+  int lanczos_steps = 0;
+  int operator_products = 0;
 };
 
 // The limit of the network `rows` over `n_bodies` bodies. The terms are
@@ -81,6 +89,11 @@ struct NetworkStableStep {
 // its only fixed point, which lies between the lower bound
 //   2 / (sqrt(omega^2 + lambda_C^2 / 4) + lambda_C / 2)
 // (lambda_max(A + B) <= lambda_max(A) + lambda_max(B)) and 2 / omega.
-NetworkStableStep network_stable_step(const std::vector<LinearisedSpring>& rows, std::size_t n_bodies);
+// kept_vector_bytes: the memory for the Lanczos vectors kept to sum each
+// search's Ritz vector; those that do not fit are made again by repeating
+// the recurrence (the same bits, one more product each). Without it: what
+// the blocks leave of the memory the terms take, at least 64 MiB.
+NetworkStableStep network_stable_step(const std::vector<LinearisedSpring>& rows, std::size_t n_bodies,
+                                      std::optional<std::size_t> kept_vector_bytes = std::nullopt);
 
 }  // namespace fq
