@@ -42,12 +42,12 @@ double dot(const std::vector<Vec6>& u, const std::vector<Vec6>& v) {
 // (hi, lo) is its transpose). Lanczos applies the operator a few hundred
 // times. Applied term by term, each product read every term (144 bytes;
 // 4.4 million terms on a frame-B-style grid of 97 606 bodies) and did 24
-// multiply-adds per term; a joint's 12 springs, or a contact's 4 points of
-// 3 springs, all act on one pair, and that grid has 362 880 pairs, so the
-// blocks of K~ take 133 MB against the terms' 638 MB and a product does 30
-// million multiply-adds instead of 106 million. The sums run in another
-// order than term by term: the estimate agrees to round-off (1e-14 on that
-// grid, 1e-15 on frames A-C).
+// multiply-adds per term; a joint's 12 springs, or a contact's up to 4
+// points of 3 springs, all act on one pair, and that grid has 362 880
+// pairs, so the blocks of K~ take 133 MB against the terms' 638 MB and a
+// product does 30 million multiply-adds instead of 106 million. The sums
+// run in another order than term by term: the estimate agrees to round-off
+// (relative 4e-14 on that grid, 4.4e-16 on frames A-C).
 struct NetworkBlocks {
   std::size_t nb = 0;
   std::vector<std::int32_t> lo, hi;  // pair p joins bodies lo[p] < hi[p]
