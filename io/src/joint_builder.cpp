@@ -84,6 +84,29 @@ std::string joint_name(const std::string& node, const std::string& member_a, con
   return node + ":" + member_a + "-" + member_b;
 }
 
+JoinedMemberEnds::JoinedMemberEnds(const CaseDef& def)
+    : def_(&def), any_joints_(!def.joint_types.empty() || !def.joints.overrides.empty()), ends_at_(def.nodes.size(), 0) {
+  const NameIndex node_ids(def.nodes, &NodeDef::id);
+  for (const MemberDef& m : def.members)
+    for (const std::string* node : {&m.node_a, &m.node_b})
+      if (const int n = node_ids.find(*node); n >= 0) ++ends_at_[std::size_t(n)];
+  for (const JointOverrideDef& o : def.joints.overrides) overrides_at_[o.node].push_back(&o);
+}
+
+bool JoinedMemberEnds::joined(std::size_t member, std::size_t node) const {
+  if (!any_joints_) return false;
+  // plan_joints: automatic joints pair every member ending at a node of two
+  // or more ends with the node's hub.
+  if (def_->joints.automatic && ends_at_[node] >= 2) return true;
+  // plan_joints: an override adds the pair it names at its node.
+  const auto at = overrides_at_.find(def_->nodes[node].id);
+  if (at == overrides_at_.end()) return false;
+  const std::string& id = def_->members[member].id;
+  for (const JointOverrideDef* o : at->second)
+    if (o->member_1 == id || o->member_2 == id) return true;
+  return false;
+}
+
 std::vector<PlannedJoint> plan_joints(const Model& model) {
   const CaseDef& def = model.def;
   const std::string file = def.source_file.string();

@@ -5,10 +5,10 @@
 #include <iomanip>
 #include <sstream>
 #include <stdexcept>
-#include <string_view>
 #include <unordered_map>
 #include <vector>
 
+#include "io/joint_builder.h"
 #include "io/point_grid.h"
 
 namespace fq {
@@ -74,18 +74,15 @@ std::vector<Storey> find_storeys(const Model& model) {
   std::vector<ColumnSegment> segments;
   std::vector<double> beam_height_m(def.nodes.size(), -1.0);  // deepest beam at each node; < 0: none
   std::vector<char> column_goes_up(def.nodes.size(), 0);        // a column has its low end here
-  // Per node, the members ending there (all kinds, for the joints) and
-  // those of them that may carry a floor there: neither columns nor braces.
-  std::vector<int> ends_at(def.nodes.size(), 0);
+  // Per node, the members ending there that may carry a floor there:
+  // neither columns nor braces.
   std::vector<std::vector<std::size_t>> floor_members_at(def.nodes.size());
   const NameIndex node_ids(def.nodes, &NodeDef::id);
   for (std::size_t i = 0; i < def.members.size(); ++i) {
     const MemberDef& m = def.members[i];
     const int na = node_ids.find(m.node_a), nb = node_ids.find(m.node_b);
-    for (const int n : {na, nb}) {
-      ++ends_at[std::size_t(n)];
-      if (m.kind != MemberKind::Column && m.kind != MemberKind::Brace) floor_members_at[std::size_t(n)].push_back(i);
-    }
+    if (m.kind != MemberKind::Column && m.kind != MemberKind::Brace)
+      for (const int n : {na, nb}) floor_members_at[std::size_t(n)].push_back(i);
     if (m.kind == MemberKind::Beam) {
       const double h = section_height_m(def, m, na, nb);
       for (const int n : {na, nb}) beam_height_m[std::size_t(n)] = std::max(beam_height_m[std::size_t(n)], h);
@@ -191,24 +188,9 @@ std::vector<Storey> find_storeys(const Model& model) {
                                 [&](const ColumnSegment& c) { return c.high_z_m - c.low_z_m < tol; }),
                  segments.end());
 
-  // Whether a joint holds member `m` at node `node`, by the rules of
-  // plan_joints (io/joint_builder.h): without joint types nothing is
-  // joined; automatic joints join every member ending at a node that two
-  // or more members end at (each to the node's hub); an override joins the
-  // two members it names at its node. A member ending at a column top that
-  // nothing holds there is no floor of that column.
-  std::unordered_map<std::string_view, std::vector<const JointOverrideDef*>> overrides_at;
-  for (const JointOverrideDef& o : def.joints.overrides) overrides_at[o.node].push_back(&o);
-  const bool any_joints = !def.joint_types.empty() || !def.joints.overrides.empty();
-  auto joined_at = [&](std::size_t m, int node) {
-    if (!any_joints) return false;
-    if (def.joints.automatic && ends_at[std::size_t(node)] >= 2) return true;
-    const auto at = overrides_at.find(def.nodes[std::size_t(node)].id);
-    if (at == overrides_at.end()) return false;
-    for (const JointOverrideDef* o : at->second)
-      if (o->member_1 == def.members[m].id || o->member_2 == def.members[m].id) return true;
-    return false;
-  };
+  // A member ending at a column top that no joint holds there is no floor
+  // of that column (the joint planner's rule, io/joint_builder.h).
+  const JoinedMemberEnds joined_ends(def);
 
   // Segments by their high node, in order: a column line is followed down
   // through its joints once per storey, and a scan of all segments per
@@ -259,7 +241,7 @@ std::vector<Storey> find_storeys(const Model& model) {
       // where that node is of the band's top level (StoreyColumn).
       if (std::abs(top.high_z_m - s.top_z_m) < tol)
         for (const std::size_t m : floor_members_at[std::size_t(top.high_node)]) {
-          if (!joined_at(m, top.high_node)) continue;
+          if (!joined_ends.joined(m, std::size_t(top.high_node))) continue;
           StoreyColumn::FloorPoint f;
           f.body = model.member_body[m];
           f.start_m = def.nodes[std::size_t(top.high_node)].xyz_m;

@@ -5,7 +5,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -97,6 +99,43 @@ struct BadJointCase {
   const char* field;
   const char* phrase;
 };
+
+// JoinedMemberEnds (which find_storeys asks for a floor's members) answers
+// for exactly the member ends the joints plan_joints makes hold, support
+// joints aside: the reference is the planner itself, on the shipped frames
+// (automatic joints), the portal, and the portal with automatic joints off
+// and one override at node tw (only cw and b held, at tw).
+TEST(CaseJoints, JoinedMemberEndsAreThoseThePlannedJointsHold) {
+  TempDir dir;
+  std::vector<std::filesystem::path> files;
+  for (const char* name : {"frame_A.yaml", "frame_B.yaml", "frame_C.yaml", "demo_portal_frame.yaml"})
+    files.push_back(std::filesystem::path(FQ_SOURCE_DIR) / "cases" / name);
+  files.push_back(dir.write("portal.yaml", portal_case()));
+  files.push_back(dir.write("override.yaml", portal_case(", automatic: false, overrides: [{node: tw, members: [cw, b], "
+                                                         "type: stiff}]")));
+  for (const std::filesystem::path& file : files) {
+    SCOPED_TRACE(file.string());
+    const Model model = build_model(load_case_file(file));
+    const CaseDef& def = model.def;
+    std::set<std::pair<std::string, std::string>> planned;  // (member id, node id)
+    for (const PlannedJoint& j : plan_joints(model)) {
+      if (j.member_a == "ground" || j.member_b == "ground") continue;  // a support
+      planned.insert({j.member_a, j.node});
+      planned.insert({j.member_b, j.node});
+    }
+    ASSERT_FALSE(planned.empty());
+    const JoinedMemberEnds joined(def);
+    std::size_t checked = 0;
+    for (std::size_t m = 0; m < def.members.size(); ++m)
+      for (const std::string* node : {&def.members[m].node_a, &def.members[m].node_b}) {
+        const std::size_t n = std::size_t(def.node_index(*node));
+        EXPECT_EQ(joined.joined(m, n), planned.count({def.members[m].id, *node}) == 1)
+            << def.members[m].id << " at " << *node;
+        ++checked;
+      }
+    EXPECT_EQ(checked, 2 * def.members.size());
+  }
+}
 
 TEST(CaseJoints, UserErrorsNameFileLineAndField) {
   const std::string base = portal_case();

@@ -5,6 +5,8 @@
 #pragma once
 
 #include <string>
+#include <string_view>
+#include <unordered_map>
 #include <vector>
 
 #include "io/model.h"
@@ -34,6 +36,25 @@ std::string joint_name(const std::string& node, const std::string& member_a, con
 // Plans every joint of the case; throws InputError when members meet at a
 // node and no joint type applies, or a support has no joint type.
 std::vector<PlannedJoint> plan_joints(const Model& model);
+
+// Which member ends plan_joints joins to another member, without planning
+// the joints (so without its errors): member m ending at node n is held
+// there when the case has joint types or overrides and either joints are
+// automatic and two or more members end at n (each is the hub or joined to
+// it), or an override at n names m. Supports are not counted. find_storeys
+// asks it which members carry a floor at a column's top.
+class JoinedMemberEnds {
+ public:
+  explicit JoinedMemberEnds(const CaseDef& def);
+  // member and node: indices into def.members and def.nodes.
+  bool joined(std::size_t member, std::size_t node) const;
+
+ private:
+  const CaseDef* def_;
+  bool any_joints_ = false;
+  std::vector<int> ends_at_;  // per node, the member ends there
+  std::unordered_map<std::string_view, std::vector<const JointOverrideDef*>> overrides_at_;
+};
 
 // Builds the spring layout of joint type `type` for a member with section
 // width_m (along the joint frame's t1) and depth_m (along t2).
