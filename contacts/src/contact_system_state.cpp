@@ -13,7 +13,8 @@ namespace fq {
 
 namespace {
 
-constexpr std::uint32_t kContactStateVersion = 2;  // 2: initial overlaps
+// 2: initial overlaps; 3: the deepest press so far (ContactPressPeak).
+constexpr std::uint32_t kContactStateVersion = 3;
 
 void save_point(StateWriter& out, const ContactPoint& c) {
   out.pod(c.body_a);
@@ -160,6 +161,12 @@ void ContactSystem::save_state(StateWriter& out) const {
   out.f64(friction_J_);
   out.f64(viscous_half_J_);
   out.f64(friction_half_J_);
+  out.f64(press_peak_.ratio);
+  out.f64(press_peak_.depth_m);
+  out.f64(press_peak_.half_dimension_m);
+  out.f64(press_peak_.time_s);
+  out.u64(std::uint64_t(std::int64_t(press_peak_.body_a)));
+  out.u64(std::uint64_t(std::int64_t(press_peak_.body_b)));
   broad_.save_state(out);
 }
 
@@ -205,6 +212,17 @@ void ContactSystem::load_state(StateReader& in) {
   const double friction = in.f64("contact friction energy");
   const double viscous_half = in.f64("contact viscous half step");
   const double friction_half = in.f64("contact friction half step");
+  ContactPressPeak press;
+  press.ratio = in.f64("deepest contact press");
+  press.depth_m = in.f64("deepest contact press");
+  press.half_dimension_m = in.f64("deepest contact press");
+  press.time_s = in.f64("deepest contact press");
+  for (BodyId* body : {&press.body_a, &press.body_b}) {
+    const auto id = std::int64_t(in.u64("deepest contact press body"));
+    if (id < -1 || id >= std::int64_t(body_material_.size())) in.fail("deepest contact press names a body out of range");
+    *body = BodyId(id);
+  }
+  if (press.body_b == kNoBody && press.ratio > 0.0) in.fail("deepest contact press without its body");
   broad_.load_state(in);
 
   contacts_ = std::move(contacts);
@@ -218,6 +236,7 @@ void ContactSystem::load_state(StateReader& in) {
   friction_J_ = friction;
   viscous_half_J_ = viscous_half;
   friction_half_J_ = friction_half;
+  press_peak_ = press;
   // Coefficient of each candidate pair: a function of the pairs (as after a rebuild).
   const auto& pairs = broad_.pairs();
   pair_coeff_.resize(pairs.size());

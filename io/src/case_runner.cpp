@@ -486,6 +486,8 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
   if (report.result.status != RunStatus::Unstable) {
     for (const std::string& w : energy_warnings(sim.ledger(), case_has_dashpots(def), sim.settings().integrator))
       warn(w);
+    if (scene.contacts)
+      if (const std::string w = contact_press_warning(scene.contacts->press_peak(), sim.bodies()); !w.empty()) warn(w);
     // A storey whose mean drift hides a column past a worse verdict (one
     // side braced, the other not; workflow probe: a storey 'damaged' at
     // 0.044 rad whose West columns had passed 0.1 rad).
@@ -506,6 +508,7 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
     }
     writer.add_summary_field("ground_motion", ground_motion_summary(sim));
     if (scene.joints) add_joint_summary(writer, *scene.joints, sim.events(), scene.joint_labels, scene.joint_names);
+    if (scene.contacts) add_contact_summary(writer, *scene.contacts, sim.bodies());
     if (!scene.storeys.empty())
       add_storey_summary(writer, storeys, report.result.status != RunStatus::Unstable);
     char hash[19];
@@ -536,6 +539,22 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
 }
 
 }  // namespace
+
+std::string contact_press_warning(const ContactPressPeak& peak, const BodyStore& bodies) {
+  if (!(peak.ratio > kWarnContactPressRatio)) return "";
+  std::ostringstream w;
+  const std::string b = "'" + bodies.info[std::size_t(peak.body_b)].name + "'";
+  w << std::setprecision(3) << "contacts were pressed in by up to " << peak.depth_m * 1e3 << " mm, "
+    << 100.0 * peak.ratio << " % of the " << peak.half_dimension_m * 1e3 << " mm half-thickness of the thinner box, "
+    << (peak.body_a == kNoBody ? b + " on the ground"
+                               : "'" + bodies.info[std::size_t(peak.body_a)].name + "' and " + b)
+    << ", at t = " << peak.time_s << " s (more than " << 100.0 * kWarnContactPressRatio
+    << " %): penalty contacts this soft let members sink into each other, so where they bear, pivot and come to "
+       "rest, and when a rocking member tips over, are off by about that fraction of the section; run again with a "
+       "stiffer contact (contact.*.normal_stiffness_N_per_m; a smaller dt_s if the stable step asks for it) to see "
+       "whether the results depend on it";
+  return w.str();
+}
 
 std::string initial_overlap_warning(const std::vector<InitialOverlap>& overlaps, const BodyStore& bodies) {
   if (overlaps.empty()) return "";

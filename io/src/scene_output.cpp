@@ -144,6 +144,21 @@ void add_joint_summary(RunOutput& output, const JointSystem& joints, const Event
                                                                  : std::string("null"));
 }
 
+void add_contact_summary(RunOutput& output, const ContactSystem& contacts, const BodyStore& bodies) {
+  const ContactPressPeak& p = contacts.press_peak();
+  if (!(p.ratio > 0.0)) {
+    output.add_summary_field("contact_press_peak", "null");
+    return;
+  }
+  std::ostringstream f;
+  f << "{\"depth_m\": " << JsonWriter::number(p.depth_m)
+    << ", \"half_thickness_m\": " << JsonWriter::number(p.half_dimension_m)
+    << ", \"ratio\": " << JsonWriter::number(p.ratio) << ", \"time_s\": " << JsonWriter::number(p.time_s)
+    << ", \"body_a\": " << JsonWriter::quote(p.body_a == kNoBody ? std::string("ground") : bodies.info[std::size_t(p.body_a)].name)
+    << ", \"body_b\": " << JsonWriter::quote(bodies.info[std::size_t(p.body_b)].name) << "}";
+  output.add_summary_field("contact_press_peak", f.str());
+}
+
 std::int32_t first_joint_failure_id(const EventLog& events) {
   for (const Event& e : events.all())
     if (e.kind == EventKind::SpringDeleted || e.kind == EventKind::JointBroken) return e.joint_id;

@@ -45,7 +45,7 @@ constexpr double kMass_kg = 450.0 * 0.1 * 0.1 * 0.1;
 constexpr double kNormalStiffness_Npm = 1.0e6;
 constexpr double kRestitution = 0.5;
 
-std::string cube_case(double dt_s) {
+std::string cube_case(double dt_s, double normal_stiffness_Npm = kNormalStiffness_Npm) {
   std::ostringstream s;
   s.precision(17);
   s << "framequake_case: 1\n"
@@ -58,7 +58,7 @@ std::string cube_case(double dt_s) {
        "blocks: [{id: cube, size_m: [0.1, 0.1, 0.1], center_m: [0, 0, 0.05], material: spruce}]\n"
        "contact:\n"
        "  ground: {normal_stiffness_N_per_m: "
-    << kNormalStiffness_Npm << ", restitution: " << kRestitution
+    << normal_stiffness_Npm << ", restitution: " << kRestitution
     << ", friction_coefficient: 0.4}\n"
        "output: {frame_interval_s: 0.1, history_interval_s: 0.01}\n";
   return s.str();
@@ -96,10 +96,72 @@ Outcome run_cube(const test::TempDir& dir, double dt_s, const std::string& name,
   return o;
 }
 
+std::string file_text(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
 bool mentions(const std::vector<std::string>& warnings, const std::string& part) {
   for (const std::string& w : warnings)
     if (w.find(part) != std::string::npos) return true;
   return false;
+}
+
+TEST(RunWarnings, ContactsPressedPastTheirLimitAreNamedWithDepthAndBodies) {
+  // The cube (0.45 kg, half-thickness 50 mm) set down touching the ground
+  // on four corner springs sinks at least to its static depth m g / (4 k)
+  // and at most to twice it. At k = 220 N/m the static depth is 5.0 mm,
+  // 10 % of its half-thickness, past the 5 % limit
+  // (kWarnContactPressRatio); at the case's 1e6 N/m twice it is 2.2 um,
+  // 4.4e-5: no warning, the peak still in summary.json.
+  const test::TempDir dir;
+  const double static_soft_m = kMass_kg * kStandardGravity_mps2 / (4.0 * 220.0);
+  ASSERT_GT(static_soft_m / 0.05, 2.0 * kWarnContactPressRatio);
+  const CaseDef soft = load_case_file(dir.write("soft.yaml", cube_case(1e-4, 220.0)));
+  CaseRunOptions options;
+  options.output_folder = dir.path() / "soft";
+  const CaseRunReport r = run_case(soft, options);
+  EXPECT_TRUE(mentions(r.warnings, "contacts were pressed in by up to ")) << testing::PrintToString(r.warnings);
+  EXPECT_TRUE(mentions(r.warnings, "of the 50 mm half-thickness of the thinner box, 'cube' on the ground, at t = "));
+  const std::string summary = file_text(dir.path() / "soft" / "summary.json");
+  const std::smatch m = [&] {
+    std::smatch found;
+    std::regex_search(summary, found, std::regex("\"contact_press_peak\": \\{\"depth_m\": ([0-9.e+-]+), "
+                                                 "\"half_thickness_m\": 0.05, \"ratio\": ([0-9.e+-]+), "
+                                                 "\"time_s\": [0-9.e+-]+, \"body_a\": \"ground\", \"body_b\": \"cube\"\\}"));
+    return found;
+  }();
+  ASSERT_EQ(m.size(), 3u) << summary;
+  EXPECT_GE(std::stod(m[1]), static_soft_m);
+  EXPECT_LE(std::stod(m[1]), 2.0 * static_soft_m);
+
+  const CaseDef stiff = load_case_file(dir.write("stiff.yaml", cube_case(1e-4)));
+  options.output_folder = dir.path() / "stiff";
+  const CaseRunReport q = run_case(stiff, options);
+  EXPECT_FALSE(mentions(q.warnings, "pressed in")) << testing::PrintToString(q.warnings);
+  const std::string stiff_summary = file_text(dir.path() / "stiff" / "summary.json");
+  EXPECT_NE(stiff_summary.find("\"contact_press_peak\": {\"depth_m\": "), std::string::npos);
+
+  // The limit itself: a press of exactly 5 % is not warned about, one just
+  // past it is; two boxes are named as a pair.
+  BodyStore bodies;
+  for (const char* name : {"beam", "column"}) {
+    BoxBodyDef b;
+    b.name = name;
+    b.position_m = Vec3(0, 0, double(bodies.size()));
+    bodies.add_box(b);
+  }
+  ContactPressPeak peak{kWarnContactPressRatio, 0.25e-3, 5e-3, 1.5, 0, 1};
+  EXPECT_EQ(contact_press_warning(peak, bodies), "");
+  peak.ratio = 0.06;
+  peak.depth_m = 0.3e-3;
+  EXPECT_EQ(contact_press_warning(peak, bodies).rfind("contacts were pressed in by up to 0.3 mm, 6 % of the 5 mm "
+                                                      "half-thickness of the thinner box, 'beam' and 'column', at t = 1.5 s "
+                                                      "(more than 5 %)", 0),
+            0u)
+      << contact_press_warning(peak, bodies);
 }
 
 TEST(RunWarnings, DashpotsGainEnergyJustAboveTheClosedFormBounceLimitAndNotJustBelow) {

@@ -187,6 +187,24 @@ std::vector<std::string> energy_warnings(const EnergyLedger& ledger, bool has_da
 // True when the case has a dashpot anywhere (see energy_warnings).
 bool case_has_dashpots(const CaseDef& def);
 
+// Penalty contacts pressed in by more than this fraction of the thinner
+// box's smallest half-dimension (ContactPressPeak) are warned about. A
+// member bearing, rocking or coming to rest on a contact bears a pressed
+// depth d away from where a rigid one would: a block rocking about its
+// corner has its restoring arm, its half-width b, shortened by about d, and
+// so its overturning threshold (Housner: tan(alpha) = b / h) lowered by
+// about d / b. 5 % is the error an engineer would still read past; the
+// rocking probe (2026-11-27) found a block whose base corners sank by 8.5 %
+// of its half-width rocking elastically instead of about its corners. The
+// remedy, a stiffer contact, also shortens the stable time step (its
+// omega grows as sqrt(k)), so the run says so rather than changing it.
+constexpr double kWarnContactPressRatio = 0.05;
+
+// The warning for contacts pressed past kWarnContactPressRatio (empty when
+// none was): how deep, against which half-dimension, between which bodies
+// (by name) and when, and what to do about it.
+std::string contact_press_warning(const ContactPressPeak& peak, const BodyStore& bodies);
+
 // The warning for bodies overlapping at the start (ContactSystem::
 // initial_overlaps: pairs not held by a joint that start inside each other,
 // which the contacts then take as their rest state): the count and the
