@@ -302,5 +302,57 @@ TEST(JointDashpot, ViscousBooksOfTwoStepsAreTheLeapfrogDashpotWork) {
   EXPECT_NEAR(books.dissipated_viscous_J, expected, 1e-12 * expected);
 }
 
+TEST(JointDashpot, ViscousBooksUnderRungeKuttaCountEachStepOnce) {
+  // Classical RK4 evaluates the joints at three trial states within a step
+  // and once more at its end; the books keep the leapfrog's rule (one term
+  // per step, joint_system.h "Energy"), approximate to first order in dt
+  // here (simulation.cpp). The reference is the mechanical energy the
+  // oscillator lost, from its state alone: E0 - (m v^2 / 2 + K z^2 / 2),
+  // which RK4 gives to fourth order. The box of the test above on its two
+  // springs (K = 2e5 N/m, C = 80 N s/m: zeta = 0.126) from 0.02 m/s, over
+  // two periods, at omega dt = 1/40 and 1/80: the books' error against the
+  // loss is first order (halves with dt) and a few per cent; a term booked
+  // at every trial evaluation would count each step up to four times.
+  const double k = 1e5, c = 40.0, v0 = 0.02;
+  auto relative_error = [&](double omega_dt) {
+    BodyStore bodies = test::two_boxes();
+    const double m = bodies.mass_kg[1];
+    const double omega = std::sqrt(2.0 * k / m);
+    SimulationSettings settings;
+    settings.gravity_mps2 = Vec3::Zero();
+    settings.integrator = Integrator::RungeKutta4;
+    settings.dt_s = omega_dt / omega;
+    settings.duration_s = 2.0 * (2.0 * M_PI / omega);
+    bodies.velocity_mps[1] = Vec3(0, 0, v0);
+    const double z_rest = bodies.position_m[1].z();
+    Simulation sim(std::move(bodies), settings);
+    auto owned = std::make_unique<JointSystem>(&sim.bonded_pairs());
+    JointSystem* js = owned.get();
+    JointDef d;
+    d.body_a = 0;
+    d.body_b = 1;
+    SpringPointDef p;
+    p.has_shear = false;
+    p.normal = linear_spring(k);
+    p.normal.dashpot.coefficient_Nspm = c;
+    p.normal.dashpot.damping_ratio = 0.0;
+    for (double x : {0.03, -0.03}) {
+      p.offset_m = Vec3(x, 0.0, 0.0);
+      d.layout.points.push_back(p);
+    }
+    js->add_joint(sim.bodies(), d);
+    sim.add_force_provider(std::move(owned));
+    EXPECT_EQ(sim.run().status, RunStatus::Completed);
+    const double v = sim.bodies().velocity_mps[1].z(), z = sim.bodies().position_m[1].z() - z_rest;
+    const double lost = 0.5 * m * v0 * v0 - (0.5 * m * v * v + 0.5 * 2.0 * k * z * z);
+    EXPECT_GT(lost, 0.5 * 0.5 * m * v0 * v0);  // two periods at zeta = 0.126 take most of it
+    return (js->joint_viscous_J(0) - lost) / lost;
+  };
+  const double coarse = relative_error(1.0 / 40.0), fine = relative_error(1.0 / 80.0);
+  std::printf("RK4 viscous books against the energy lost: %.3e at omega dt = 1/40, %.3e at 1/80\n", coarse, fine);
+  EXPECT_LT(std::abs(coarse), 0.05);
+  EXPECT_NEAR(coarse / fine, 2.0, 0.3);
+}
+
 }  // namespace
 }  // namespace fq
