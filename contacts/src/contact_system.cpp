@@ -105,7 +105,8 @@ void ContactSystem::prepare(const BodyStore& bodies) {
   bounding_radius_m_.resize(n);
   for (std::size_t i = 0; i < n; ++i) bounding_radius_m_[i] = bodies.half_extents_m[i].norm();
   half_dimension_m_.resize(n);
-  for (std::size_t i = 0; i < n; ++i) half_dimension_m_[i] = bodies.half_extents_m[i].minCoeff();
+  for (std::size_t i = 0; i < n; ++i)
+    half_dimension_m_[i] = bodies.is_fixed[i] ? HUGE_VAL : bodies.half_extents_m[i].minCoeff();
   press_peak_ = ContactPressPeak{};
   participates_.assign(n, 1);
   ground_body_ = kNoBody;
@@ -608,7 +609,7 @@ void ContactSystem::finish_step(const BodyStore& bodies, const StepInfo& step, E
     terms[3] = 0.5 * c.friction_work_loss_J;
   });
   // Summed in contact order (deterministic); with them the deepest press
-  // (ContactPressPeak; the first point of the deepest, in contact order).
+  // largest fraction (ContactPressPeak; the first such point in contact order).
   double viscous = 0.0, friction = 0.0, viscous_half = 0.0, friction_half = 0.0;
   for (std::size_t k = 0; k < contacts_.size(); ++k) {
     const double* terms = sum_terms_.data() + 4 * k;
@@ -620,10 +621,13 @@ void ContactSystem::finish_step(const BodyStore& bodies, const StepInfo& step, E
     const double pressed_m = c.depth_m - c.reference_depth_m;
     if (!(pressed_m > 0.0)) continue;
     const bool ground = (c.pair_key & kGroundKeyHigh) == kGroundKeyHigh;
-    double half_m = half_dimension_m_[std::size_t(c.body_b)];
-    if (!ground) half_m = std::min(half_m, half_dimension_m_[std::size_t(c.body_a)]);
+    BodyId measured = c.body_b;
+    if (!ground && half_dimension_m_[std::size_t(c.body_a)] < half_dimension_m_[std::size_t(c.body_b)])
+      measured = c.body_a;
+    const double half_m = half_dimension_m_[std::size_t(measured)];
     if (pressed_m > press_peak_.ratio * half_m) {
-      press_peak_ = {pressed_m / half_m, pressed_m, half_m, step.time_s, ground ? kNoBody : c.body_a, c.body_b};
+      press_peak_ = {pressed_m / half_m, pressed_m, half_m, step.time_s, ground ? kNoBody : c.body_a, c.body_b,
+                     measured};
     }
   }
   viscous_J_ += viscous;

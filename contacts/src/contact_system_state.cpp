@@ -13,8 +13,9 @@ namespace fq {
 
 namespace {
 
-// 2: initial overlaps; 3: the deepest press so far (ContactPressPeak).
-constexpr std::uint32_t kContactStateVersion = 3;
+// 2: initial overlaps; 3: the largest press so far (ContactPressPeak); 4:
+// with the box it was measured against.
+constexpr std::uint32_t kContactStateVersion = 4;
 
 void save_point(StateWriter& out, const ContactPoint& c) {
   out.pod(c.body_a);
@@ -167,6 +168,7 @@ void ContactSystem::save_state(StateWriter& out) const {
   out.f64(press_peak_.time_s);
   out.u64(std::uint64_t(std::int64_t(press_peak_.body_a)));
   out.u64(std::uint64_t(std::int64_t(press_peak_.body_b)));
+  out.u64(std::uint64_t(std::int64_t(press_peak_.measured)));
   broad_.save_state(out);
 }
 
@@ -217,12 +219,13 @@ void ContactSystem::load_state(StateReader& in) {
   press.depth_m = in.f64("deepest contact press");
   press.half_dimension_m = in.f64("deepest contact press");
   press.time_s = in.f64("deepest contact press");
-  for (BodyId* body : {&press.body_a, &press.body_b}) {
+  for (BodyId* body : {&press.body_a, &press.body_b, &press.measured}) {
     const auto id = std::int64_t(in.u64("deepest contact press body"));
     if (id < -1 || id >= std::int64_t(body_material_.size())) in.fail("deepest contact press names a body out of range");
     *body = BodyId(id);
   }
-  if (press.body_b == kNoBody && press.ratio > 0.0) in.fail("deepest contact press without its body");
+  if (press.ratio > 0.0 && (press.body_b == kNoBody || (press.measured != press.body_a && press.measured != press.body_b)))
+    in.fail("deepest contact press without its bodies");
   broad_.load_state(in);
 
   contacts_ = std::move(contacts);

@@ -542,13 +542,18 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
 
 std::string contact_press_warning(const ContactPressPeak& peak, const BodyStore& bodies) {
   if (!(peak.ratio > kWarnContactPressRatio)) return "";
+  auto name = [&](BodyId b) { return "'" + bodies.info[std::size_t(b)].name + "'"; };
   std::ostringstream w;
-  const std::string b = "'" + bodies.info[std::size_t(peak.body_b)].name + "'";
-  w << std::setprecision(3) << "contacts were pressed in by up to " << peak.depth_m * 1e3 << " mm, "
-    << 100.0 * peak.ratio << " % of the " << peak.half_dimension_m * 1e3 << " mm half-thickness of the thinner box, "
-    << (peak.body_a == kNoBody ? b + " on the ground"
-                               : "'" + bodies.info[std::size_t(peak.body_a)].name + "' and " + b)
-    << ", at t = " << peak.time_s << " s (more than " << 100.0 * kWarnContactPressRatio
+  w << std::setprecision(3) << "contacts pressed ";
+  if (peak.body_a == kNoBody)
+    w << name(peak.body_b) << " " << peak.depth_m * 1e3 << " mm into the ground";
+  else
+    w << name(peak.body_a) << " and " << name(peak.body_b) << " " << peak.depth_m * 1e3 << " mm into each other";
+  w << " at t = " << std::fixed << std::setprecision(3) << peak.time_s << " s, " << std::defaultfloat
+    << std::setprecision(3) << 100.0 * peak.ratio << " % of the " << peak.half_dimension_m * 1e3
+    << " mm half-thickness of " << name(peak.measured)
+    << (peak.body_a == kNoBody ? "" : ", the thinner free box of the two")
+    << " (the largest fraction of the run; more than " << 100.0 * kWarnContactPressRatio
     << " %): penalty contacts this soft let members sink into each other, so where they bear, pivot and come to "
        "rest, and when a rocking member tips over, are off by about that fraction of the section; run again with a "
        "stiffer contact (contact.*.normal_stiffness_N_per_m; a smaller dt_s if the stable step asks for it) to see "

@@ -155,7 +155,8 @@ void add_contact_summary(RunOutput& output, const ContactSystem& contacts, const
     << ", \"half_thickness_m\": " << JsonWriter::number(p.half_dimension_m)
     << ", \"ratio\": " << JsonWriter::number(p.ratio) << ", \"time_s\": " << JsonWriter::number(p.time_s)
     << ", \"body_a\": " << JsonWriter::quote(p.body_a == kNoBody ? std::string("ground") : bodies.info[std::size_t(p.body_a)].name)
-    << ", \"body_b\": " << JsonWriter::quote(bodies.info[std::size_t(p.body_b)].name) << "}";
+    << ", \"body_b\": " << JsonWriter::quote(bodies.info[std::size_t(p.body_b)].name)
+    << ", \"measured_body\": " << JsonWriter::quote(bodies.info[std::size_t(p.measured)].name) << "}";
   output.add_summary_field("contact_press_peak", f.str());
 }
 

@@ -34,10 +34,11 @@ void attach_joint_output(RunOutput& output, const JointSystem& joints, const std
 void add_joint_summary(RunOutput& output, const JointSystem& joints, const EventLog& events,
                        const std::vector<std::string>& labels, const std::vector<std::string>& names);
 
-// Summary field contact_press_peak: the deepest the contact springs were
-// pressed (ContactPressPeak) -- depth (m), the thinner box's half-thickness
-// (m), their ratio, the time and the two bodies by name ("ground" for the
-// ground); null when no contact was pressed.
+// Summary field contact_press_peak: the largest press of the contact
+// springs as a fraction of a section (ContactPressPeak) -- its depth (m),
+// the measured box's half-thickness (m), their ratio, the time, the two
+// bodies by name ("ground" for the ground) and the measured one; null when
+// no contact was pressed.
 void add_contact_summary(RunOutput& output, const ContactSystem& contacts, const BodyStore& bodies);
 
 // Joint id of the first spring deletion or joint break (-1 when none).

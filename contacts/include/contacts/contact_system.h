@@ -179,20 +179,24 @@ struct ContactPoint {
   double friction_work_loss_J = 0.0;
 };
 
-// The deepest a contact spring was pressed during a run, measured against
-// the thinner of the two boxes: the pressed depth (depth_m -
+// The largest press of a contact spring during a run, as a fraction of the
+// section of the member it moves: the pressed depth (depth_m -
 // reference_depth_m) of a point over the smallest half-dimension of the
-// thinner box (of the box alone against the ground), largest over every
-// point and step (ContactSystem::finish_step). A penalty contact lets
-// members sink into each other by this much; where they bear, pivot and
-// come to rest moves by about as much, a fraction `ratio` of the section.
+// thinner free box of its pair (a box against the ground or a fixed body
+// is measured alone: the ground and fixed bodies do not bear, pivot or come
+// to rest), largest over every point and step (ContactSystem::finish_step).
+// A penalty contact lets members sink into each other by this much; where
+// they bear, pivot and come to rest moves by about as much, a fraction
+// `ratio` of the section. (The deepest press in metres may be another
+// point's, on a thicker member.)
 struct ContactPressPeak {
   double ratio = 0.0;             // pressed depth / half-dimension
-  double depth_m = 0.0;           // pressed depth (m)
-  double half_dimension_m = 0.0;  // of the thinner box (m)
+  double depth_m = 0.0;           // pressed depth of that point (m)
+  double half_dimension_m = 0.0;  // of the measured box (m)
   double time_s = 0.0;            // t_n of the step
   BodyId body_a = kNoBody;        // kNoBody against the ground
   BodyId body_b = kNoBody;
+  BodyId measured = kNoBody;      // the box whose half-dimension it is (a or b)
 };
 
 struct ContactSystemSettings {
@@ -277,7 +281,7 @@ class ContactSystem : public ForceProvider {
   // Pairs of bodies that overlapped at the first force evaluation (step 0)
   // and start from their overlap (header), deepest first; empty before it.
   const std::vector<InitialOverlap>& initial_overlaps() const { return initial_overlaps_; }
-  // How deep the contact springs were pressed so far (ContactPressPeak).
+  // The largest press of the contact springs so far (ContactPressPeak).
   const ContactPressPeak& press_peak() const { return press_peak_; }
   // Cumulative losses through the current step, as reported to the ledger (J).
   double dissipated_viscous_J() const { return viscous_J_ - viscous_half_J_; }
@@ -360,7 +364,9 @@ class ContactSystem : public ForceProvider {
   std::vector<std::uint64_t> soft_start_pairs_;  // sorted
   std::size_t released_read_ = 0;
   std::vector<InitialOverlap> initial_overlaps_;
-  std::vector<double> half_dimension_m_;  // per body: its smallest half-extent (m)
+  // Per body: its smallest half-extent (m); infinite for a fixed body, which
+  // a press is not measured against (ContactPressPeak).
+  std::vector<double> half_dimension_m_;
   ContactPressPeak press_peak_;
   // Step 0's overlaps found; once per simulation (a checkpoint carries it).
   bool initial_overlaps_checked_ = false;

@@ -201,8 +201,8 @@ bool case_has_dashpots(const CaseDef& def);
 constexpr double kWarnContactPressRatio = 0.05;
 
 // The warning for contacts pressed past kWarnContactPressRatio (empty when
-// none was): how deep, against which half-dimension, between which bodies
-// (by name) and when, and what to do about it.
+// none was): which bodies (by name), how deep and when, against which box's
+// half-thickness, and what to do about it.
 std::string contact_press_warning(const ContactPressPeak& peak, const BodyStore& bodies);
 
 // The warning for bodies overlapping at the start (ContactSystem::
