@@ -245,6 +245,25 @@ TEST(JointDashpot, DampingRatioGivesLogarithmicDecrement) {
   std::printf("dashpot: log decrement %.5f, expected %.5f\n", decrement, expected);
 }
 
+// Body 0 to body 1 by two normal springs of stiffness k (N/m), each with a
+// dashpot c (N s/m), at x = +-0.03 m from the centres: their torques
+// cancel, so the free box only translates along the joint normal.
+JointDef two_damped_normal_springs(double k, double c) {
+  JointDef d;
+  d.body_a = 0;
+  d.body_b = 1;
+  SpringPointDef p;
+  p.has_shear = false;
+  p.normal = linear_spring(k);
+  p.normal.dashpot.coefficient_Nspm = c;
+  p.normal.dashpot.damping_ratio = 0.0;
+  for (double x : {0.03, -0.03}) {
+    p.offset_m = Vec3(x, 0.0, 0.0);
+    d.layout.points.push_back(p);
+  }
+  return d;
+}
+
 TEST(JointDashpot, ViscousBooksOfTwoStepsAreTheLeapfrogDashpotWork) {
   // Two normal springs, each with a dashpot of c = 40 N s/m, at opposite
   // offsets from the centres (their torques cancel exactly, so the box
@@ -268,19 +287,7 @@ TEST(JointDashpot, ViscousBooksOfTwoStepsAreTheLeapfrogDashpotWork) {
   Simulation sim(std::move(bodies), settings);
   auto owned = std::make_unique<JointSystem>(&sim.bonded_pairs());
   JointSystem* js = owned.get();
-  JointDef d;
-  d.body_a = 0;
-  d.body_b = 1;
-  SpringPointDef p;
-  p.has_shear = false;
-  p.normal = linear_spring(k);
-  p.normal.dashpot.coefficient_Nspm = c;
-  p.normal.dashpot.damping_ratio = 0.0;
-  p.offset_m = Vec3(0.03, 0.0, 0.0);
-  d.layout.points.push_back(p);
-  p.offset_m = Vec3(-0.03, 0.0, 0.0);
-  d.layout.points.push_back(p);
-  js->add_joint(sim.bodies(), d);
+  js->add_joint(sim.bodies(), two_damped_normal_springs(k, c));
   sim.add_force_provider(std::move(owned));
   EXPECT_EQ(js->joint_viscous_J(0), 0.0);
   double v[3];
@@ -328,19 +335,7 @@ TEST(JointDashpot, ViscousBooksUnderRungeKuttaCountEachStepOnce) {
     Simulation sim(std::move(bodies), settings);
     auto owned = std::make_unique<JointSystem>(&sim.bonded_pairs());
     JointSystem* js = owned.get();
-    JointDef d;
-    d.body_a = 0;
-    d.body_b = 1;
-    SpringPointDef p;
-    p.has_shear = false;
-    p.normal = linear_spring(k);
-    p.normal.dashpot.coefficient_Nspm = c;
-    p.normal.dashpot.damping_ratio = 0.0;
-    for (double x : {0.03, -0.03}) {
-      p.offset_m = Vec3(x, 0.0, 0.0);
-      d.layout.points.push_back(p);
-    }
-    js->add_joint(sim.bodies(), d);
+    js->add_joint(sim.bodies(), two_damped_normal_springs(k, c));
     sim.add_force_provider(std::move(owned));
     EXPECT_EQ(sim.run().status, RunStatus::Completed);
     const double v = sim.bodies().velocity_mps[1].z(), z = sim.bodies().position_m[1].z() - z_rest;
