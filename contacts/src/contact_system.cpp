@@ -608,8 +608,9 @@ void ContactSystem::finish_step(const BodyStore& bodies, const StepInfo& step, E
     terms[2] = 0.5 * c.viscous_work_loss_J;
     terms[3] = 0.5 * c.friction_work_loss_J;
   });
-  // Summed in contact order (deterministic); with them the deepest press
-  // largest fraction (ContactPressPeak; the first such point in contact order).
+  // Summed in contact order (deterministic); with them the press that is the
+  // largest fraction of its box's section (ContactPressPeak; the first such
+  // point in contact order).
   double viscous = 0.0, friction = 0.0, viscous_half = 0.0, friction_half = 0.0;
   for (std::size_t k = 0; k < contacts_.size(); ++k) {
     const double* terms = sum_terms_.data() + 4 * k;

@@ -215,17 +215,17 @@ void ContactSystem::load_state(StateReader& in) {
   const double viscous_half = in.f64("contact viscous half step");
   const double friction_half = in.f64("contact friction half step");
   ContactPressPeak press;
-  press.ratio = in.f64("deepest contact press");
-  press.depth_m = in.f64("deepest contact press");
-  press.half_dimension_m = in.f64("deepest contact press");
-  press.time_s = in.f64("deepest contact press");
+  press.ratio = in.f64("largest contact press");
+  press.depth_m = in.f64("largest contact press");
+  press.half_dimension_m = in.f64("largest contact press");
+  press.time_s = in.f64("largest contact press");
   for (BodyId* body : {&press.body_a, &press.body_b, &press.measured}) {
-    const auto id = std::int64_t(in.u64("deepest contact press body"));
-    if (id < -1 || id >= std::int64_t(body_material_.size())) in.fail("deepest contact press names a body out of range");
+    const auto id = std::int64_t(in.u64("largest contact press body"));
+    if (id < -1 || id >= std::int64_t(body_material_.size())) in.fail("largest contact press names a body out of range");
     *body = BodyId(id);
   }
   if (press.ratio > 0.0 && (press.body_b == kNoBody || (press.measured != press.body_a && press.measured != press.body_b)))
-    in.fail("deepest contact press without its bodies");
+    in.fail("largest contact press without its bodies");
   broad_.load_state(in);
 
   contacts_ = std::move(contacts);
