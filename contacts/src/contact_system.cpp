@@ -783,15 +783,26 @@ double one_sided_contact_eigenvalue(const Vec3& half_extents_m, double mass_kg, 
 // nine 6x6 eigenvalue problems per box took a fifth of `framequake info`
 // on a frame-B-style grid of 97 606 boxes once the network's estimate had
 // been made faster.
+// A box's size, mass and inertia as bits: boxes with the same bits have the
+// same contact eigenvalues and limits (ContactEigenvalues, and the boxes
+// bisected in later_stiffest_mode).
+using BoxShapeBits = std::array<std::uint64_t, 7>;
+BoxShapeBits box_shape_bits(const Vec3& half_extents_m, double mass_kg, const Vec3& inertia_kgm2) {
+  return {std::bit_cast<std::uint64_t>(half_extents_m.x()), std::bit_cast<std::uint64_t>(half_extents_m.y()),
+          std::bit_cast<std::uint64_t>(half_extents_m.z()), std::bit_cast<std::uint64_t>(mass_kg),
+          std::bit_cast<std::uint64_t>(inertia_kgm2.x()),   std::bit_cast<std::uint64_t>(inertia_kgm2.y()),
+          std::bit_cast<std::uint64_t>(inertia_kgm2.z())};
+}
+
 class ContactEigenvalues {
  public:
   double operator()(const Vec3& half_extents_m, double mass_kg, const Vec3& inertia_kgm2, double coef_n,
                     double coef_t) {
-    const Key key{std::bit_cast<std::uint64_t>(half_extents_m.x()), std::bit_cast<std::uint64_t>(half_extents_m.y()),
-                  std::bit_cast<std::uint64_t>(half_extents_m.z()), std::bit_cast<std::uint64_t>(mass_kg),
-                  std::bit_cast<std::uint64_t>(inertia_kgm2.x()),   std::bit_cast<std::uint64_t>(inertia_kgm2.y()),
-                  std::bit_cast<std::uint64_t>(inertia_kgm2.z()),   std::bit_cast<std::uint64_t>(coef_n),
-                  std::bit_cast<std::uint64_t>(coef_t)};
+    Key key;
+    const BoxShapeBits shape = box_shape_bits(half_extents_m, mass_kg, inertia_kgm2);
+    std::copy(shape.begin(), shape.end(), key.begin());
+    key[7] = std::bit_cast<std::uint64_t>(coef_n);
+    key[8] = std::bit_cast<std::uint64_t>(coef_t);
     const auto [it, is_new] = values_.try_emplace(key, 0.0);
     if (is_new) it->second = one_sided_contact_eigenvalue(half_extents_m, mass_kg, inertia_kgm2, coef_n, coef_t);
     return it->second;
@@ -1072,18 +1083,12 @@ StiffestMode ContactSystem::later_stiffest_mode(const BodyStore& bodies) const {
     std::sort(boxes.begin(), boxes.end(), [](const Box& x, const Box& y) { return x.lower_dt < y.lower_dt; });
     // A box of the size, mass and inertia of one already bisected has its
     // limit (the same bits), which cannot be below the best found.
-    std::set<std::array<std::uint64_t, 7>> bisected;
+    std::set<BoxShapeBits> bisected;
     for (const Box& box : boxes) {
       if (box.lower_dt >= best_dt) break;
-      const Vec3& h = bodies.half_extents_m[box.i];
-      const Vec3& inertia = bodies.principal_inertia_kgm2[box.i];
-      if (!bisected
-               .insert({std::bit_cast<std::uint64_t>(h.x()), std::bit_cast<std::uint64_t>(h.y()),
-                        std::bit_cast<std::uint64_t>(h.z()), std::bit_cast<std::uint64_t>(bodies.mass_kg[box.i]),
-                        std::bit_cast<std::uint64_t>(inertia.x()), std::bit_cast<std::uint64_t>(inertia.y()),
-                        std::bit_cast<std::uint64_t>(inertia.z())})
-               .second)
-        continue;
+      const auto shape =
+          box_shape_bits(bodies.half_extents_m[box.i], bodies.mass_kg[box.i], bodies.principal_inertia_kgm2[box.i]);
+      if (!bisected.insert(shape).second) continue;
       const double m = bodies.mass_kg[box.i];
       const double dt = damped_limit([&](double t) { return lambda_of(surface, box.i, t, m); }, box.lower_dt,
                                      2.0 / std::sqrt(box.lambda_k));
