@@ -9,8 +9,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 #include <vector>
 
+#include "io/case_def.h"
 #include "work_precision_core.h"
 
 namespace {
@@ -48,6 +50,41 @@ TEST(WorkPrecision, OrderFitRecoversAPowerLaw) {
   for (double h : dt) e.push_back(3.0 * std::pow(h, 2.5));
   EXPECT_NEAR(fitted_order(dt, e), 2.5, 1e-12);
   EXPECT_TRUE(std::isnan(fitted_order({1e-2}, {1e-3})));
+}
+
+// The frame problems' largest step divides the record's sample interval in
+// simulated time, so no sample (a kink of the piecewise-linear forcing)
+// falls inside a step (work_precision_core.h; why:
+// BaseExcitation.RungeKutta4* in tests/joints/test_base_excitation.cpp).
+// Frame B plays the JMA Kobe record, sampled every 0.02 s, at time scale
+// 0.3162 (cases/frame_B.yaml), from record second 7.
+TEST(WorkPrecision, FrameStepsPutEveryRecordSampleOnAStepBoundary) {
+  const Problem p = frame_problem(std::string(FQ_SOURCE_DIR) + "/cases/frame_B.yaml", true, true, 0.05, 7.0, 3.0);
+  const double interval_s = 0.02 * 0.3162;
+  const double steps_per_sample = interval_s / p.sample_dt_s;
+  EXPECT_NEAR(steps_per_sample, std::round(steps_per_sample), 1e-9);
+  // The largest such step within 0.8 of the leapfrog limit 2 / omega_max.
+  const double dt_max = 0.8 * 2.0 / p.omega_max_radps;
+  EXPECT_LE(p.sample_dt_s, dt_max);
+  EXPECT_GT(interval_s / (std::round(steps_per_sample) - 1.0), dt_max);
+  EXPECT_NE(p.step_rule.find("every record sample on a step boundary"), std::string::npos) << p.step_rule;
+}
+
+TEST(WorkPrecision, NoAlignedStepForAWindowBetweenSamplesOrMixedIntervals) {
+  fq::GroundMotionDef motion;
+  motion.time_scale = 0.5;
+  motion.window_start_s = 1.0;
+  fq::GroundMotionComponentDef c;
+  c.record.dt_s = 0.02;
+  motion.components = {c};
+  // 0.01 s of simulated time between samples: 0.01 / ceil(0.01 / 0.003) = 0.0025.
+  EXPECT_NEAR(record_aligned_step_s(motion, 0.003), 0.0025, 1e-15);
+  motion.window_start_s = 1.005;  // between samples
+  EXPECT_EQ(record_aligned_step_s(motion, 0.003), 0.0);
+  motion.window_start_s = 1.0;
+  c.record.dt_s = 0.01;
+  motion.components.push_back(c);  // a second component sampled twice as often
+  EXPECT_EQ(record_aligned_step_s(motion, 0.003), 0.0);
 }
 
 }  // namespace
