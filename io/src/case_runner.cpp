@@ -948,7 +948,53 @@ std::vector<std::string> case_warnings(const CaseDef& def, const Scene& scene) {
     if (!w.empty()) out.push_back(std::move(w));
   for (std::string& w : ground_motion_direction_warnings(scene.simulation->ground_motion())) out.push_back(std::move(w));
   if (std::string w = ground_motion_sampling_warning(*scene.simulation); !w.empty()) out.push_back(std::move(w));
+  if (std::string w = runge_kutta_sampling_warning(*scene.simulation); !w.empty()) out.push_back(std::move(w));
   return out;
+}
+
+std::string runge_kutta_sampling_warning(const Simulation& sim) {
+  if (sim.settings().integrator != Integrator::RungeKutta4) return {};
+  const double dt = sim.settings().dt_s;
+  const double run_end_s = double(sim.total_steps()) * dt;
+  // Where the run's time t = n dt meets a bend of the forcing: each record
+  // sample the window plays (the record is linear between samples) and the
+  // window's end, where the motion stops. A bend within a millionth of a
+  // step of a step boundary costs a millionth of its error: counted as on it.
+  auto on_a_boundary = [dt](double t_s) {
+    const double steps = t_s / dt;
+    return std::abs(steps - std::round(steps)) <= 1e-6;
+  };
+  for (const GroundMotionComponent& c : sim.ground_motion().components()) {
+    const double played_s = c.record.dt_s * c.time_scale;
+    if (dt > played_s * (1.0 + 1e-9)) continue;  // ground_motion_sampling_warning's case
+    const double window_end_s = std::min(c.window_start_s + c.window_length_s, c.record.duration_s());
+    double inside_s = -1.0;  // simulated time of the first bend inside a step
+    const std::size_t n = c.record.acceleration_mps2.size();
+    for (std::size_t k = 0; k < n && inside_s < 0.0; ++k) {
+      const double t_rec = c.record.time_of(k);
+      if (t_rec < c.window_start_s || t_rec > window_end_s) continue;
+      const double t_s = (t_rec - c.window_start_s) * c.time_scale;
+      if (t_s > run_end_s) break;
+      if (!on_a_boundary(t_s)) inside_s = t_s;
+    }
+    const double end_s = (window_end_s - c.window_start_s) * c.time_scale;
+    if (inside_s < 0.0 && end_s < run_end_s && !on_a_boundary(end_s)) inside_s = end_s;
+    if (inside_s < 0.0) continue;
+    std::ostringstream w;
+    w << std::setprecision(10) << "time.integrator rk4 is fourth order only where the forcing is smooth within each "
+      << "step, and " << c.record.source << " is linear between its samples: at dt_s = " << dt
+      << " s its sample (or the window's end) at t = " << inside_s
+      << " s falls inside a step, and every such bend costs rk4 an error of order dt_s^2 (docs/speed_accuracy.md); ";
+    const double start_samples = c.window_start_s / c.record.dt_s;
+    if (c.record.sample_time_s.empty() && std::abs(start_samples - std::round(start_samples)) <= 1e-6)
+      w << "for rk4's accuracy give dt_s = " << played_s << " s (" << c.record.dt_s << " s x time_scale "
+        << c.time_scale << ") divided by a whole number, e.g. " << played_s / std::ceil(played_s / dt) << " s";
+    else
+      w << "for rk4's accuracy start the window on a sample of an evenly sampled record and give dt_s = the "
+        << "played sample interval (record dt x time_scale) divided by a whole number";
+    return w.str();
+  }
+  return {};
 }
 
 std::string ground_motion_sampling_warning(const Simulation& sim) {

@@ -845,6 +845,50 @@ TEST(RunWarnings, AStepLongerThanTheRecordsSamplesIsNamedWithThePeakItApplies) {
   }
 }
 
+// rk4 is fourth order only where the forcing is smooth within each step; a
+// record is linear between its samples, so a sample inside a step (or the
+// window's end, where the motion stops) costs it an error of order dt^2
+// there (BaseExcitation.RungeKutta4* in tests/joints/test_base_excitation.cpp
+// measures both orders against the exact oscillator). The warning names the
+// first such time and, for an evenly sampled record whose window starts on
+// a sample, a step that divides the played interval. Record: samples every
+// 0.01 s.
+TEST(RunWarnings, RungeKutta4WithRecordSamplesInsideItsStepsIsToldTheStepThatAvoidsThem) {
+  test::TempDir dir;
+  std::ofstream(dir.path() / "spike.txt") << "0 0\n0.01 5\n0.02 0\n0.03 1\n0.04 0\n0.05 2\n0.06 0\n0.07 0\n0.08 0\n";
+  auto warning_for = [&](const char* integrator, double dt_s, const std::string& window) {
+    std::ostringstream text;
+    text << "framequake_case: 1\n"
+            "time: {dt_s: " << dt_s << ", duration_s: 0.08, integrator: " << integrator << "}\n"
+            "materials: [{name: spruce, density_kg_per_m3: 450}]\n"
+            "blocks: [{id: b, size_m: [0.1, 0.1, 0.1], center_m: [0, 0, 1], material: spruce}]\n"
+            "ground_motion: {time_scale: 1.0" << window
+         << ", components: [{file: spike.txt, format: two_column, axis: x}]}\n";
+    const CaseDef def = load_case_file(dir.write("gm.yaml", text.str()));
+    return runge_kutta_sampling_warning(*build_scene(def).simulation);
+  };
+  // 0.01 s / 4: every sample on a step boundary.
+  EXPECT_EQ(warning_for("rk4", 0.0025, ""), "");
+  // 0.003 s: the sample at 0.01 s is 3.33 steps in; 0.01 / ceil(0.01 / 0.003) = 0.0025 s.
+  const std::string w = warning_for("rk4", 0.003, "");
+  EXPECT_NE(w.find("at dt_s = 0.003 s its sample (or the window's end) at t = 0.01 s falls inside a step"),
+            std::string::npos)
+      << w;
+  EXPECT_NE(w.find("divided by a whole number, e.g. 0.0025 s"), std::string::npos) << w;
+  // Central difference is second order whatever the samples: not warned.
+  EXPECT_EQ(warning_for("central_difference", 0.003, ""), "");
+  // A window ending between samples (0.044 s, 17.6 steps of 0.0025 s): the
+  // motion stops inside a step.
+  const std::string end = warning_for("rk4", 0.0025, ", window_length_s: 0.044");
+  EXPECT_NE(end.find("at t = 0.044 s falls inside a step"), std::string::npos) << end;
+  // A window starting between samples (record time 0.005 s): the samples
+  // play at 0.005, 0.015, ... s, which steps of 0.002 s miss (2.5 steps
+  // in). No step is suggested for a window that does not start on a sample.
+  const std::string start = warning_for("rk4", 0.002, ", window_start_s: 0.005");
+  EXPECT_NE(start.find("at t = 0.005 s falls inside a step"), std::string::npos) << start;
+  EXPECT_NE(start.find("start the window on a sample"), std::string::npos) << start;
+}
+
 // A record header in Latin-1 ("D\xFCzce", as older files carry) reaches
 // summary.json through the vertical-component warning that quotes it. The
 // file must be UTF-8 JSON holding "Düzce" (records probe: the raw byte FC

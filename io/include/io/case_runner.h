@@ -109,6 +109,8 @@ struct CaseRunReport {
 //  - the time step is longer than a record's sample interval as the run
 //    plays it (dt x time_scale): the run steps over samples and may miss
 //    the peak (ground_motion_sampling_warning);
+//  - rk4 with record samples inside its steps, where it is second order,
+//    not fourth (runge_kutta_sampling_warning);
 //  - the time step exceeds the stable estimate (a run forced with --force);
 //  - a node lies inside a member without being one of its ends
 //    (nodes_inside_members_warning);
@@ -312,6 +314,16 @@ std::vector<std::string> ground_motion_direction_warnings(const GroundMotion& mo
 // was never applied at dt = 0.02 s, while summary.json gave its 5 m/s^2
 // as the peak). Empty without a ground motion or when dt is short enough.
 std::string ground_motion_sampling_warning(const Simulation& sim);
+
+// The warning for rk4 under a record whose samples (the bends of its
+// piecewise-linear forcing) or window end fall inside steps: rk4's error is
+// then of order dt^2 at each, not dt^4 (tests/joints/test_base_excitation.cpp,
+// BaseExcitation.RungeKutta4*: an error 40 times larger at a similar step).
+// Suggests a dt_s that divides the played sample interval where one exists.
+// Empty for other integrators, without a ground motion, when every bend is
+// on a step boundary, or when dt is longer than a sample interval (that is
+// ground_motion_sampling_warning's).
+std::string runge_kutta_sampling_warning(const Simulation& sim);
 
 // The checks run_case makes before it writes anything (the scene builds;
 // the integrator can serve its force providers; dt is within the stable
