@@ -316,8 +316,13 @@ def largest_storey_peak(row):
 
 
 # Colours that stay apart (no two greens), one per case; the records are
-# told apart by the line's style.
-RECORD_STYLES = ["-", "--", ":", "-."]
+# told apart by the line's style and the marker's shape together (four
+# styles cycled gave two of six records the same line, and a sweep of one
+# scale has no lines at all, only markers: records probe). A filled marker
+# is a run in which a storey collapsed, a hollow one a run in which none
+# did.
+RECORD_STYLES = ["-", "--", ":", "-.", (0, (8, 2)), (0, (1, 3)), (0, (5, 1, 1, 1, 1, 1)), (0, (3, 3, 8, 3))]
+RECORD_MARKERS = ["o", "s", "^", "D", "v", "P", "*", "X"]
 
 
 def draw_sweep(folder):
@@ -347,19 +352,22 @@ def draw_sweep(folder):
     for key, points in sorted(series.items()):
         points.sort()
         colour = COLOURS[cases.index(key[0]) % len(COLOURS)]
-        style = RECORD_STYLES[records.index(key[1]) % len(RECORD_STYLES)]
+        r = records.index(key[1])
+        # Beyond eight records a pair of style and marker repeats only after
+        # 8 x 7 = 56 (the marker list steps by one more each lap).
+        style = RECORD_STYLES[r % len(RECORD_STYLES)]
+        marker = RECORD_MARKERS[(r + r // len(RECORD_STYLES)) % len(RECORD_MARKERS)]
         x = [p[0] / 9.80665 for p in points]
         y = [max(p[1], 1e-5) for p in points]
-        ax.plot(x, y, color=colour, ls=style, lw=1.2, label="%s, %s" % key)
+        ax.plot(x, y, color=colour, ls=style, lw=1.2, marker=marker, ms=6, mfc="none", mec=colour,
+                label="%s, %s" % key)
         ax.scatter([xi for xi, p in zip(x, points) if p[2]], [yi for yi, p in zip(y, points) if p[2]],
-                   color=colour, marker="x", s=40, zorder=3)
-        ax.scatter([xi for xi, p in zip(x, points) if not p[2]], [yi for yi, p in zip(y, points) if not p[2]],
-                   facecolors="none", edgecolors=colour, marker="o", s=30, zorder=3)
+                   color=colour, marker=marker, s=36, zorder=3)
     ax.set_yscale("log")
     limit_lines(ax, limits)
     ax.set_xlabel("peak ground acceleration (g)")
     ax.set_ylabel("peak storey drift ratio, largest storey (rad)")
-    ax.set_title("Amplitude sweep: x = a storey collapsed, o = none collapsed", fontsize=11)
+    ax.set_title("Amplitude sweep: filled marker = a storey collapsed, hollow = none collapsed", fontsize=11)
     # Beside the axes, where it covers no point (it sat on the high-PGA
     # points; workflow probe).
     ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8, borderaxespad=0.0)

@@ -248,5 +248,33 @@ class SweepFigure(FigureTest):
             self.assertFalse(legend.overlaps(t.get_window_extent()), t.get_text())
 
 
+    def test_six_records_get_six_distinct_markers(self):
+        """One scale per record (markers only, no line to tell them by) and
+        six records: each record has a marker of its own, the
+        collapsed run's marker filled, the others hollow (records probe:
+        four styles cycled gave two records the same line)."""
+        rows = []
+        for k in range(6):
+            name = "a_r%d" % k
+            out = write_run(self.folder, name, [1, 0, 0], [[(0.0, 0.0)]])
+            rows.append({"case": "a", "record": "rec%d" % k, "scale": 1.0, "pga_mps2": 2.0 + k,
+                         "status": "completed", "collapsed": "1" if k == 3 else "0",
+                         "storey1_peak_drift_ratio_rad": 0.01 * (k + 1), "storey1_verdict": "standing",
+                         "output": out})
+        with open(os.path.join(self.folder, "sweep.csv"), "w", newline="") as f:
+            w = csv.DictWriter(f, fieldnames=list(rows[0]))
+            w.writeheader()
+            w.writerows(rows)
+        fig, _ = fq_plot.draw_sweep(self.folder)
+        ax = fig.axes[0]
+        drawn = [line for line in ax.get_lines() if not line.get_label().startswith("_")]
+        self.assertEqual(len(drawn), 6)
+        self.assertEqual(len({line.get_marker() for line in drawn}), 6)
+        # The one collapsed run is drawn again, filled, over its hollow marker.
+        filled = [c for c in ax.collections if len(c.get_offsets()) > 0]
+        self.assertEqual(len(filled), 1)
+        self.assertAlmostEqual(float(filled[0].get_offsets()[0][1]), 0.04)
+
+
 if __name__ == "__main__":
     unittest.main(verbosity=2)
