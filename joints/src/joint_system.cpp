@@ -832,11 +832,12 @@ bool JointSystem::supports_trial_states() const {
 std::string JointSystem::trial_state_obstacle() const {
   std::string what;
   auto add = [&what](const std::string& item) { what += (what.empty() ? "" : ", ") + item; };
-  if (!trilinear_.ids.empty()) add(std::to_string(trilinear_.ids.size()) + " springs of law trilinear");
-  if (!curee_.ids.empty()) add(std::to_string(curee_.ids.size()) + " springs of law curee");
+  auto count = [](std::size_t n, const char* one, const char* many) { return std::to_string(n) + (n == 1 ? one : many); };
+  if (!trilinear_.ids.empty()) add(count(trilinear_.ids.size(), " spring", " springs") + " of law trilinear");
+  if (!curee_.ids.empty()) add(count(curee_.ids.size(), " spring", " springs") + " of law curee");
   std::size_t strain_limit = 0;
   for (const JointBreakDef& b : joint_break_) strain_limit += b.criterion == BreakCriterion::StrainLimit;
-  if (strain_limit > 0) add(std::to_string(strain_limit) + " joints with fracture: strain_limit");
+  if (strain_limit > 0) add(count(strain_limit, " joint", " joints") + " with fracture: strain_limit");
   return what;
 }
 

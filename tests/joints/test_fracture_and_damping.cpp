@@ -349,5 +349,33 @@ TEST(JointDashpot, ViscousBooksUnderRungeKuttaCountEachStepOnce) {
   EXPECT_NEAR(coarse / fine, 2.0, 0.3);
 }
 
+// Why a joint system cannot serve rk4 or gsl_rk8pd (their trial states
+// would yield or break springs): counted in words a user reads in the
+// refusal, one or many (an integrator probe read "1 springs").
+TEST(JointTrialStates, TheObstacleCountsSpringsAndJointsInTheirNumber) {
+  BodyStore bodies = test::two_boxes();
+  BondedPairs bonded;
+  JointSystem js(&bonded);
+  TrilinearParams p;
+  p.yield_strain_tension = p.yield_strain_compression = 0.01;
+  p.yield_force_tension_N = p.yield_force_compression_N = 10.0;
+  p.ultimate_strain_tension = p.ultimate_strain_compression = 0.05;
+  p.ultimate_force_tension_N = p.ultimate_force_compression_N = 15.0;
+  JointDef d;
+  d.body_a = 0;
+  d.body_b = 1;
+  SpringPointDef point;
+  point.has_shear = false;
+  point.normal = trilinear_spring(p, 0.01);
+  d.layout.points.push_back(point);
+  d.fracture.criterion = BreakCriterion::StrainLimit;
+  d.fracture.strain_limit = 0.05;
+  js.add_joint(bodies, d);
+  EXPECT_FALSE(js.supports_trial_states());
+  EXPECT_EQ(js.trial_state_obstacle(), "1 spring of law trilinear, 1 joint with fracture: strain_limit");
+  js.add_joint(bodies, d);
+  EXPECT_EQ(js.trial_state_obstacle(), "2 springs of law trilinear, 2 joints with fracture: strain_limit");
+}
+
 }  // namespace
 }  // namespace fq
