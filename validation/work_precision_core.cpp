@@ -240,18 +240,6 @@ Problem cantilever_problem(int elements, double duration_s) {
 
 // ---- frame B ------------------------------------------------------------------------
 
-double record_aligned_step_s(const GroundMotionDef& motion, double dt_max_s) {
-  if (motion.components.empty() || !(dt_max_s > 0.0)) return 0.0;
-  const double record_dt_s = motion.components[0].record.dt_s;
-  for (const GroundMotionComponentDef& c : motion.components)
-    if (c.record.dt_s != record_dt_s) return 0.0;
-  // The window's start must be a sample (to a millionth of the interval:
-  // 7.0 / 0.02 is 350 to within an ulp, not exactly).
-  const double start_samples = motion.window_start_s / record_dt_s;
-  if (std::abs(start_samples - std::round(start_samples)) > 1e-6) return 0.0;
-  const double interval_s = record_dt_s * motion.time_scale;
-  return interval_s / std::ceil(interval_s / dt_max_s);
-}
 
 Problem frame_problem(const std::string& case_file, bool elastic, bool damped, double amplitude_scale,
                       double window_start_s, double window_length_s) {
@@ -289,7 +277,7 @@ Problem frame_problem(const std::string& case_file, bool elastic, bool damped, d
   p.norm = "max over t of |storey-1 drift x - reference|";
   p.omega_max_radps = probe.stable_time_step.omega_max_radps;
   const double dt_top = 0.8 * 2.0 / p.omega_max_radps;
-  p.sample_dt_s = record_aligned_step_s(*def.ground_motion, dt_top);
+  p.sample_dt_s = record_aligned_step_s(probe.simulation->ground_motion(), dt_top);
   if (p.sample_dt_s > 0.0) {
     p.step_rule = "dt0 = the record's sample interval in simulated time / " +
                   std::to_string(std::llround(def.ground_motion->components[0].record.dt_s *

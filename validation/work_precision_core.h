@@ -18,10 +18,6 @@
 
 #include "dem_core/simulation.h"
 
-namespace fq {
-struct GroundMotionDef;  // io/case_def.h
-}
-
 namespace fq::wp {
 
 // What to run: the method, its step (for gsl_rk8pd the output interval) and
@@ -90,19 +86,14 @@ Problem cantilever_problem(int elements, double duration_s);
 // as written (trilinear springs, contacts, dashpots; `damped` ignored).
 // dt0 (sample_dt_s) is the largest step <= 0.8 x 2 / omega_max that
 // divides the record's sample interval in simulated time
-// (record_aligned_step_s): the record is linear between its samples, so a
-// sample inside a step (a kink of the forcing) costs every method an error
-// of order dt^2 there, and RK4's order on the frame would be 2, not 4
-// (tests/joints/test_base_excitation.cpp, BaseExcitation.RungeKutta4*).
+// (record_aligned_step_s, io/case_runner.h): the record is linear between
+// its samples, so a sample inside a step (a kink of the forcing) costs
+// every method an error of order dt^2 there, and RK4's order on the frame
+// would be 2, not 4 (tests/joints/test_base_excitation.cpp,
+// BaseExcitation.RungeKutta4*).
 // Ground motion: record seconds [window_start, window_start + window_length)
 // of the case's record at `amplitude_scale`; observable the first-storey
 // drift along x (io/storey_drift.h) (m).
-// The largest step <= dt_max_s that puts every sample of `motion` on a
-// step boundary from t = 0: (record dt x time scale) / ceil(that / dt_max_s).
-// 0 when no such step exists: components sampled at different intervals,
-// or a window that starts between samples.
-double record_aligned_step_s(const GroundMotionDef& motion, double dt_max_s);
-
 Problem frame_problem(const std::string& case_file, bool elastic, bool damped, double amplitude_scale,
                       double window_start_s, double window_length_s);
 

@@ -785,36 +785,71 @@ std::string near_nodes_warning(const CaseDef& def) {
                       "one node if they should meet");
 }
 
-std::string slender_members_warning(const CaseDef& def) {
+namespace {
+// f(member, length (m), section) for each member whose nodes and section
+// exist (build_model refuses the others).
+template <class F>
+void for_each_member_length(const CaseDef& def, F&& f) {
   const auto [nodes, sections] = nodes_and_sections_by_name(def);
-  std::size_t count = 0;
-  const MemberDef* worst = nullptr;
-  double worst_ratio = 0.0, worst_length_m = 0.0, worst_thickness_m = 0.0;
   for (const MemberDef& m : def.members) {
     const auto a = nodes.find(m.node_a), b = nodes.find(m.node_b);
     const auto sec = sections.find(m.section);
-    if (a == nodes.end() || b == nodes.end() || sec == sections.end()) continue;  // build_model refuses these
-    const double length_m = (b->second->xyz_m - a->second->xyz_m).norm();
-    const double thickness_m = std::min(sec->second->width_m, sec->second->depth_m);
-    if (!(thickness_m > 0.0)) continue;
-    const double ratio = length_m / thickness_m;
-    if (!(ratio > kSlenderMemberRatio)) continue;
-    ++count;
-    if (ratio > worst_ratio) {
-      worst_ratio = ratio;
-      worst = &m;
-      worst_length_m = length_m;
-      worst_thickness_m = thickness_m;
-    }
+    if (a == nodes.end() || b == nodes.end() || sec == sections.end()) continue;
+    f(m, (b->second->xyz_m - a->second->xyz_m).norm(), *sec->second);
   }
-  if (count == 0) return {};
+}
+
+// The members a geometry check flags and the worst of them: measure(length
+// (m), section) gives the flagged member's side (m) and ratio, or a ratio
+// of 0 for a member it does not flag; the worst has the largest ratio (the
+// first of equals).
+struct FlaggedMembers {
+  std::size_t count = 0;
+  const MemberDef* worst = nullptr;
+  double ratio = 0.0, length_m = 0.0, side_m = 0.0;
+};
+template <class Measure>
+FlaggedMembers flag_members(const CaseDef& def, Measure&& measure) {
+  FlaggedMembers out;
+  for_each_member_length(def, [&](const MemberDef& m, double length_m, const SectionDef& section) {
+    const auto [side_m, ratio] = measure(length_m, section);
+    if (!(ratio > 0.0)) return;
+    ++out.count;
+    if (ratio > out.ratio) out = {out.count, &m, ratio, length_m, side_m};
+  });
+  return out;
+}
+}  // namespace
+
+std::string stout_members_warning(const CaseDef& def) {
+  const FlaggedMembers f = flag_members(def, [](double length_m, const SectionDef& section) {
+    const double side_m = std::max(section.width_m, section.depth_m);
+    return std::pair{side_m, length_m > 0.0 && side_m > length_m ? side_m / length_m : 0.0};
+  });
+  if (f.count == 0) return {};
   std::ostringstream w;
-  w << std::setprecision(3) << def.source_file.string() << ": " << count
-    << (count == 1 ? " member is" : " members are") << " more than " << static_cast<long>(kSlenderMemberRatio)
-    << " times longer than the thinner side of " << (count == 1 ? "its section" : "their sections")
-    << " (the most slender, '" << worst->id << "' (line "
-    << worst->line << "), is " << worst_length_m << " m long and " << worst_thickness_m
-    << " m thin, " << worst_ratio << " times): node coordinates are in metres (xyz_m); were they typed in millimetres?";
+  w << std::setprecision(3) << def.source_file.string() << ": " << f.count
+    << (f.count == 1 ? " member has" : " members have") << " a section wider than "
+    << (f.count == 1 ? "it is" : "they are") << " long (the stoutest, '" << f.worst->id << "' (line " << f.worst->line
+    << "), is " << f.length_m << " m long with a side of " << f.side_m << " m, section '" << f.worst->section
+    << "'): section sizes are in metres (width_m, depth_m); were they typed in millimetres?";
+  return w.str();
+}
+
+std::string slender_members_warning(const CaseDef& def) {
+  const FlaggedMembers f = flag_members(def, [](double length_m, const SectionDef& section) {
+    const double thickness_m = std::min(section.width_m, section.depth_m);
+    const double ratio = thickness_m > 0.0 ? length_m / thickness_m : 0.0;
+    return std::pair{thickness_m, ratio > kSlenderMemberRatio ? ratio : 0.0};
+  });
+  if (f.count == 0) return {};
+  std::ostringstream w;
+  w << std::setprecision(3) << def.source_file.string() << ": " << f.count
+    << (f.count == 1 ? " member is" : " members are") << " more than " << static_cast<long>(kSlenderMemberRatio)
+    << " times longer than the thinner side of " << (f.count == 1 ? "its section" : "their sections")
+    << " (the most slender, '" << f.worst->id << "' (line " << f.worst->line << "), is " << f.length_m
+    << " m long and " << f.side_m << " m thin, " << f.ratio
+    << " times): node coordinates are in metres (xyz_m); were they typed in millimetres?";
   return w.str();
 }
 
@@ -941,7 +976,7 @@ std::string unjoined_members_warning(const CaseDef& def, const Scene& scene) {
 std::vector<std::string> case_warnings(const CaseDef& def, const Scene& scene) {
   std::vector<std::string> out;
   for (std::string w : {nodes_inside_members_warning(def), near_nodes_warning(def), unused_nodes_warning(def),
-                        slender_members_warning(def), unjoined_members_warning(def, scene),
+                        slender_members_warning(def), stout_members_warning(def), unjoined_members_warning(def, scene),
                         brace_free_ends_warning(def, scene), unused_joint_rules_warning(def),
                         horizontal_columns_warning(def), turned_column_sections_warning(def, scene),
                         no_columns_warning(def)})
@@ -958,43 +993,93 @@ std::string runge_kutta_sampling_warning(const Simulation& sim) {
   const double run_end_s = double(sim.total_steps()) * dt;
   // Where the run's time t = n dt meets a bend of the forcing: each record
   // sample the window plays (the record is linear between samples) and the
-  // window's end, where the motion stops. A bend within a millionth of a
-  // step of a step boundary costs a millionth of its error: counted as on it.
+  // window's end, where the motion stops. A bend within 1e-4 of a step of a
+  // boundary is counted as on it: it costs about 1e-4 of what it would cost
+  // mid-step, and a dt_s typed to 15 digits stays that close over 1e9 steps
+  // (a tolerance of 1e-6 steps sent a probe's suggested dt_s back with the
+  // same warning after a few thousand steps).
   auto on_a_boundary = [dt](double t_s) {
     const double steps = t_s / dt;
-    return std::abs(steps - std::round(steps)) <= 1e-6;
+    return std::abs(steps - std::round(steps)) <= 1e-4;
   };
+  const GroundMotionComponent* sample_in = nullptr;  // the first component with a sample inside a step
+  const GroundMotionComponent* end_in = nullptr;     // ... whose window ends inside one
+  double sample_in_s = 0.0, end_in_s = 0.0;
   for (const GroundMotionComponent& c : sim.ground_motion().components()) {
-    const double played_s = c.record.dt_s * c.time_scale;
-    if (dt > played_s * (1.0 + 1e-9)) continue;  // ground_motion_sampling_warning's case
-    const double window_end_s = std::min(c.window_start_s + c.window_length_s, c.record.duration_s());
-    double inside_s = -1.0;  // simulated time of the first bend inside a step
-    const std::size_t n = c.record.acceleration_mps2.size();
-    for (std::size_t k = 0; k < n && inside_s < 0.0; ++k) {
-      const double t_rec = c.record.time_of(k);
-      if (t_rec < c.window_start_s || t_rec > window_end_s) continue;
+    if (dt > c.record.dt_s * c.time_scale * (1.0 + 1e-9)) continue;  // ground_motion_sampling_warning's case
+    const AccelerationRecord& r = c.record;
+    const std::vector<double>& a = r.acceleration_mps2;
+    const double window_end_s = std::min(c.window_start_s + c.window_length_s, r.duration_s());
+    // A sample bends the forcing where the slopes on its two sides differ
+    // (a stretch of equal slopes, such as zeros, has no bend to straddle).
+    auto slope = [&](std::size_t k) { return (a[k + 1] - a[k]) / (r.time_of(k + 1) - r.time_of(k)); };
+    const std::size_t n = a.size();
+    for (std::size_t k = 1; k + 1 < n && sample_in == nullptr; ++k) {
+      const double t_rec = r.time_of(k);
+      if (t_rec <= c.window_start_s || t_rec >= window_end_s) continue;
       const double t_s = (t_rec - c.window_start_s) * c.time_scale;
       if (t_s > run_end_s) break;
-      if (!on_a_boundary(t_s)) inside_s = t_s;
+      if (slope(k - 1) != slope(k) && !on_a_boundary(t_s)) sample_in = &c, sample_in_s = t_s;
     }
+    // Where the window (or the record) ends, the forcing drops to zero: a
+    // bend unless it was already zero and flat there.
     const double end_s = (window_end_s - c.window_start_s) * c.time_scale;
-    if (inside_s < 0.0 && end_s < run_end_s && !on_a_boundary(end_s)) inside_s = end_s;
-    if (inside_s < 0.0) continue;
-    std::ostringstream w;
-    w << std::setprecision(10) << "time.integrator rk4 is fourth order only where the forcing is smooth within each "
-      << "step, and " << c.record.source << " is linear between its samples: at dt_s = " << dt
-      << " s its sample (or the window's end) at t = " << inside_s
-      << " s falls inside a step, and every such bend costs rk4 an error of order dt_s^2 (docs/speed_accuracy.md); ";
-    const double start_samples = c.window_start_s / c.record.dt_s;
-    if (c.record.sample_time_s.empty() && std::abs(start_samples - std::round(start_samples)) <= 1e-6)
-      w << "for rk4's accuracy give dt_s = " << played_s << " s (" << c.record.dt_s << " s x time_scale "
-        << c.time_scale << ") divided by a whole number, e.g. " << played_s / std::ceil(played_s / dt) << " s";
-    else
-      w << "for rk4's accuracy start the window on a sample of an evenly sampled record and give dt_s = the "
-        << "played sample interval (record dt x time_scale) divided by a whole number";
-    return w.str();
+    std::size_t last = 0;  // the segment [last, last + 1] that holds the end
+    while (last + 2 < n && r.time_of(last + 1) < window_end_s) ++last;
+    const bool flat_zero = r.at(window_end_s) == 0.0 && (n < 2 || slope(last) == 0.0);
+    if (end_in == nullptr && end_s < run_end_s && !flat_zero && !on_a_boundary(end_s)) end_in = &c, end_in_s = end_s;
   }
-  return {};
+  if (sample_in == nullptr && end_in == nullptr) return {};
+  std::ostringstream w;
+  w << std::setprecision(15) << "time.integrator rk4 is fourth order only where the forcing is smooth within each "
+    << "step; at dt_s = " << dt << " s ";
+  if (sample_in != nullptr)
+    w << "a sample of " << sample_in->record.source << " (at t = " << sample_in_s
+      << " s; the record is linear between its samples, so its slope jumps there)";
+  if (sample_in != nullptr && end_in != nullptr) w << " and ";
+  if (end_in != nullptr) w << "the end of the window of " << end_in->record.source << " (at t = " << end_in_s << " s)";
+  w << (sample_in != nullptr && end_in != nullptr ? " fall" : " falls")
+    << " inside a step, and each such bend costs rk4 an error of order dt_s^2 (docs/speed_accuracy.md). For rk4's "
+       "accuracy ";
+  if (sample_in != nullptr) {
+    const double step = record_aligned_step_s(sim.ground_motion(), dt);
+    if (step > 0.0)
+      w << "give dt_s = " << step << " s, the largest step up to dt_s that divides the played sample interval "
+        << "(record dt x time_scale) of every record";
+    else
+      w << "start every window on a sample of an evenly sampled record and give dt_s dividing the played sample "
+           "interval (record dt x time_scale) of every record (none up to dt_s divides them all)";
+  }
+  if (sample_in != nullptr && end_in != nullptr) w << ", and ";
+  if (end_in != nullptr)
+    w << "give window_length_s a whole number of the record's samples (" << end_in->record.dt_s << " s)";
+  return w.str();
+}
+
+double record_aligned_step_s(const GroundMotion& motion, double dt_max_s) {
+  const std::vector<GroundMotionComponent>& components = motion.components();
+  if (components.empty() || !(dt_max_s > 0.0)) return 0.0;
+  for (const GroundMotionComponent& c : components) {
+    if (!c.record.sample_time_s.empty()) return 0.0;  // unevenly sampled
+    const double start_samples = c.window_start_s / c.record.dt_s;
+    if (std::abs(start_samples - std::round(start_samples)) > 1e-6) return 0.0;
+  }
+  // dt = (first interval) / n for the smallest n that makes dt <= dt_max_s
+  // and divides every other interval to 1e-9 of it; n is searched up to a
+  // thousand times its first value (intervals whose ratio is not a ratio of
+  // small whole numbers have no common step worth suggesting).
+  const double first_s = components[0].record.dt_s * components[0].time_scale;
+  const double n0 = std::ceil(first_s / dt_max_s * (1.0 - 1e-12));
+  for (double n = std::max(1.0, n0); n <= 1000.0 * std::max(1.0, n0); n += 1.0) {
+    const double step = first_s / n;
+    bool divides = true;
+    for (const GroundMotionComponent& c : components) {
+      const double ratio = c.record.dt_s * c.time_scale / step;
+      divides = divides && std::abs(ratio - std::round(ratio)) <= 1e-9 * ratio;
+    }
+    if (divides) return step;
+  }
+  return 0.0;
 }
 
 std::string ground_motion_sampling_warning(const Simulation& sim) {

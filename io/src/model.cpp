@@ -68,6 +68,14 @@ std::string fmt(double x) {
 std::string below_ground_advice(const CaseDef& def, const MemberDef& m, const BoxBodyDef& box, double level_m) {
   const Vec3 pa = def.nodes[std::size_t(def.node_index(m.node_a))].xyz_m;
   const Vec3 pb = def.nodes[std::size_t(def.node_index(m.node_b))].xyz_m;
+  // A section wider than the member is long reaches below the ground from
+  // nodes well above it: section sizes typed in millimetres (a probe's
+  // 10 x 10 "m" beam was told to raise its nodes).
+  const double side_m = std::max(box.size_m.y(), box.size_m.z());
+  if (side_m > (pb - pa).norm())
+    return "its section ('" + m.section + "', " + fmt(box.size_m.y()) + " x " + fmt(box.size_m.z()) +
+           " m) is wider than the member is long (" + fmt((pb - pa).norm()) +
+           " m): section sizes are in metres (width_m, depth_m); were they typed in millimetres?";
   for (const auto& [node, xyz] : {std::pair{&m.node_a, pa}, std::pair{&m.node_b, pb}})
     if (xyz.z() < level_m - kGroundTolerance_m)
       return "its node '" + *node + "' is at z = " + fmt(xyz.z()) +

@@ -770,6 +770,32 @@ TEST(CaseFile, BuilderRejectsMemberBelowGroundWhenItHasGroundContact) {
   EXPECT_THROW(fq::build_model(def), fq::InputError);
 }
 
+// A beam 0.3 m above the ground whose section was typed in millimetres (10 x
+// 10 "m") reaches 4.7 m below it: the refusal names the section and the
+// units, not the nodes (a records-and-geometries probe was told to raise
+// the nodes). The same beam in metres (0.01 x 0.01) is accepted.
+TEST(CaseFile, AMemberBelowGroundThroughASectionTypedInMillimetresIsToldSo) {
+  fq::CaseDef def = one_column_case(0.3, 0.3, "mm", 9);
+  def.nodes[1].xyz_m = fq::Vec3(0.5, 0.0, 0.3);
+  def.members[0].kind = fq::MemberKind::Beam;
+  def.sections.push_back({"mm", 10.0, 10.0, 0});
+  def.ground = fq::GroundDef{0.0};
+  def.contact = fq::ContactDef{};
+  def.contact->ground = fq::ContactParams{};
+  try {
+    fq::build_model(def);
+    FAIL();
+  } catch (const fq::InputError& e) {
+    EXPECT_EQ(e.field(), "members[0].nodes");
+    EXPECT_NE(std::string(e.what()).find("its section ('mm', 10 x 10 m) is wider than the member is long (0.5 m)"),
+              std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("were they typed in millimetres?"), std::string::npos) << e.what();
+  }
+  def.sections.back() = {"mm", 0.01, 0.01, 0};
+  EXPECT_NO_THROW(fq::build_model(def));
+}
+
 // A column standing on the ground that leans (its top 1 mm off plumb over
 // 0.2 m, along x) dips the corners of its foot below the surface although
 // its node is on it: half its width (0.01 m along world x, cases/README.md,

@@ -514,6 +514,26 @@ TEST(RunWarnings, NearlyCoincidentEndNodesAreNamed) {
   }
 }
 
+// Section sizes typed in millimetres against nodes in metres (a probe's 10
+// x 20 "m" columns) make every member wider than long; the portal in
+// metres, the shipped cases and the demos give no warning.
+TEST(RunWarnings, MembersWiderThanLongAreNamedWithTheirSection) {
+  test::TempDir dir;
+  std::string in_mm = portal_case(0.3, 0.3);
+  const std::string from = "width_m: 0.010, depth_m: 0.020";
+  in_mm.replace(in_mm.find(from), from.size(), "width_m: 10, depth_m: 20");
+  const std::string w = stout_members_warning(load_case_file(dir.write("in_mm.yaml", in_mm)));
+  // Columns 0.3 m long, the beam 0.5 m: the columns are the stoutest (20 / 0.3).
+  EXPECT_NE(w.find("3 members have a section wider than they are long"), std::string::npos) << w;
+  EXPECT_NE(w.find("'col_a' (line 13), is 0.3 m long with a side of 20 m, section 's'"), std::string::npos) << w;
+  EXPECT_NE(w.find("typed in millimetres"), std::string::npos) << w;
+  EXPECT_EQ(stout_members_warning(load_case_file(dir.write("in_m.yaml", portal_case(0.3, 0.3)))), "");
+  for (const auto& e : std::filesystem::directory_iterator(std::filesystem::path(FQ_SOURCE_DIR) / "cases")) {
+    if (e.path().extension() != ".yaml") continue;
+    EXPECT_EQ(stout_members_warning(load_case_file(e.path())), "") << e.path();
+  }
+}
+
 // Coordinates typed in millimetres against sections in metres (a probe's
 // slip: a 290 m column of 10 mm) make members 1000 times too slender; the
 // portal in metres, the shipped cases and the demos give no warning.
@@ -871,22 +891,107 @@ TEST(RunWarnings, RungeKutta4WithRecordSamplesInsideItsStepsIsToldTheStepThatAvo
   EXPECT_EQ(warning_for("rk4", 0.0025, ""), "");
   // 0.003 s: the sample at 0.01 s is 3.33 steps in; 0.01 / ceil(0.01 / 0.003) = 0.0025 s.
   const std::string w = warning_for("rk4", 0.003, "");
-  EXPECT_NE(w.find("at dt_s = 0.003 s its sample (or the window's end) at t = 0.01 s falls inside a step"),
-            std::string::npos)
-      << w;
-  EXPECT_NE(w.find("divided by a whole number, e.g. 0.0025 s"), std::string::npos) << w;
+  EXPECT_NE(w.find("at dt_s = 0.003 s a sample of"), std::string::npos) << w;
+  EXPECT_NE(w.find("(at t = 0.01 s; the record is linear between its samples"), std::string::npos) << w;
+  EXPECT_NE(w.find("falls inside a step"), std::string::npos) << w;
+  EXPECT_NE(w.find("give dt_s = 0.0025 s,"), std::string::npos) << w;
   // Central difference is second order whatever the samples: not warned.
   EXPECT_EQ(warning_for("central_difference", 0.003, ""), "");
   // A window ending between samples (0.044 s, 17.6 steps of 0.0025 s): the
   // motion stops inside a step.
   const std::string end = warning_for("rk4", 0.0025, ", window_length_s: 0.044");
-  EXPECT_NE(end.find("at t = 0.044 s falls inside a step"), std::string::npos) << end;
+  EXPECT_NE(end.find("the end of the window of"), std::string::npos) << end;
+  EXPECT_NE(end.find("(at t = 0.044 s) falls inside a step"), std::string::npos) << end;
+  // Where the forcing is zero and flat (the record's last samples are
+  // zeros) an end inside a step (0.075 s, 37.5 steps of 0.002 s) bends
+  // nothing; at 0.045 s (a = 1 m/s^2 there) it does.
+  EXPECT_EQ(warning_for("rk4", 0.002, ", window_length_s: 0.075"), "");
+  EXPECT_NE(warning_for("rk4", 0.002, ", window_length_s: 0.045").find("(at t = 0.045 s) falls inside a step"),
+            std::string::npos);
   // A window starting between samples (record time 0.005 s): the samples
   // play at 0.005, 0.015, ... s, which steps of 0.002 s miss (2.5 steps
   // in). No step is suggested for a window that does not start on a sample.
   const std::string start = warning_for("rk4", 0.002, ", window_start_s: 0.005");
-  EXPECT_NE(start.find("at t = 0.005 s falls inside a step"), std::string::npos) << start;
-  EXPECT_NE(start.find("start the window on a sample"), std::string::npos) << start;
+  EXPECT_NE(start.find("(at t = 0.005 s;"), std::string::npos) << start;
+  EXPECT_NE(start.find("start every window on a sample"), std::string::npos) << start;
+}
+
+// The integrator probe's cases: a suggested dt_s, typed back as printed,
+// must clear the warning over a long run (time_scale 0.3162, 20 record s,
+// 14 000 steps); a window ending inside a step is told to end on a sample,
+// not given its own dt_s back; two records sampled at 0.02 and 0.01 s get
+// one step that divides both.
+TEST(RunWarnings, RungeKutta4SuggestionsClearTheWarningForLongRunsWindowEndsAndTwoRecords) {
+  test::TempDir dir;
+  {
+    std::ofstream coarse(dir.path() / "coarse.txt"), fine(dir.path() / "fine.txt");
+    for (int k = 0; k <= 1000; ++k) coarse << 0.02 * k << " " << std::sin(0.37 * k) << "\n";
+    for (int k = 0; k <= 2000; ++k) fine << 0.01 * k << " " << std::cos(0.23 * k) << "\n";
+  }
+  auto warning_for = [&](const std::string& dt_s, const std::string& motion) {
+    const std::string text = "framequake_case: 1\ntime: {dt_s: " + dt_s + ", integrator: rk4}\n"
+                             "materials: [{name: spruce, density_kg_per_m3: 450}]\n"
+                             "blocks: [{id: b, size_m: [0.1, 0.1, 0.1], center_m: [0, 0, 1], material: spruce}]\n"
+                             "ground_motion: " + motion + "\n";
+    return runge_kutta_sampling_warning(*build_scene(load_case_file(dir.write("gm.yaml", text))).simulation);
+  };
+  auto suggested = [](const std::string& w) {
+    const std::string key = "give dt_s = ";
+    const auto at = w.find(key);
+    return at == std::string::npos ? std::string() : w.substr(at + key.size(), w.find(' ', at + key.size()) - at - key.size());
+  };
+  // Played interval 0.02 x 0.3162 = 0.006324 s; 0.006324 / ceil(0.006324 / 0.0005) = 0.006324 / 13.
+  const std::string scaled = "{time_scale: 0.3162, components: [{file: coarse.txt, format: two_column, axis: x}]}";
+  const std::string w = warning_for("0.0005", scaled);
+  const std::string dt = suggested(w);
+  ASSERT_FALSE(dt.empty()) << w;
+  EXPECT_NEAR(std::stod(dt), 0.006324 / 13.0, 1e-15) << w;
+  EXPECT_EQ(warning_for(dt, scaled), "");
+  // Typed to 10 digits, as a user may: 14 000 steps put the last sample
+  // about 1e-6 of a step off a boundary, which costs nothing (counted as on
+  // it within 1e-4 of a step).
+  char ten_digits[32];
+  std::snprintf(ten_digits, sizeof ten_digits, "%.10g", std::stod(dt));
+  EXPECT_EQ(warning_for(ten_digits, scaled), "") << ten_digits;
+  // The window ends at 19.99 record s (6.320838 s), inside a step of
+  // 0.006324 / 13 s although every sample is on a boundary.
+  const std::string cut =
+      "{time_scale: 0.3162, window_length_s: 19.99, components: [{file: coarse.txt, format: two_column, axis: x}]}";
+  const std::string end = warning_for(dt, cut);
+  EXPECT_NE(end.find("the end of the window of"), std::string::npos) << end;
+  EXPECT_NE(end.find("give window_length_s a whole number of the record's samples (0.02 s)"), std::string::npos)
+      << end;
+  EXPECT_EQ(end.find("give dt_s"), std::string::npos) << end;
+  // Two records: 0.02 / 5 = 0.004 s does not divide 0.01 s; 0.02 / 6 does.
+  const std::string both =
+      "{components: [{file: coarse.txt, format: two_column, axis: x}, {file: fine.txt, format: two_column, axis: y}]}";
+  const std::string two = warning_for("0.0045", both);
+  EXPECT_NEAR(std::stod(suggested(two)), 0.02 / 6.0, 1e-15) << two;
+  EXPECT_EQ(warning_for(suggested(two), both), "");
+}
+
+// record_aligned_step_s: a window starting between samples, or records
+// whose played intervals have no common step, have none.
+TEST(RunWarnings, RecordAlignedStepNeedsWindowsOnSamplesAndCommensurateIntervals) {
+  auto component = [](double record_dt_s, double time_scale, double start_s) {
+    GroundMotionComponent c;
+    c.record.dt_s = record_dt_s;
+    c.record.acceleration_mps2.assign(100, 0.0);
+    c.time_scale = time_scale;
+    c.window_start_s = start_s;
+    return c;
+  };
+  GroundMotion one;
+  one.add_component(component(0.02, 0.5, 0.2));
+  // 0.01 s played: 0.01 / ceil(0.01 / 0.003) = 0.0025 s.
+  EXPECT_NEAR(record_aligned_step_s(one, 0.003), 0.0025, 1e-17);
+  GroundMotion off;
+  off.add_component(component(0.02, 0.5, 0.21));
+  EXPECT_EQ(record_aligned_step_s(off, 0.003), 0.0);
+  GroundMotion mixed;
+  mixed.add_component(component(0.02, 0.5, 0.2));
+  mixed.add_component(component(0.02, 0.5 * std::sqrt(2.0), 0.2));  // intervals in the ratio sqrt 2
+  EXPECT_EQ(record_aligned_step_s(mixed, 0.003), 0.0);
 }
 
 // A record header in Latin-1 ("D\xFCzce", as older files carry) reaches

@@ -12,7 +12,6 @@
 #include <string>
 #include <vector>
 
-#include "io/case_def.h"
 #include "work_precision_core.h"
 
 namespace {
@@ -68,23 +67,6 @@ TEST(WorkPrecision, FrameStepsPutEveryRecordSampleOnAStepBoundary) {
   EXPECT_LE(p.sample_dt_s, dt_max);
   EXPECT_GT(interval_s / (std::round(steps_per_sample) - 1.0), dt_max);
   EXPECT_NE(p.step_rule.find("every record sample on a step boundary"), std::string::npos) << p.step_rule;
-}
-
-TEST(WorkPrecision, NoAlignedStepForAWindowBetweenSamplesOrMixedIntervals) {
-  fq::GroundMotionDef motion;
-  motion.time_scale = 0.5;
-  motion.window_start_s = 1.0;
-  fq::GroundMotionComponentDef c;
-  c.record.dt_s = 0.02;
-  motion.components = {c};
-  // 0.01 s of simulated time between samples: 0.01 / ceil(0.01 / 0.003) = 0.0025.
-  EXPECT_NEAR(record_aligned_step_s(motion, 0.003), 0.0025, 1e-15);
-  motion.window_start_s = 1.005;  // between samples
-  EXPECT_EQ(record_aligned_step_s(motion, 0.003), 0.0);
-  motion.window_start_s = 1.0;
-  c.record.dt_s = 0.01;
-  motion.components.push_back(c);  // a second component sampled twice as often
-  EXPECT_EQ(record_aligned_step_s(motion, 0.003), 0.0);
 }
 
 }  // namespace

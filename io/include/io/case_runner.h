@@ -132,6 +132,8 @@ struct CaseRunReport {
 //  - a member is more than kSlenderMemberRatio times longer than its
 //    section is thin, as when coordinates are typed in mm
 //    (slender_members_warning);
+//  - a member's section is wider than the member is long, as when section
+//    sizes are typed in mm (stout_members_warning);
 //  - a record whose header names a vertical component is applied along a
 //    horizontal direction, or a horizontal one vertically
 //    (ground_motion_direction_warnings);
@@ -244,6 +246,14 @@ std::string unused_nodes_warning(const CaseDef& def);
 inline constexpr double kSlenderMemberRatio = 1000.0;
 std::string slender_members_warning(const CaseDef& def);
 
+// The warning for members whose section's wider side exceeds their length:
+// a member is a stick, and section sizes typed in millimetres against nodes
+// in metres give sides of 10-200 m on members under a metre (a probe's
+// 10 x 20 "m" column was refused for a stable step of 1.5e-9 s and told of
+// overlaps, never of its section). Names the stoutest member; empty when
+// there is none.
+std::string stout_members_warning(const CaseDef& def);
+
 // The warning for members of kind column that lie nearer horizontal than
 // vertical (or whose two ends lie at one height, within
 // kStoreyLevelTolerance_m): a flat "column" spans no storey, so the drift
@@ -319,11 +329,21 @@ std::string ground_motion_sampling_warning(const Simulation& sim);
 // piecewise-linear forcing) or window end fall inside steps: rk4's error is
 // then of order dt^2 at each, not dt^4 (tests/joints/test_base_excitation.cpp,
 // BaseExcitation.RungeKutta4*: an error 40 times larger at a similar step).
-// Suggests a dt_s that divides the played sample interval where one exists.
+// Suggests the largest dt_s up to the case's that divides the played sample
+// interval of every record (record_aligned_step_s) where one exists, and a
+// window_length_s of whole samples where the window ends inside a step.
 // Empty for other integrators, without a ground motion, when every bend is
 // on a step boundary, or when dt is longer than a sample interval (that is
 // ground_motion_sampling_warning's).
 std::string runge_kutta_sampling_warning(const Simulation& sim);
+
+// The largest step <= dt_max_s that puts every sample of every component of
+// `motion` on a step boundary from t = 0 (each played sample interval,
+// record dt x time_scale, a whole number of steps); 0 when there is none
+// (an unevenly sampled record, a window that starts between samples,
+// intervals without a common step within a thousand times the first's
+// division).
+double record_aligned_step_s(const GroundMotion& motion, double dt_max_s);
 
 // The checks run_case makes before it writes anything (the scene builds;
 // the integrator can serve its force providers; dt is within the stable
