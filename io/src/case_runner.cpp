@@ -61,6 +61,11 @@ int line_of(const CaseDef& def, const std::string& key) {
 // joint_names: per joint id, its name as events.csv and `info --joints` give
 // it ("node:member_a-member_b"), added to a joint's description: ids change
 // from case to case, names do not (stable-step probe).
+// The reach of RK4's stability region along the negative real axis: the
+// root x > 0 of 1 - x + x^2/2 - x^3/6 + x^4/24 = 1 (its amplification on a
+// decay of rate r at step dt, x = r dt), found by bisection.
+constexpr double kRk4RealAxisReach = 2.785293563405282;
+
 StableTimeStep estimate_stable_time_step(const Simulation& sim, const std::vector<std::string>& joint_names) {
   // One network of every provider's spring-dashpots acting now (joints and
   // the contacts present at the start: a column held by its support joint
@@ -111,6 +116,40 @@ StableTimeStep estimate_stable_time_step(const Simulation& sim, const std::vecto
     s.dt_crit_s = std::numeric_limits<double>::quiet_NaN();
   else if (omega_max > 0.0 && std::isfinite(factor))
     s.dt_crit_s = factor / omega_max;
+  if (sim.settings().integrator == Integrator::RungeKutta4 && std::isfinite(s.dt_crit_s)) {
+    // RK4's factor, 2 sqrt 2 times the damped leapfrog network's frequency,
+    // holds for light damping, but a heavily overdamped mode decays at a
+    // rate up to lambda_max(C~) (a real root s of s^2 + s c + k = 0 in the
+    // mode's Rayleigh quotients has |s| <= c), and RK4 is stable on a real
+    // decay only while rate x dt <= 2.7853 (its polynomial's reach on the
+    // negative real axis). Past a damping ratio of about 5.5 that is the
+    // lower limit: at 20 the factor's limit was 1.4 % above the bisected one
+    // and a run at it blew up (integrator probe). lambda_max(C~) is the
+    // network's top eigenvalue with each dashpot put in the place of a
+    // stiffness (its "frequency" squared).
+    std::vector<LinearisedSpring> dashpots;
+    for (const LinearisedSpring& r : rows)
+      if (r.c_Nspm > 0.0) dashpots.push_back(r), dashpots.back().k_Npm = r.c_Nspm, dashpots.back().c_Nspm = 0.0;
+    const NetworkStableStep decay = network_stable_step(dashpots, bodies.size());
+    const double rate_per_s = decay.omega_radps * decay.omega_radps;
+    if (rate_per_s > 0.0 && std::isfinite(rate_per_s) && kRk4RealAxisReach / rate_per_s < s.dt_crit_s) {
+      s.dt_crit_s = kRk4RealAxisReach / rate_per_s;
+      s.omega_max_radps = factor / s.dt_crit_s;  // the frequency that would set the same limit
+      std::size_t owner = 0;  // the provider of the dashpot that sets it, as for the springs above
+      for (std::size_t k = 0, row = 0; k < rows.size(); ++k) {
+        if (!(rows[k].c_Nspm > 0.0)) continue;
+        if (row++ == decay.stiffest) owner = k;
+      }
+      const std::size_t p =
+          std::size_t(std::upper_bound(owner_end.begin(), owner_end.end(), owner) - owner_end.begin());
+      std::ostringstream where;
+      where << std::setprecision(4) << "the dashpots, most of all that of "
+            << sim.providers()[p]->describe_linearised_spring(bodies, rows[owner].element)
+            << " (an overdamped mode decaying at up to " << rate_per_s
+            << " 1/s, on which rk4 is stable only while rate x dt_s <= " << kRk4RealAxisReach << ")";
+      s.stiffest_element = where.str();
+    }
+  }
   return s;
 }
 

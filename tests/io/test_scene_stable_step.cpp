@@ -137,6 +137,72 @@ TEST(SceneStableStep, TheStiffestJointIsNamed) {
   EXPECT_NE(where.find("named 'base:ground-col'"), std::string::npos) << where;
 }
 
+// RK4 on a heavily overdamped spring: a 10 g member on a single-point
+// support joint, k = 100 N/m (omega = 100 rad/s) with a damping ratio of 20,
+// gravity along the member. Its fast root decays at s = omega (zeta +
+// sqrt(zeta^2 - 1)) = 3997.5 1/s, and RK4 is stable on it only while s dt
+// <= 2.7853 (the negative real axis of its stability region): dt <=
+// 6.9676e-4 s, closed form. 2 sqrt 2 times the leapfrog network's damped
+// limit gave 7.067e-4 s, 1.4 % above it, and a run at that step blew up
+// (integrator probe); the estimate must now lie at or below the closed
+// form, within 0.1 % (lambda_max(C~) = c / m = 4000 1/s bounds s), a run at
+// it must stay bounded and one 1 % past the closed form must not. With 5 %
+// damping the damped leapfrog limit still sets it (the dashpots are not
+// named).
+std::string overdamped_member_case(double damping_ratio) {
+  std::ostringstream s;
+  s << "framequake_case: 1\n"
+       "time: {dt_s: 1.0e-4, duration_s: 0.5, integrator: rk4, gravity_mps2: [9.80665, 0, 0]}\n"
+       "materials: [{name: w, density_kg_per_m3: 1000}]\n"
+       "sections: [{name: s, width_m: 0.01, depth_m: 0.01}]\n"
+       "nodes: [{id: a, xyz_m: [0, 0, 0.5]}, {id: b, xyz_m: [0.1, 0, 0.5]}]\n"
+       "members: [{id: m, kind: other, nodes: [a, b], section: s, material: w}]\n"
+       "joint_types:\n"
+       "  - {name: lin, layout: single_point,\n"
+       "     normal: {law: linear, stiffness_N_per_m: 100.0, damping_ratio: "
+    << damping_ratio
+    << "},\n"
+       "     shear: {law: linear, stiffness_N_per_m: 100.0}}\n"
+       "joints: {support_type: lin}\n"
+       "supports: [{node: a}]\n";
+  return s.str();
+}
+
+bool rk4_run_stays_bounded(const CaseDef& def, double dt_s) {
+  CaseDef d = def;
+  d.time.dt_s = dt_s;
+  d.time.duration_s = 2000 * dt_s;
+  Scene scene = build_scene(d);
+  Simulation& sim = *scene.simulation;
+  const BodyId member = BodyId(sim.bodies().size() - 1);
+  const Vec3 x0 = sim.bodies().position_m[member];
+  for (int n = 0; n < 2000; ++n) {
+    if (!sim.step()) return false;
+    // The static stretch under gravity is m g / k = 1 mm; a divergence leaves it far behind.
+    if (!((sim.bodies().position_m[member] - x0).norm() < 0.01)) return false;
+  }
+  return true;
+}
+
+TEST(SceneStableStep, Rk4OnAnOverdampedSpringIsLimitedByItsFastestDecay) {
+  TempDir dir;
+  const CaseDef def = load_case_file(dir.write("overdamped.yaml", overdamped_member_case(20.0)));
+  const Scene probe = build_scene(def);
+  const double omega = 100.0, zeta = 20.0;
+  const double closed_form = 2.785293563405282 / (omega * (zeta + std::sqrt(zeta * zeta - 1.0)));
+  const double estimate = probe.stable_time_step.dt_crit_s;
+  std::cout << "rk4, zeta 20: estimate " << estimate << " s, closed form " << closed_form << " s ("
+            << probe.stable_time_step.stiffest_element << ")\n";
+  EXPECT_LE(estimate, closed_form);
+  EXPECT_GT(estimate, 0.999 * closed_form);
+  EXPECT_NE(probe.stable_time_step.stiffest_element.find("the dashpots"), std::string::npos);
+  EXPECT_TRUE(rk4_run_stays_bounded(def, estimate));
+  EXPECT_FALSE(rk4_run_stays_bounded(def, 1.01 * closed_form));
+  const Scene light = build_scene(load_case_file(dir.write("light.yaml", overdamped_member_case(0.05))));
+  EXPECT_EQ(light.stable_time_step.stiffest_element.find("the dashpots"), std::string::npos)
+      << light.stable_time_step.stiffest_element;
+}
+
 }  // namespace
 // Frame A forced to 20 times its time step (2e-4 s, about 8.6 times its
 // stable estimate) blows up: its members reach rms speeds of 1 600 m/s
