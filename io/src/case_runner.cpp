@@ -58,14 +58,14 @@ int line_of(const CaseDef& def, const std::string& key) {
   return it == def.section_line.end() ? 0 : it->second;
 }
 
-// joint_names: per joint id, its name as events.csv and `info --joints` give
-// it ("node:member_a-member_b"), added to a joint's description: ids change
-// from case to case, names do not (stable-step probe).
 // The reach of RK4's stability region along the negative real axis: the
 // root x > 0 of 1 - x + x^2/2 - x^3/6 + x^4/24 = 1 (its amplification on a
 // decay of rate r at step dt, x = r dt), found by bisection.
 constexpr double kRk4RealAxisReach = 2.785293563405282;
 
+// joint_names: per joint id, its name as events.csv and `info --joints` give
+// it ("node:member_a-member_b"), added to a joint's description: ids change
+// from case to case, names do not (stable-step probe).
 StableTimeStep estimate_stable_time_step(const Simulation& sim, const std::vector<std::string>& joint_names) {
   // One network of every provider's spring-dashpots acting now (joints and
   // the contacts present at the start: a column held by its support joint
