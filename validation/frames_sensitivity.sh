@@ -17,9 +17,20 @@
 # Usage: bash validation/frames_sensitivity.sh            (22 runs)
 #        FQ_WINDOW="5 8" bash validation/frames_sensitivity.sh
 set -euo pipefail
+target=validation/results/frames_sensitivity.md
+window_text="as shipped, record 0-20 s"
+if [[ -n ${FQ_WINDOW:-} && ${1:-} != -h && ${1:-} != --help ]]; then
+  read -r start length rest <<< "$FQ_WINDOW"
+  [[ ${start:-} =~ ^[0-9]+([.][0-9]+)?$ && ${length:-} =~ ^[0-9]+([.][0-9]+)?$ && -z ${rest:-} ]] || {
+    echo "frames_sensitivity.sh: FQ_WINDOW must be two numbers, START LENGTH in record seconds, got '$FQ_WINDOW'" >&2
+    exit 2
+  }
+  window_text="record seconds $start to $(awk -v a="$start" -v b="$length" 'BEGIN { print a + b }') only"
+  # A quicker look is not the recorded study: it goes beside it, not over it.
+  target=validation/results/frames_sensitivity_window_${start}_${length}.md
+fi
 source "$(dirname "$0")/frames_study_prologue.sh" frames_sensitivity \
   'usage: bash validation/frames_sensitivity.sh   (no arguments; FQ_WINDOW="START LENGTH" in record seconds for a quicker look)' "$@"
-target=validation/results/frames_sensitivity.md
 out=$work/report.md  # moved into place when complete
 cp -r cases/ground_motions "$work/"
 
@@ -27,7 +38,6 @@ variant() {  # variant NAME CASE SED_SCRIPT -> path of the changed copy
   local name=$1 case=$2 script=$3
   sed -e "$script" -e "s/^name: .*/name: $name/" "cases/$case.yaml" > "$work/$name.yaml"
   if [[ -n ${FQ_WINDOW:-} ]]; then
-    read -r start length <<< "$FQ_WINDOW"
     sed -i -e "s/window_start_s: .*/window_start_s: $start/" -e "s/window_length_s: .*/window_length_s: $length/" \
       "$work/$name.yaml"
   fi
@@ -38,7 +48,7 @@ variant() {  # variant NAME CASE SED_SCRIPT -> path of the changed copy
   echo "# Sensitivity of the frame verdicts"
   echo
   echo "Produced by \`bash validation/frames_sensitivity.sh\` on $(date -u +%Y-%m-%d)"
-  echo "(window: ${FQ_WINDOW:+record seconds from, length: }${FQ_WINDOW:-as shipped, record 0-20 s})."
+  echo "(window: $window_text)."
   echo
 } > "$out"
 

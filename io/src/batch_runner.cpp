@@ -53,7 +53,7 @@ std::vector<BatchOutcome> run_batch(const std::vector<BatchJob>& jobs, const Bat
     for (std::size_t i = next++; i < jobs.size(); i = next++) {
       BatchOutcome& out = outcomes[i];
       if (options.stop_requested && options.stop_requested->load()) {
-        out.error = "not run: stopped on request (Ctrl-C or SIGTERM)";
+        out.error = "not run: stopped on request (Ctrl-C, SIGTERM or SIGHUP)";
         out.exit_code = 130;
       } else {
         CaseRunOptions run;

@@ -517,7 +517,7 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
   }
   if (report.result.status == RunStatus::Stopped && report.result.message.empty()) {
     std::ostringstream m;
-    m << "stopped on request (Ctrl-C or SIGTERM) at t = " << report.result.simulated_s << " s of "
+    m << "stopped on request (Ctrl-C, SIGTERM or SIGHUP) at t = " << report.result.simulated_s << " s of "
       << sim.settings().duration_s << " s";
     report.result.message = m.str();
   }

@@ -37,8 +37,9 @@ const char* const kRenderHelp =
     "  --size WxH       pixels of each run's panel (default 800x600)\n"
     "  --help           this text\n"
     "\n"
-    "Exit codes: 0 done, 2 bad usage or run folder, 3 output or display failed,\n"
-    "130 stopped by Ctrl-C (143 by SIGTERM; the unfinished animation is removed).\n";
+    "Exit codes: 0 done, 2 bad usage or run folder (an .mp4 without ffmpeg on PATH included;\n"
+    "nothing written), 3 output or display failed, 130 stopped by Ctrl-C (143 by SIGTERM,\n"
+    "129 by SIGHUP; the unfinished animation is removed).\n";
 
 namespace {
 

@@ -623,7 +623,7 @@ RenderReport render_runs(const std::vector<RunData>& runs, const RenderOptions& 
   for (std::size_t fi = 0; fi < times.size(); ++fi) {
     // Unwinding removes the animation's .part file (GifWriter, FfmpegPipe).
     if (options.stop_requested && options.stop_requested->load())
-      throw RenderStopped("stopped on request (Ctrl-C or SIGTERM) after " + std::to_string(fi) + " of " +
+      throw RenderStopped("stopped on request (Ctrl-C, SIGTERM or SIGHUP) after " + std::to_string(fi) + " of " +
                           std::to_string(times.size()) + " frames; no animation was written");
     const double t = times[fi];
     t0 = Clock::now();

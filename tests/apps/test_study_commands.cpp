@@ -916,7 +916,7 @@ TEST(StudyCommands, AStoppedRunsVerdictIsOnlySoFar) {
   for (std::string line; std::getline(lines, line); ++rows) EXPECT_EQ(fields(line), fields(header)) << line;
   EXPECT_EQ(rows, 2);
   EXPECT_NE(csv.find("demo_falling_block,not run"), std::string::npos) << csv;
-  EXPECT_NE(md.find("demo_falling_block: not run: stopped on request (Ctrl-C or SIGTERM)"), std::string::npos) << md;
+  EXPECT_NE(md.find("demo_falling_block: not run: stopped on request (Ctrl-C, SIGTERM or SIGHUP)"), std::string::npos) << md;
   // On stderr too, as not run, not as a failure (CLI probe).
   EXPECT_NE(app.err().find("demo_falling_block: not run: stopped on request"), std::string::npos) << app.err();
   EXPECT_EQ(app.err().find("FAILED"), std::string::npos) << app.err();

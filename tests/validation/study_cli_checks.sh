@@ -70,6 +70,9 @@ expect 2 "--repetitions expects a positive integer" err -- "$precision" --repeti
 # before it could write any result (both write their tables when complete).
 expect 0 "usage: bash validation/frames_sensitivity.sh" out -- timeout 60 bash "$source_dir/validation/frames_sensitivity.sh" --help
 expect 2 "no arguments expected, got: 15" err -- timeout 60 bash "$source_dir/validation/frames_sensitivity.sh" 15
+expect 2 "FQ_WINDOW must be two numbers, START LENGTH in record seconds, got 'five 8'" err -- \
+  env FQ_WINDOW="five 8" timeout 60 bash "$source_dir/validation/frames_sensitivity.sh"
+expect 2 "got '5 8 2'" err -- env FQ_WINDOW="5 8 2" timeout 60 bash "$source_dir/validation/frames_sensitivity.sh"
 expect 0 "usage: bash validation/frames_sweep.sh" out -- timeout 60 bash "$source_dir/validation/frames_sweep.sh" --help
 expect 2 "unknown record 'kobee'" err -- timeout 60 bash "$source_dir/validation/frames_sweep.sh" kobee
 expect 2 "one record name expected, got 2" err -- timeout 60 bash "$source_dir/validation/frames_sweep.sh" kobe takatori

@@ -11,7 +11,7 @@ extern const char* const kRenderHelp;
 // argv[first] is the first argument after `render`. Returns the exit code:
 // 0 done; 2 bad usage or unusable run folder (nothing written); 3 output
 // could not be written or no X display could be found or started; 130
-// stopped through `stop_requested` (Ctrl-C or SIGTERM: the unfinished
+// stopped through `stop_requested` (Ctrl-C, SIGTERM or SIGHUP: the unfinished
 // animation is removed, PNG frames written so far stay).
 int render_command(int argc, char** argv, int first, const std::atomic<bool>* stop_requested = nullptr);
 
