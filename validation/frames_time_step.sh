@@ -54,7 +54,7 @@ print("# Frames A, B, C at time steps around the stable estimate\n")
 print("Produced by `bash validation/frames_time_step.sh`. The estimate is the one `framequake info` prints")
 print("(central difference, 2/omega_max with the dashpot correction); the cases ship with dt = 1e-5 s.")
 print("Dashpot loss: dissipated_viscous_J / scale_J (negative: the dashpots gained energy).")
-print("Warnings: the run's own (the ledger's and the storeys', summary.json `warnings`, each up to its first ':' or ';'), besides the forced-step warning of every run above the estimate.")
+print("Warnings: the run's own (the ledger's, the storeys' and the contacts', summary.json `warnings`, each up to its first ':' or ';' and without a parenthesis that cut leaves open), besides the forced-step warning of every run above the estimate.")
 print("Engine: the step's stages without output (summary.json stage_seconds minus observe), one thread, two runs at a time.\n")
 for c in "ABC":
     print(f"## Frame {c}\n")
@@ -71,7 +71,14 @@ for c in "ABC":
         ratio = d["dt_s"] / d["stable_dt_s"]
         s = d.get("storeys", [])
         cell = lambda k: f"{s[k]['peak_drift_ratio_rad']:.4f}, {s[k]['verdict']}" if len(s) > k else ""
-        ledger = [w.split(":")[0].split(";")[0] for w in d.get("warnings", []) if not w.startswith("dt_s =")]
+        def head(w):
+            # The warning's first clause; a parenthesis it cuts open is dropped
+            # with what follows it ("... at 3.836 s (the largest fraction of the run").
+            h = w.split(":")[0].split(";")[0]
+            while h.count("(") > h.count(")"):
+                h = h[:h.rfind("(")].rstrip()
+            return h
+        ledger = [head(w) for w in d.get("warnings", []) if not w.startswith("dt_s =")]
         engine = sum(v for k, v in d["stage_seconds"].items() if k != "observe")
         print(f"| {ratio:.3g} | {d['dt_s']:.4g} | {d['steps']} | {engine:.2f} | {d['status']} | {cell(0)} | {cell(1)} | {d['joints']['broken']} / {d['joints']['total']} | "
               f"{e['balance_error_relative']:.2e} | {e['dissipated_viscous_J'] / e['scale_J']:+.3f} | {'; '.join(ledger) or 'none'} |")
