@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "collapse_bracket.h"
+#include "comparison_notes.h"
 #include "run_outcome.h"
 #include "fq_config.h"
 #include "io/accelerogram.h"
@@ -1006,7 +1007,8 @@ int command_compare(int argc, char** argv, const std::atomic<bool>* stop_request
         md << (k ? "; " : "") << jobs[assessed[k]].label << ": " << limits_text(outcomes[assessed[k]].report.assessment);
     }
     md << " (cases/README.md, `assessment`). Drift ratios are magnitudes of the x-y drift vector over the storey "
-          "height; times are simulated seconds.\n";
+          "height (given in rad as is usual; a storey whose columns lie flat reaches 1, the sine of their tilt); "
+          "times are simulated seconds.\n";
     // Where each frame first failed: the weak point a retrofit should
     // address (workflow probe), with the joint's name as events.csv and the
     // frames give it, which a case's joint numbering does not keep.
@@ -1019,6 +1021,10 @@ int command_compare(int argc, char** argv, const std::atomic<bool>* stop_request
       firsts += " at t = " + fixed(r.first_joint_failure_time_s, 3) + " s";
     }
     if (!firsts.empty()) md << "\nFirst joint to fail (a spring deleted or the joint broken):" << firsts << "\n";
+    std::vector<LabelledReport> labelled;
+    for (std::size_t i = 0; i < jobs.size(); ++i)
+      labelled.emplace_back(jobs[i].label, outcomes[i].ok ? &outcomes[i].report : nullptr);
+    md << collapse_order_note(labelled) << warnings_note(labelled);
     // A shortened window can miss the record's strongest part, and with
     // it a verdict (workflow probe: B standing at --window-length 8,
     // damaged over its whole window).

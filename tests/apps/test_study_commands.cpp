@@ -196,6 +196,11 @@ TEST(StudyCommands, CompareShowsTheWarningsOfAForcedRun) {
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.err.find("cube: completed"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("\n  warning: dt_s = 0.001 s is 4.2"), std::string::npos) << r.err;
+  // ... and comparison.md keeps it under the table (apps/comparison_notes.h).
+  const std::string md = fq_test::read_text(out / "comparison.md");
+  EXPECT_NE(md.find("\nWarnings of the runs (also in each run's summary.json, `warnings`):\n- cube: dt_s = 0.001 s is 4.2"),
+            std::string::npos)
+      << md;
 }
 
 // The sweep's PGA is the horizontal ground acceleration's magnitude, so a

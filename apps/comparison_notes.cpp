@@ -1,0 +1,41 @@
+#include "comparison_notes.h"
+
+#include <algorithm>
+#include <cstdio>
+
+namespace fq_app {
+
+std::string collapse_order_note(const std::vector<LabelledReport>& cases) {
+  std::string lines;
+  for (const auto& [label, report] : cases) {
+    if (report == nullptr) continue;
+    std::vector<std::pair<double, int>> fallen;  // (collapse time, storey number)
+    for (const fq::StoreyOutcome& s : report->storeys)
+      if (s.drift.collapse_time_s >= 0.0) fallen.emplace_back(s.drift.collapse_time_s, s.number);
+    if (fallen.empty()) continue;
+    std::sort(fallen.begin(), fallen.end());  // by time, then storey number
+    lines += "- " + label + ":";
+    for (std::size_t k = 0; k < fallen.size(); ++k) {
+      char time[32];
+      std::snprintf(time, sizeof time, "%.3f", fallen[k].first);
+      lines += std::string(k ? "," : "") + " storey " + std::to_string(fallen[k].second) + " at " + time + " s";
+    }
+    lines += "\n";
+  }
+  if (lines.empty()) return {};
+  return "\nStoreys collapsed, in the order they passed the collapse limit (a storey that falls first is the weak "
+         "one, whatever the peaks):\n" +
+         lines;
+}
+
+std::string warnings_note(const std::vector<LabelledReport>& cases) {
+  std::string lines;
+  for (const auto& [label, report] : cases) {
+    if (report == nullptr) continue;
+    for (const std::string& w : report->warnings) lines += "- " + label + ": " + w + "\n";
+  }
+  if (lines.empty()) return {};
+  return "\nWarnings of the runs (also in each run's summary.json, `warnings`):\n" + lines;
+}
+
+}  // namespace fq_app

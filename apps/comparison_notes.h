@@ -1,0 +1,32 @@
+// The notes under the comparison table (comparison.md of `framequake
+// compare`) that a retrofit decision needs beside the peaks and verdicts:
+// in which order the storeys of each case collapsed, and each run's
+// warnings. A retrofit probe braced frame A's first storey and read
+// "collapsed / collapsed" for both frames in the table, while only
+// summary.json said that the braced frame's second storey had fallen first
+// (2.60 s) and its first storey after it; and a twist warning that would
+// have made a storey collapsed was on the terminal only.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "io/case_runner.h"
+
+namespace fq_app {
+
+// One case of the comparison: its label and, for a run that produced a
+// report, the report (nullptr otherwise).
+using LabelledReport = std::pair<std::string, const fq::CaseRunReport*>;
+
+// "\nStoreys collapsed, in the order they passed the collapse limit:\n- A:
+// storey 1 at 3.170 s, storey 2 at 3.716 s\n" for the cases with a
+// collapsed storey (collapse_time_s >= 0); "" when none collapsed.
+std::string collapse_order_note(const std::vector<LabelledReport>& cases);
+
+// "\nWarnings of the runs (also in each summary.json):\n- A: text\n..."
+// for the cases with warnings; "" when none has any.
+std::string warnings_note(const std::vector<LabelledReport>& cases);
+
+}  // namespace fq_app

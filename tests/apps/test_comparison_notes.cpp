@@ -1,0 +1,50 @@
+// The notes under the comparison table (apps/comparison_notes.h): the order
+// in which each case's storeys collapsed, and each run's warnings, on made-up
+// reports (the expected text follows from the reports given, by the
+// definition in the header).
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "comparison_notes.h"
+
+namespace {
+
+fq::StoreyOutcome storey(int number, double collapse_time_s) {
+  fq::StoreyOutcome s;
+  s.number = number;
+  s.drift.collapse_time_s = collapse_time_s;
+  return s;
+}
+
+// A retrofit probe's case: first-storey braces moved the collapse up, the
+// second storey falling first (2.596 s), the first after it (2.740 s);
+// the original frame's first storey fell first (3.170 s, then 3.716 s).
+TEST(ComparisonNotes, StoreysAreListedInTheOrderTheyCollapsed) {
+  fq::CaseRunReport original, braced, standing;
+  original.storeys = {storey(1, 3.170), storey(2, 3.716)};
+  braced.storeys = {storey(1, 2.740), storey(2, 2.596)};
+  standing.storeys = {storey(1, -1.0), storey(2, -1.0)};
+  const std::string note = fq_app::collapse_order_note(
+      {{"frame_A", &original}, {"A_braced", &braced}, {"frame_C", &standing}, {"failed", nullptr}});
+  EXPECT_NE(note.find("- frame_A: storey 1 at 3.170 s, storey 2 at 3.716 s\n"), std::string::npos) << note;
+  EXPECT_NE(note.find("- A_braced: storey 2 at 2.596 s, storey 1 at 2.740 s\n"), std::string::npos) << note;
+  EXPECT_EQ(note.find("frame_C"), std::string::npos) << note;
+  EXPECT_EQ(note.find("failed"), std::string::npos) << note;
+  EXPECT_EQ(fq_app::collapse_order_note({{"frame_C", &standing}}), "");
+}
+
+TEST(ComparisonNotes, EveryWarningOfEveryRunIsListedUnderItsCase) {
+  fq::CaseRunReport a, b;
+  a.warnings = {"storey 1 twists: column 'column1_sw' alone drifted 0.113 rad", "second warning"};
+  const std::string note = fq_app::warnings_note({{"A_one_face", &a}, {"frame_B", &b}, {"failed", nullptr}});
+  EXPECT_NE(note.find("- A_one_face: storey 1 twists: column 'column1_sw' alone drifted 0.113 rad\n"),
+            std::string::npos)
+      << note;
+  EXPECT_NE(note.find("- A_one_face: second warning\n"), std::string::npos) << note;
+  EXPECT_EQ(note.find("frame_B"), std::string::npos) << note;
+  EXPECT_EQ(fq_app::warnings_note({{"frame_B", &b}}), "");
+}
+
+}  // namespace
