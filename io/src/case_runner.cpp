@@ -1016,7 +1016,8 @@ std::vector<std::string> case_warnings(const CaseDef& def, const Scene& scene) {
   std::vector<std::string> out;
   for (std::string w : {nodes_inside_members_warning(def), near_nodes_warning(def), unused_nodes_warning(def),
                         slender_members_warning(def), stout_members_warning(def), unjoined_members_warning(def, scene),
-                        brace_free_ends_warning(def, scene), unused_joint_rules_warning(def),
+                        brace_free_ends_warning(def, scene), brace_on_supported_node_warning(def, scene),
+                        unused_joint_rules_warning(def),
                         horizontal_columns_warning(def), turned_column_sections_warning(def, scene),
                         no_columns_warning(def)})
     if (!w.empty()) out.push_back(std::move(w));
@@ -1192,6 +1193,38 @@ std::string brace_free_ends_warning(const CaseDef& def, const Scene& scene) {
   return list_warning(def, count, " brace is joined at one end only", " braces are joined at one end only", found, ", ",
                       "no other member ends at that node and no support holds it, so the brace hangs from its other "
                       "end and braces nothing; end it at the node of the corner it should reach");
+}
+
+std::string brace_on_supported_node_warning(const CaseDef& def, const Scene& scene) {
+  if (scene.joints == nullptr || scene.joints->joint_count() == 0) return {};
+  std::set<std::string> supported;
+  for (const SupportDef& sp : def.supports) supported.insert(sp.node);
+  // The members other than braces that end at each node.
+  std::unordered_map<std::string, const MemberDef*> other_at;
+  for (const MemberDef& m : def.members)
+    if (m.kind != MemberKind::Brace)
+      for (const std::string* n : {&m.node_a, &m.node_b}) other_at.emplace(*n, &m);
+  std::vector<std::string> found;
+  std::size_t count = 0;
+  for (const MemberDef& m : def.members) {
+    if (m.kind != MemberKind::Brace) continue;
+    for (const std::string* n : {&m.node_a, &m.node_b}) {
+      const auto other = other_at.find(*n);
+      if (supported.count(*n) == 0 || other == other_at.end()) continue;
+      ++count;
+      if (found.size() < 3)
+        found.push_back("'" + m.id + "' (line " + std::to_string(m.line) + ") at node '" + *n + "' with '" +
+                        other->second->id + "'");
+      break;
+    }
+  }
+  if (count == 0) return {};
+  return list_warning(def, count, " brace ends at a supported node where another member ends too",
+                      " braces end at a supported node where another member ends too", found, ", ",
+                      "such a brace is joined both to that member (the hub there, with its joint type) and to the "
+                      "ground (with the support's), two connections where one is meant (cases/README.md, "
+                      "\"supports\"); give the brace a foot node of its own, with its own support and joint type, as "
+                      "frame_C.yaml does");
 }
 
 std::string unused_joint_rules_warning(const CaseDef& def) {

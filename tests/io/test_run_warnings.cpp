@@ -754,6 +754,37 @@ TEST(RunWarnings, ABraceJoinedAtOneEndOnlyIsNamed) {
   EXPECT_EQ(brace_free_ends_warning(midspan, build_scene(midspan)), "");
 }
 
+// Frame C with its East brace's foot put on the column's supported base
+// node se0 (retrofit probe) instead of a foot node of its own: the brace is
+// then joined to the column there and to the ground, with no word of it.
+// The shipped cases give no warning.
+TEST(RunWarnings, ABraceFootOnAColumnsSupportedNodeIsNamed) {
+  test::TempDir dir;
+  std::string text = shipped_case_text_to_copy("frame_C.yaml");
+  for (const auto& [from, to] :
+       {std::pair<std::string, std::string>{"{id: brace_e, kind: brace, nodes: [brace_e0, ne1],",
+                                            "{id: brace_e, kind: brace, nodes: [se0, ne1],"},
+        {"  - {node: brace_e0, joint_type: brace_end}", ""},
+        {"  - {id: brace_e0,", "  - {id: brace_e0_unused,"}}) {
+    const std::size_t at = text.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    text.replace(at, from.size(), to);
+  }
+  const CaseDef moved = load_case_file(dir.write("frame_C_foot_on_column.yaml", text));
+  const std::string w = brace_on_supported_node_warning(moved, build_scene(moved));
+  EXPECT_NE(w.find("frame_C_foot_on_column.yaml: 1 brace ends at a supported node where another member ends too "
+                   "('brace_e' (line "),
+            std::string::npos)
+      << w;
+  EXPECT_NE(w.find(") at node 'se0' with 'column1_se'): such a brace is joined both to that member"), std::string::npos)
+      << w;
+  for (const auto& e : std::filesystem::directory_iterator(std::filesystem::path(FQ_SOURCE_DIR) / "cases")) {
+    if (e.path().extension() != ".yaml") continue;
+    const CaseDef c = load_case_file(e.path());
+    EXPECT_EQ(brace_on_supported_node_warning(c, build_scene(c)), "") << e.path();
+  }
+}
+
 // Frame C joins its members to the floor beams (hub_kind: beam), so a brace
 // head at a node meets the beam as its hub and a rule for [column, brace]
 // makes no joint (retrofit probe: such a rule was silently ignored). The

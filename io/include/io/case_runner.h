@@ -120,6 +120,8 @@ struct CaseRunReport {
 //  - a member is held by no joint in a case that has joints
 //    (unjoined_members_warning), or a brace at one of its ends
 //    (brace_free_ends_warning);
+//  - a brace ends at a supported node where another member also ends, so
+//    it is joined twice there (brace_on_supported_node_warning);
 //  - a joint rule makes no joint (unused_joint_rules_warning);
 //  - a member of kind column is horizontal, so it spans no storey
 //    (horizontal_columns_warning);
@@ -294,6 +296,15 @@ std::string unjoined_members_warning(const CaseDef& def, const Scene& scene);
 // and columns may end free (a cantilever, a free post top); a brace is a
 // diagonal between two points of the frame. Names the first three.
 std::string brace_free_ends_warning(const CaseDef& def, const Scene& scene);
+
+// The warning for braces that end at a supported node where another member
+// (a column) also ends: the brace is joined both to that member, with the
+// joint type of the hub there, and to the ground, with the support's
+// (cases/README.md, "supports"), where a foot of its own gives it the one
+// connection meant (a retrofit probe's brace from a column base took the
+// old tenon joint twice, with no warning). Names the first three; empty
+// otherwise.
+std::string brace_on_supported_node_warning(const CaseDef& def, const Scene& scene);
 
 // The warnings above that follow from the case and its scene alone (not the
 // run's time step, output folder or start), in the order run and info give
