@@ -863,7 +863,8 @@ FlaggedMembers flag_members(const CaseDef& def, Measure&& measure) {
 std::string stout_members_warning(const CaseDef& def) {
   const FlaggedMembers f = flag_members(def, [](double length_m, const SectionDef& section) {
     const double side_m = std::max(section.width_m, section.depth_m);
-    return std::pair{side_m, length_m > 0.0 && side_m > length_m ? side_m / length_m : 0.0};
+    return std::pair{side_m, length_m > 0.0 && side_m > length_m && side_m >= kStoutSectionSide_m ? side_m / length_m
+                                                                                                : 0.0};
   });
   if (f.count == 0) return {};
   std::ostringstream w;
@@ -1042,9 +1043,9 @@ std::string runge_kutta_sampling_warning(const Simulation& sim) {
     const double steps = t_s / dt;
     return std::abs(steps - std::round(steps)) <= 1e-4;
   };
-  const GroundMotionComponent* sample_in = nullptr;  // the first component with a sample inside a step
-  const GroundMotionComponent* end_in = nullptr;     // ... whose window ends inside one
-  double sample_in_s = 0.0, end_in_s = 0.0;
+  const GroundMotionComponent* sample_in = nullptr;  // the component with the earliest sample inside a step
+  const GroundMotionComponent* end_in = nullptr;     // the first whose window ends between samples, inside a step
+  double sample_in_s = HUGE_VAL, end_in_s = 0.0;
   for (const GroundMotionComponent& c : sim.ground_motion().components()) {
     if (dt > c.record.dt_s * c.time_scale * (1.0 + 1e-9)) continue;  // ground_motion_sampling_warning's case
     const AccelerationRecord& r = c.record;
@@ -1054,41 +1055,57 @@ std::string runge_kutta_sampling_warning(const Simulation& sim) {
     // (a stretch of equal slopes, such as zeros, has no bend to straddle).
     auto slope = [&](std::size_t k) { return (a[k + 1] - a[k]) / (r.time_of(k + 1) - r.time_of(k)); };
     const std::size_t n = a.size();
-    for (std::size_t k = 1; k + 1 < n && sample_in == nullptr; ++k) {
+    for (std::size_t k = 1; k + 1 < n; ++k) {
       const double t_rec = r.time_of(k);
       if (t_rec <= c.window_start_s || t_rec >= window_end_s) continue;
       const double t_s = (t_rec - c.window_start_s) * c.time_scale;
-      if (t_s > run_end_s) break;
-      if (slope(k - 1) != slope(k) && !on_a_boundary(t_s)) sample_in = &c, sample_in_s = t_s;
+      if (t_s > run_end_s || t_s >= sample_in_s) break;
+      if (slope(k - 1) != slope(k) && !on_a_boundary(t_s)) {
+        sample_in = &c, sample_in_s = t_s;
+        break;
+      }
     }
     // Where the window (or the record) ends, the forcing drops to zero: a
-    // bend unless it was already zero and flat there.
+    // bend unless it was already zero and flat there. An end on a sample is
+    // one more sample (a step that divides the intervals puts it on a
+    // boundary); an end between samples needs a window of whole samples.
     const double end_s = (window_end_s - c.window_start_s) * c.time_scale;
     std::size_t last = 0;  // the segment [last, last + 1] that holds the end
     while (last + 2 < n && r.time_of(last + 1) < window_end_s) ++last;
     const bool flat_zero = r.at(window_end_s) == 0.0 && (n < 2 || slope(last) == 0.0);
-    if (end_in == nullptr && end_s < run_end_s && !flat_zero && !on_a_boundary(end_s)) end_in = &c, end_in_s = end_s;
+    const double end_samples = (window_end_s - r.time_of(last)) / (r.time_of(last + 1) - r.time_of(last));
+    const bool end_on_sample = std::abs(end_samples - std::round(end_samples)) <= 1e-6;
+    if (end_s < run_end_s && !flat_zero && !on_a_boundary(end_s)) {
+      if (end_on_sample) {
+        if (end_s < sample_in_s) sample_in = &c, sample_in_s = end_s;
+      } else if (end_in == nullptr) {
+        end_in = &c, end_in_s = end_s;
+      }
+    }
   }
   if (sample_in == nullptr && end_in == nullptr) return {};
   std::ostringstream w;
-  w << std::setprecision(15) << "time.integrator rk4 is fourth order only where the forcing is smooth within each "
+  // Times to 10 digits (a sample at 0.005 s printed as 0.00500000000000012
+  // to 15); the suggested step to 15, so that it can be typed back.
+  w << std::setprecision(10) << "time.integrator rk4 is fourth order only where the forcing is smooth within each "
     << "step; at dt_s = " << dt << " s ";
   if (sample_in != nullptr)
     w << "a sample of " << sample_in->record.source << " (at t = " << sample_in_s
       << " s; the record is linear between its samples, so its slope jumps there)";
   if (sample_in != nullptr && end_in != nullptr) w << " and ";
   if (end_in != nullptr) w << "the end of the window of " << end_in->record.source << " (at t = " << end_in_s << " s)";
+  w << std::setprecision(15);
   w << (sample_in != nullptr && end_in != nullptr ? " fall" : " falls")
     << " inside a step, and each such bend costs rk4 an error of order dt_s^2 (docs/speed_accuracy.md). For rk4's "
        "accuracy ";
   if (sample_in != nullptr) {
     const double step = record_aligned_step_s(sim.ground_motion(), dt);
     if (step > 0.0)
-      w << "give dt_s = " << step << " s, the largest step up to dt_s that divides the played sample interval "
-        << "(record dt x time_scale) of every record";
+      w << "give dt_s = " << step << " s, the largest step up to dt_s that puts every played sample of every "
+        << "record on a step boundary (it divides each played sample interval, record dt x time_scale)";
     else
-      w << "start every window on a sample of an evenly sampled record and give dt_s dividing the played sample "
-           "interval (record dt x time_scale) of every record (none up to dt_s divides them all)";
+      w << "give dt_s dividing every played sample interval (record dt x time_scale) and the time of every "
+           "record's first played sample (none up to dt_s that divides a thousandth of the shortest of these does)";
   }
   if (sample_in != nullptr && end_in != nullptr) w << ", and ";
   if (end_in != nullptr)
@@ -1099,22 +1116,53 @@ std::string runge_kutta_sampling_warning(const Simulation& sim) {
 double record_aligned_step_s(const GroundMotion& motion, double dt_max_s) {
   const std::vector<GroundMotionComponent>& components = motion.components();
   if (components.empty() || !(dt_max_s > 0.0)) return 0.0;
+  // The simulated lengths a step must divide for every played sample to
+  // fall on a boundary: each record's sample intervals (its distinct gaps,
+  // for an unevenly sampled one) and the time of its first played sample
+  // (not 0 when the window starts between samples), times its time scale.
+  std::vector<double> lengths_s;
+  auto add = [&lengths_s](double length_s) {
+    if (!(length_s > 0.0)) return;
+    for (const double l : lengths_s)
+      if (std::abs(l - length_s) <= 1e-9 * l) return;
+    lengths_s.push_back(length_s);
+  };
   for (const GroundMotionComponent& c : components) {
-    if (!c.record.sample_time_s.empty()) return 0.0;  // unevenly sampled
-    const double start_samples = c.window_start_s / c.record.dt_s;
-    if (std::abs(start_samples - std::round(start_samples)) > 1e-6) return 0.0;
+    const AccelerationRecord& r = c.record;
+    const std::size_t n = r.acceleration_mps2.size();
+    const double window_end_s = std::min(c.window_start_s + c.window_length_s, r.duration_s());
+    bool first = true;
+    double previous_s = 0.0;
+    for (std::size_t k = 0; k < n; ++k) {
+      const double t_rec = r.time_of(k);
+      if (t_rec < c.window_start_s || t_rec > window_end_s) continue;
+      if (first) {
+        // A sample within a millionth of an interval of the window's start is at it.
+        const double offset_s = t_rec - c.window_start_s;
+        if (offset_s > 1e-6 * r.dt_s) add(offset_s * c.time_scale);
+        first = false;
+        if (r.sample_time_s.empty()) {
+          add(r.dt_s * c.time_scale);  // every gap of an evenly sampled record is this
+          break;
+        }
+      } else {
+        add((t_rec - previous_s) * c.time_scale);
+      }
+      previous_s = t_rec;
+    }
   }
-  // dt = (first interval) / n for the smallest n that makes dt <= dt_max_s
-  // and divides every other interval to 1e-9 of it; n is searched up to a
-  // thousand times its first value (intervals whose ratio is not a ratio of
-  // small whole numbers have no common step worth suggesting).
-  const double first_s = components[0].record.dt_s * components[0].time_scale;
-  const double n0 = std::ceil(first_s / dt_max_s * (1.0 - 1e-12));
-  for (double n = std::max(1.0, n0); n <= 1000.0 * std::max(1.0, n0); n += 1.0) {
-    const double step = first_s / n;
+  if (lengths_s.empty()) return 0.0;
+  // dt = (the shortest length) / n for the smallest n that makes dt <=
+  // dt_max_s and divides every other length to 1e-9 of it; n is searched up
+  // to a thousand times its first value (lengths whose ratios are not ratios
+  // of small whole numbers have no common step worth suggesting).
+  const double shortest_s = *std::min_element(lengths_s.begin(), lengths_s.end());
+  const double n0 = std::max(1.0, std::ceil(shortest_s / dt_max_s * (1.0 - 1e-12)));
+  for (double n = n0; n <= 1000.0 * n0; n += 1.0) {
+    const double step = shortest_s / n;
     bool divides = true;
-    for (const GroundMotionComponent& c : components) {
-      const double ratio = c.record.dt_s * c.time_scale / step;
+    for (const double l : lengths_s) {
+      const double ratio = l / step;
       divides = divides && std::abs(ratio - std::round(ratio)) <= 1e-9 * ratio;
     }
     if (divides) return step;

@@ -528,6 +528,12 @@ TEST(RunWarnings, MembersWiderThanLongAreNamedWithTheirSection) {
   EXPECT_NE(w.find("'col_a' (line 13), is 0.3 m long with a side of 20 m, section 's'"), std::string::npos) << w;
   EXPECT_NE(w.find("typed in millimetres"), std::string::npos) << w;
   EXPECT_EQ(stout_members_warning(load_case_file(dir.write("in_m.yaml", portal_case(0.3, 0.3)))), "");
+  // Wider than long but under a metre (0.5 x 0.8 m on 0.3 and 0.5 m
+  // members): a stub or block-like member, not a unit slip (review probe:
+  // a 15 mm stub of a 20 mm section was warned).
+  std::string squat = portal_case(0.3, 0.3);
+  squat.replace(squat.find(from), from.size(), "width_m: 0.5, depth_m: 0.8");
+  EXPECT_EQ(stout_members_warning(load_case_file(dir.write("squat.yaml", squat))), "");
   for (const auto& e : std::filesystem::directory_iterator(std::filesystem::path(FQ_SOURCE_DIR) / "cases")) {
     if (e.path().extension() != ".yaml") continue;
     EXPECT_EQ(stout_members_warning(load_case_file(e.path())), "") << e.path();
@@ -941,10 +947,12 @@ TEST(RunWarnings, RungeKutta4WithRecordSamplesInsideItsStepsIsToldTheStepThatAvo
             std::string::npos);
   // A window starting between samples (record time 0.005 s): the samples
   // play at 0.005, 0.015, ... s, which steps of 0.002 s miss (2.5 steps
-  // in). No step is suggested for a window that does not start on a sample.
+  // in). A step must divide 0.005 s as well as 0.01 s: 0.005 / ceil(0.005 /
+  // 0.002) = 0.005 / 3 (review probe: no step was suggested).
   const std::string start = warning_for("rk4", 0.002, ", window_start_s: 0.005");
   EXPECT_NE(start.find("(at t = 0.005 s;"), std::string::npos) << start;
-  EXPECT_NE(start.find("start every window on a sample"), std::string::npos) << start;
+  EXPECT_NE(start.find("give dt_s = 0.00166666666666667 s,"), std::string::npos) << start;
+  EXPECT_EQ(warning_for("rk4", 0.005 / 3.0, ", window_start_s: 0.005"), "");
 }
 
 // The integrator probe's cases: a suggested dt_s, typed back as printed,
@@ -993,17 +1001,49 @@ TEST(RunWarnings, RungeKutta4SuggestionsClearTheWarningForLongRunsWindowEndsAndT
   EXPECT_NE(end.find("give window_length_s a whole number of the record's samples (0.02 s)"), std::string::npos)
       << end;
   EXPECT_EQ(end.find("give dt_s"), std::string::npos) << end;
-  // Two records: 0.02 / 5 = 0.004 s does not divide 0.01 s; 0.02 / 6 does.
+  // Two records: 0.01 / 3 = 0.00333 s divides both 0.01 s and 0.02 s. The
+  // earliest sample inside a step is named, the fine record's at 0.01 s,
+  // not the first component's at 0.02 s (review probe).
   const std::string both =
       "{components: [{file: coarse.txt, format: two_column, axis: x}, {file: fine.txt, format: two_column, axis: y}]}";
   const std::string two = warning_for("0.0045", both);
-  EXPECT_NEAR(std::stod(suggested(two)), 0.02 / 6.0, 1e-15) << two;
+  EXPECT_NEAR(std::stod(suggested(two)), 0.01 / 3.0, 1e-15) << two;
+  EXPECT_NE(two.find("fine.txt (at t = 0.01 s;"), std::string::npos) << two;
   EXPECT_EQ(warning_for(suggested(two), both), "");
+  // A window starting between samples of the coarse record (1.01 s): the
+  // step must divide the first sample's 0.01 s and the 0.02 s interval.
+  const std::string between =
+      "{window_start_s: 1.01, components: [{file: coarse.txt, format: two_column, axis: x}]}";
+  const std::string off = warning_for("0.003", between);
+  EXPECT_NEAR(std::stod(suggested(off)), 0.0025, 1e-15) << off;
+  EXPECT_EQ(warning_for(suggested(off), between), "");
+  // An unevenly sampled record (gaps of 0.01 and 0.015 s): 0.01 / 34 divides both.
+  {
+    std::ofstream uneven(dir.path() / "uneven.txt");
+    double t = 0.0;
+    for (int k = 0; k < 200; ++k, t += (k % 2 ? 0.01 : 0.015)) uneven << t << " " << std::sin(0.3 * k) << "\n";
+  }
+  const std::string gaps = "{components: [{file: uneven.txt, format: two_column, axis: x}]}";
+  const std::string u = warning_for("0.0003", gaps);
+  EXPECT_NEAR(std::stod(suggested(u)), 0.01 / 34.0, 1e-15) << u;
+  EXPECT_EQ(warning_for(suggested(u), gaps), "");
+  // A window that ends on a sample (the record's own end at 20 s, from 19.9
+  // s), in a run that goes on past it: the step alone is advised, not a
+  // window of whole samples, which it already is (review probe).
+  const std::string past_end = "framequake_case: 1\ntime: {dt_s: 0.003, duration_s: 0.2, integrator: rk4}\n"
+                               "materials: [{name: spruce, density_kg_per_m3: 450}]\n"
+                               "blocks: [{id: b, size_m: [0.1, 0.1, 0.1], center_m: [0, 0, 1], material: spruce}]\n"
+                               "ground_motion: {window_start_s: 19.9, components: [{file: coarse.txt, "
+                               "format: two_column, axis: x}]}\n";
+  const std::string ends = runge_kutta_sampling_warning(*build_scene(load_case_file(dir.write("end.yaml", past_end))).simulation);
+  EXPECT_NE(ends.find("give dt_s = 0.00285714285714286 s,"), std::string::npos) << ends;  // 0.02 / 7
+  EXPECT_EQ(ends.find("window_length_s"), std::string::npos) << ends;
 }
 
-// record_aligned_step_s: a window starting between samples, or records
-// whose played intervals have no common step, have none.
-TEST(RunWarnings, RecordAlignedStepNeedsWindowsOnSamplesAndCommensurateIntervals) {
+// record_aligned_step_s: the step divides the played interval and the time
+// of the first played sample; records whose played intervals have no
+// common step have none.
+TEST(RunWarnings, RecordAlignedStepDividesIntervalsAndTheFirstSamplesTime) {
   auto component = [](double record_dt_s, double time_scale, double start_s) {
     GroundMotionComponent c;
     c.record.dt_s = record_dt_s;
@@ -1016,9 +1056,13 @@ TEST(RunWarnings, RecordAlignedStepNeedsWindowsOnSamplesAndCommensurateIntervals
   one.add_component(component(0.02, 0.5, 0.2));
   // 0.01 s played: 0.01 / ceil(0.01 / 0.003) = 0.0025 s.
   EXPECT_NEAR(record_aligned_step_s(one, 0.003), 0.0025, 1e-17);
+  // From record time 0.21 s the first sample (0.22 s) plays at 0.005 s:
+  // 0.005 / ceil(0.005 / 0.003) = 0.0025 s, which divides 0.01 s too; at
+  // most 0.002 s: 0.005 / 3, which 0.01 s holds 6 times.
   GroundMotion off;
   off.add_component(component(0.02, 0.5, 0.21));
-  EXPECT_EQ(record_aligned_step_s(off, 0.003), 0.0);
+  EXPECT_NEAR(record_aligned_step_s(off, 0.003), 0.0025, 1e-15);
+  EXPECT_NEAR(record_aligned_step_s(off, 0.002), 0.005 / 3.0, 1e-15);
   GroundMotion mixed;
   mixed.add_component(component(0.02, 0.5, 0.2));
   mixed.add_component(component(0.02, 0.5 * std::sqrt(2.0), 0.2));  // intervals in the ratio sqrt 2

@@ -101,6 +101,12 @@ inline constexpr double kMaxCoordinate_m = 1.0e5;
 std::string coordinate_out_of_range(const Vec3& xyz_m);
 
 // Rectangular cross-section of a member.
+// A section side from which a member wider than it is long is taken for
+// sizes typed in millimetres (stout_members_warning, io/case_runner.h; the
+// below-ground refusal, io/src/model.cpp): no timber section is a metre
+// wide, and a stub shorter than a real section is no mistake.
+inline constexpr double kStoutSectionSide_m = 1.0;
+
 struct SectionDef {
   std::string name;
   double width_m = 0.0;  // required, > 0; edge along member local y

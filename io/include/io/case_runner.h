@@ -248,12 +248,14 @@ std::string unused_nodes_warning(const CaseDef& def);
 inline constexpr double kSlenderMemberRatio = 1000.0;
 std::string slender_members_warning(const CaseDef& def);
 
-// The warning for members whose section's wider side exceeds their length:
-// a member is a stick, and section sizes typed in millimetres against nodes
-// in metres give sides of 10-200 m on members under a metre (a probe's
-// 10 x 20 "m" column was refused for a stable step of 1.5e-9 s and told of
-// overlaps, never of its section). Names the stoutest member; empty when
-// there is none.
+// The warning for members whose section's wider side exceeds their length
+// and is 1 m or more (kStoutSectionSide_m, io/case_def.h): section sizes typed in
+// millimetres against nodes in metres give sides of 10-200 m on members
+// under a metre (a probe's 10 x 20 "m" column was refused for a stable step
+// of 1.5e-9 s and told of overlaps, never of its section), where a short
+// stub of a real section (20 mm wide, 15 mm long in a 1/10-scale frame;
+// review probe) is no mistake, and no timber section is a metre wide.
+// Names the stoutest member; empty when there is none.
 std::string stout_members_warning(const CaseDef& def);
 
 // The warning for members of kind column that lie nearer horizontal than
@@ -340,20 +342,23 @@ std::string ground_motion_sampling_warning(const Simulation& sim);
 // piecewise-linear forcing) or window end fall inside steps: rk4's error is
 // then of order dt^2 at each, not dt^4 (tests/joints/test_base_excitation.cpp,
 // BaseExcitation.RungeKutta4*: an error 40 times larger at a similar step).
-// Suggests the largest dt_s up to the case's that divides the played sample
-// interval of every record (record_aligned_step_s) where one exists, and a
-// window_length_s of whole samples where the window ends inside a step.
+// Names the earliest such sample over all records; suggests the largest
+// dt_s up to the case's that puts every played sample on a step boundary
+// (record_aligned_step_s) where one exists, and a window_length_s of whole
+// samples where a window ends between samples (a window that ends on a
+// sample needs only the step).
 // Empty for other integrators, without a ground motion, when every bend is
 // on a step boundary, or when dt is longer than a sample interval (that is
 // ground_motion_sampling_warning's).
 std::string runge_kutta_sampling_warning(const Simulation& sim);
 
-// The largest step <= dt_max_s that puts every sample of every component of
-// `motion` on a step boundary from t = 0 (each played sample interval,
-// record dt x time_scale, a whole number of steps); 0 when there is none
-// (an unevenly sampled record, a window that starts between samples,
-// intervals without a common step within a thousand times the first's
-// division).
+// The largest step <= dt_max_s that puts every played sample of every
+// component of `motion` on a step boundary from t = 0: a whole number of
+// steps in each played sample interval (record dt x time_scale; each
+// distinct gap of an unevenly sampled record) and in the time of each
+// record's first played sample (not 0 for a window that starts between
+// samples). 0 when no step up to a thousandth of the shortest of these
+// lengths divides them all (lengths in ratios such as sqrt 2).
 double record_aligned_step_s(const GroundMotion& motion, double dt_max_s);
 
 // The checks run_case makes before it writes anything (the scene builds;
