@@ -83,6 +83,10 @@ StableTimeStep estimate_stable_time_step(const Simulation& sim, const std::vecto
     p->linearised_springs(bodies, rows);
     owner_end.push_back(rows.size());
   }
+  // The provider that contributed row k.
+  auto provider_of = [&](std::size_t k) -> const ForceProvider& {
+    return *sim.providers()[std::size_t(std::upper_bound(owner_end.begin(), owner_end.end(), k) - owner_end.begin())];
+  };
   double omega_max = 0.0;
   const NetworkStableStep net = network_stable_step(rows, bodies.size());
   // A frequency that is not a finite number (a mass or an inertia of 1e-300,
@@ -91,11 +95,10 @@ StableTimeStep estimate_stable_time_step(const Simulation& sim, const std::vecto
   bool not_finite = !std::isfinite(net.omega_radps);
   if (net.omega_radps > 0.0) {
     omega_max = net.omega_radps;
-    const std::size_t p = std::size_t(std::upper_bound(owner_end.begin(), owner_end.end(), net.stiffest) -
-                                       owner_end.begin());
-    s.stiffest_element = sim.providers()[p]->describe_linearised_spring(bodies, rows[net.stiffest].element);
+    const ForceProvider& p = provider_of(net.stiffest);
+    s.stiffest_element = p.describe_linearised_spring(bodies, rows[net.stiffest].element);
     const auto element = std::size_t(rows[net.stiffest].element);
-    if (std::string_view(sim.providers()[p]->name()) == "joints" && element < joint_names.size())
+    if (std::string_view(p.name()) == "joints" && element < joint_names.size())
       s.stiffest_element += ", named '" + joint_names[element] + "'";
   }
   for (std::size_t k = 0; k < sim.providers().size(); ++k) {
@@ -128,23 +131,23 @@ StableTimeStep estimate_stable_time_step(const Simulation& sim, const std::vecto
     // network's top eigenvalue with each dashpot put in the place of a
     // stiffness (its "frequency" squared).
     std::vector<LinearisedSpring> dashpots;
-    for (const LinearisedSpring& r : rows)
-      if (r.c_Nspm > 0.0) dashpots.push_back(r), dashpots.back().k_Npm = r.c_Nspm, dashpots.back().c_Nspm = 0.0;
+    std::vector<std::size_t> dashpot_row;  // the row of `rows` each came from
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+      if (!(rows[k].c_Nspm > 0.0)) continue;
+      dashpots.push_back(rows[k]);
+      dashpots.back().k_Npm = rows[k].c_Nspm;
+      dashpots.back().c_Nspm = 0.0;
+      dashpot_row.push_back(k);
+    }
     const NetworkStableStep decay = network_stable_step(dashpots, bodies.size());
     const double rate_per_s = decay.omega_radps * decay.omega_radps;
     if (rate_per_s > 0.0 && std::isfinite(rate_per_s) && kRk4RealAxisReach / rate_per_s < s.dt_crit_s) {
       s.dt_crit_s = kRk4RealAxisReach / rate_per_s;
       s.omega_max_radps = factor / s.dt_crit_s;  // the frequency that would set the same limit
-      std::size_t owner = 0;  // the provider of the dashpot that sets it, as for the springs above
-      for (std::size_t k = 0, row = 0; k < rows.size(); ++k) {
-        if (!(rows[k].c_Nspm > 0.0)) continue;
-        if (row++ == decay.stiffest) owner = k;
-      }
-      const std::size_t p =
-          std::size_t(std::upper_bound(owner_end.begin(), owner_end.end(), owner) - owner_end.begin());
+      const std::size_t owner = decay.stiffest < dashpot_row.size() ? dashpot_row[decay.stiffest] : 0;
       std::ostringstream where;
       where << std::setprecision(4) << "the dashpots, most of all that of "
-            << sim.providers()[p]->describe_linearised_spring(bodies, rows[owner].element)
+            << provider_of(owner).describe_linearised_spring(bodies, rows[owner].element)
             << " (an overdamped mode decaying at up to " << rate_per_s
             << " 1/s, on which rk4 is stable only while rate x dt_s <= " << kRk4RealAxisReach << ")";
       s.stiffest_element = where.str();
@@ -863,8 +866,7 @@ FlaggedMembers flag_members(const CaseDef& def, Measure&& measure) {
 std::string stout_members_warning(const CaseDef& def) {
   const FlaggedMembers f = flag_members(def, [](double length_m, const SectionDef& section) {
     const double side_m = std::max(section.width_m, section.depth_m);
-    return std::pair{side_m, length_m > 0.0 && side_m > length_m && side_m >= kStoutSectionSide_m ? side_m / length_m
-                                                                                                : 0.0};
+    return std::pair{side_m, section_typed_in_mm(side_m, length_m) ? side_m / length_m : 0.0};
   });
   if (f.count == 0) return {};
   std::ostringstream w;
@@ -1073,9 +1075,10 @@ std::string runge_kutta_sampling_warning(const Simulation& sim) {
     std::size_t last = 0;  // the segment [last, last + 1] that holds the end
     while (last + 2 < n && r.time_of(last + 1) < window_end_s) ++last;
     const bool flat_zero = r.at(window_end_s) == 0.0 && (n < 2 || slope(last) == 0.0);
-    const double end_samples = (window_end_s - r.time_of(last)) / (r.time_of(last + 1) - r.time_of(last));
-    const bool end_on_sample = std::abs(end_samples - std::round(end_samples)) <= 1e-6;
     if (end_s < run_end_s && !flat_zero && !on_a_boundary(end_s)) {
+      // (Here the record has two samples or more: one sample ends the motion at t = 0, a boundary.)
+      const double end_samples = (window_end_s - r.time_of(last)) / (r.time_of(last + 1) - r.time_of(last));
+      const bool end_on_sample = std::abs(end_samples - std::round(end_samples)) <= 1e-6;
       if (end_on_sample) {
         if (end_s < sample_in_s) sample_in = &c, sample_in_s = end_s;
       } else if (end_in == nullptr) {

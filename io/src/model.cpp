@@ -72,7 +72,7 @@ std::string below_ground_advice(const CaseDef& def, const MemberDef& m, const Bo
   // nodes well above it: section sizes typed in millimetres (a probe's
   // 10 x 10 "m" beam was told to raise its nodes).
   const double side_m = std::max(box.size_m.y(), box.size_m.z());
-  if (side_m > (pb - pa).norm() && side_m >= kStoutSectionSide_m)
+  if (section_typed_in_mm(side_m, (pb - pa).norm()))
     return "its section ('" + m.section + "', " + fmt(box.size_m.y()) + " x " + fmt(box.size_m.z()) +
            " m) is wider than the member is long (" + fmt((pb - pa).norm()) +
            " m): section sizes are in metres (width_m, depth_m); were they typed in millimetres?";

@@ -106,6 +106,11 @@ std::string coordinate_out_of_range(const Vec3& xyz_m);
 // below-ground refusal, io/src/model.cpp): no timber section is a metre
 // wide, and a stub shorter than a real section is no mistake.
 inline constexpr double kStoutSectionSide_m = 1.0;
+// A member of length_m whose section's wider side is side_m looks like one
+// whose sizes were typed in millimetres.
+inline bool section_typed_in_mm(double side_m, double length_m) {
+  return length_m > 0.0 && side_m > length_m && side_m >= kStoutSectionSide_m;
+}
 
 struct SectionDef {
   std::string name;
