@@ -30,6 +30,9 @@
 //                       (a quick look; the per-step figures stay comparable)
 //   --threads=N         OpenMP threads (default 1: the target is one core);
 //                       --threads=1,2 runs both and compares the final states
+//   --intact_nodes=M    contact.intact_nodes of every frame (touch, the
+//                       cases' own, ground_only or none; io/case_def.h); the
+//                       benchmarks are then named BM_Frame/<X>.<M>/...
 // The case files are read relative to the repository root, so run it from
 // there (or set FQ_SOURCE_DIR).
 #include <benchmark/benchmark.h>
@@ -39,6 +42,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -53,6 +57,7 @@
 namespace {
 
 double g_record_seconds = 0.0;  // 0: the case's own window
+std::optional<fq::IntactNodeContact> g_intact_nodes;  // unset: the case's own
 
 // --help: these, then Google Benchmark's flags.
 constexpr const char* kOwnOptions =
@@ -63,6 +68,8 @@ constexpr const char* kOwnOptions =
     "                      figures stay comparable)\n"
     "  --threads=N[,M..]   OpenMP threads of the no_output runs (default 1); --threads=1,2 runs both and\n"
     "                      compares the final states (exit status 1 if they differ)\n"
+    "  --intact_nodes=M    contact.intact_nodes of every frame: touch (the cases' own), ground_only or none\n"
+    "                      (cases/README.md); each benchmark's name then has .M after its frame's letter\n"
     "Google Benchmark's flags:\n";
 
 std::filesystem::path case_path(const std::string& frame) {
@@ -89,6 +96,7 @@ void run_frame(benchmark::State& state, const std::string& frame, bool with_outp
     return;
   }
   if (g_record_seconds > 0.0 && def.ground_motion) def.ground_motion->window_length_s = g_record_seconds;
+  if (g_intact_nodes && def.contact) def.contact->intact_nodes = *g_intact_nodes;
   const auto out_dir = std::filesystem::temp_directory_path() / ("fq_bench_frame_" + frame);
 
   std::int64_t steps = 0;
@@ -144,6 +152,7 @@ void run_frame(benchmark::State& state, const std::string& frame, bool with_outp
 int main(int argc, char** argv) {
   std::vector<int> thread_counts{1};
   std::vector<char*> rest;
+  std::string mode_name;
   for (int i = 0; i < argc; ++i) {
     const char* a = argv[i];
     if (std::strncmp(a, "--record_seconds=", 17) == 0) {
@@ -151,6 +160,14 @@ int main(int argc, char** argv) {
       if (!(g_record_seconds > 0.0)) {
         std::fprintf(stderr, "bench_frames: --record_seconds expects a positive number of record seconds, got '%s'\n",
                      a + 17);
+        return 2;
+      }
+    } else if (std::strncmp(a, "--intact_nodes=", 15) == 0) {
+      mode_name = a + 15;
+      for (const auto k : {fq::IntactNodeContact::Touch, fq::IntactNodeContact::GroundOnly, fq::IntactNodeContact::None})
+        if (mode_name == fq::intact_node_contact_name(k)) g_intact_nodes = k;
+      if (!g_intact_nodes) {
+        std::fprintf(stderr, "bench_frames: --intact_nodes expects touch, ground_only or none, got '%s'\n", a + 15);
         return 2;
       }
     } else if (std::strncmp(a, "--threads=", 10) == 0) {
@@ -170,16 +187,17 @@ int main(int argc, char** argv) {
     }
   }
   for (const char* frame : {"A", "B", "C"}) {
+    const std::string label = std::string(frame) + (mode_name.empty() ? "" : "." + mode_name);
     for (int threads : thread_counts) {
       const std::string suffix = "/threads:" + std::to_string(threads);
       benchmark::RegisterBenchmark(
-          ("BM_Frame/" + std::string(frame) + "/no_output" + suffix).c_str(),
+          ("BM_Frame/" + label + "/no_output" + suffix).c_str(),
           [frame, threads](benchmark::State& s) { run_frame(s, frame, false, threads); })
           ->Iterations(1)
           ->UseManualTime()
           ->Unit(benchmark::kSecond);
     }
-    benchmark::RegisterBenchmark(("BM_Frame/" + std::string(frame) + "/with_output/threads:1").c_str(),
+    benchmark::RegisterBenchmark(("BM_Frame/" + label + "/with_output/threads:1").c_str(),
                                  [frame](benchmark::State& s) { run_frame(s, frame, true, 1); })
         ->Iterations(1)
         ->UseManualTime()

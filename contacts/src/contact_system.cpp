@@ -144,7 +144,13 @@ void ContactSystem::accumulate_forces(BodyStore& bodies, const StepInfo& step) {
   if (bonded_) {
     const auto& released = bonded_->released();
     for (; released_read_ < released.size(); ++released_read_) {
-      const std::uint64_t key = pair_key(released[released_read_].first, released[released_read_].second);
+      const auto [first, second] = released[released_read_];
+      // A supported body kept off the ground while its joint held starts on
+      // the ground from its overlap (ground contacts have keys of their own).
+      const bool ground_held = !settings_.ground_under_intact_supports && ground_body_ != kNoBody &&
+                               (first == ground_body_ || second == ground_body_);
+      const std::uint64_t key = ground_held ? kGroundKeyHigh | std::uint32_t(first == ground_body_ ? second : first)
+                                            : pair_key(first, second);
       soft_start_pairs_.insert(std::lower_bound(soft_start_pairs_.begin(), soft_start_pairs_.end(), key), key);
     }
   }
@@ -214,6 +220,7 @@ std::size_t ContactSystem::process_item(const BodyStore& bodies, std::size_t ite
     const double lowest_z =
         bodies.position_m[b].z() - (std::fabs(r(2, 0)) * h.x() + std::fabs(r(2, 1)) * h.y() + std::fabs(r(2, 2)) * h.z());
     if (!(lowest_z < ground_level_m_)) return 0;
+    if (!settings_.ground_under_intact_supports && bonded_ && bonded_->bonded(ground_body_, b)) return 0;
     ++box_tests;
     if (collide_box_ground(box_of(bodies, b), ground_level_m_, manifold) == 0) return 0;
     key = kGroundKeyHigh | std::uint32_t(b);

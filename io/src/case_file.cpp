@@ -822,10 +822,19 @@ ContactParams parse_contact_params(const Reader& r, const Field& f, const std::s
 }
 
 void parse_contact(const Reader& r, const Field& f, CaseDef& def) {
-  r.expect_map(f.value, f.line, f.path, "ground, default, pairs");
-  r.expect_keys(f.value, {"ground", "default", "pairs"}, f.path);
+  r.expect_map(f.value, f.line, f.path, "ground, default, pairs, intact_nodes");
+  r.expect_keys(f.value, {"ground", "default", "pairs", "intact_nodes"}, f.path);
   ContactDef c;
   c.line = f.line;
+  if (const auto m = r.get(f.value, "intact_nodes", f.path)) {
+    const std::string mode = r.to_text(*m);
+    bool known = false;
+    for (const IntactNodeContact k : {IntactNodeContact::Touch, IntactNodeContact::GroundOnly, IntactNodeContact::None})
+      if (mode == intact_node_contact_name(k)) c.intact_nodes = k, known = true;
+    if (!known)
+      r.fail(*m, "expected one of touch, ground_only, none (contacts across joints that still hold), got " +
+                     describe(m->value));
+  }
   if (const auto g = r.get(f.value, "ground", f.path)) c.ground = parse_contact_params(r, *g, "ground contact parameters");
   if (const auto d = r.get(f.value, "default", f.path))
     c.default_pair = parse_contact_params(r, *d, "default contact parameters");

@@ -471,6 +471,9 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
     v << std::setprecision(17) << scene.stable_time_step.dt_crit_s;
     writer.add_summary_field("stable_dt_s", std::isfinite(scene.stable_time_step.dt_crit_s) ? v.str() : "null");
     writer.add_summary_field("integrator", std::string("\"") + integrator_name(sim.settings().integrator) + "\"");
+    if (def.contact)
+      writer.add_summary_field("contact_intact_nodes",
+                               std::string("\"") + intact_node_contact_name(def.contact->intact_nodes) + "\"");
   }
 
   CaseRunReport report;
@@ -1405,6 +1408,30 @@ std::vector<std::string> energy_warnings(const EnergyLedger& l, bool has_dashpot
   return warnings;
 }
 
+namespace {
+
+// contact.intact_nodes other than touch: every two joints planned at the same
+// node that join one common body (the hub, or the ground of a support) hold
+// their other two bodies together, as the node's connection does, until one
+// of them breaks. Joints are planned node by node (joint_builder.h), so a
+// node's joints are found by its id.
+void hold_pairs_at_nodes(JointSystem& joints, const std::vector<PlannedJoint>& planned) {
+  std::map<std::string, std::vector<std::size_t>> joints_at_node;
+  for (std::size_t j = 0; j < planned.size(); ++j) joints_at_node[planned[j].node].push_back(j);
+  for (const auto& [node, at] : joints_at_node) {
+    (void)node;
+    for (std::size_t i = 0; i < at.size(); ++i)
+      for (std::size_t k = i + 1; k < at.size(); ++k) {
+        const JointDef& p = planned[at[i]].def;
+        const JointDef& q = planned[at[k]].def;
+        const int shared = int(p.body_a == q.body_a || p.body_a == q.body_b) + int(p.body_b == q.body_a || p.body_b == q.body_b);
+        if (shared == 1) joints.hold_pair_through(at[i], at[k]);
+      }
+  }
+}
+
+}  // namespace
+
 Scene build_scene(const CaseDef& def) {
   Model model = build_model(def);
   const std::vector<PlannedJoint> planned = plan_joints(model);
@@ -1426,12 +1453,15 @@ Scene build_scene(const CaseDef& def) {
       scene.joint_names.push_back(p.name);
       scene.joint_nodes.push_back(p.node);
     }
+    if (def.contact && def.contact->intact_nodes != IntactNodeContact::Touch) hold_pairs_at_nodes(*joints, planned);
     scene.joints = joints.get();
     sim.add_force_provider(std::move(joints));
   }
   if (def.contact) {
     const ContactDef& c = *def.contact;
-    auto contacts = std::make_unique<ContactSystem>(&sim.bonded_pairs());
+    ContactSystemSettings contact_settings;
+    contact_settings.ground_under_intact_supports = c.intact_nodes != IntactNodeContact::None;
+    auto contacts = std::make_unique<ContactSystem>(&sim.bonded_pairs(), contact_settings);
     for (std::size_t i = 0; i < def.members.size(); ++i)
       contacts->set_body_material(model.member_body[i], def.material_index(def.members[i].material));
     for (std::size_t i = 0; i < def.blocks.size(); ++i)
@@ -1795,6 +1825,25 @@ void describe_case(const CaseDef& case_def, std::ostream& out, std::optional<Int
     // A frame without storeys: said here, not left out silently (geometry
     // probe); the warnings below say why.
     out << "storeys     none: no column spans a storey, so a run gives no storey drift and no verdict\n";
+  }
+  if (def.contact) {
+    // Which contacts act across joints that still hold (contact.intact_nodes):
+    // a choice of model that changes results, so said where the case is described.
+    out << "contacts    across intact joints: ";
+    switch (def.contact->intact_nodes) {
+      case IntactNodeContact::Touch:
+        out << "touch (members meeting at a node without a joint between them bear on each other; supported "
+               "members bear on the ground)\n";
+        break;
+      case IntactNodeContact::GroundOnly:
+        out << "ground_only (members joined through a common member at a node touch once a joint there "
+               "breaks; supported members bear on the ground)\n";
+        break;
+      case IntactNodeContact::None:
+        out << "none (seed 001: no contact across an intact joint, the ground under a supported member "
+               "included, until the joint breaks)\n";
+        break;
+    }
   }
   for (const std::string& w : case_warnings(def, scene)) out << "warning     " << w << "\n";
   if (scene.contacts) {

@@ -88,6 +88,27 @@ std::int32_t JointSystem::add_joint(const BodyStore& bodies, const JointDef& def
   return jid;
 }
 
+void JointSystem::hold_pair_through(std::size_t joint_1, std::size_t joint_2) {
+  if (prepared_) throw std::logic_error("JointSystem::hold_pair_through: pairs must be held before the first step");
+  const std::size_t n = joint_body_a_.size();
+  if (joint_1 >= n || joint_2 >= n || joint_1 == joint_2)
+    throw std::invalid_argument("hold_pair_through: two different joints expected");
+  const BodyId a1 = joint_body_a_[joint_1], b1 = joint_body_b_[joint_1];
+  const BodyId a2 = joint_body_a_[joint_2], b2 = joint_body_b_[joint_2];
+  // The common body, and the other body of each joint.
+  BodyId hub = kNoBody, body_1 = kNoBody, body_2 = kNoBody;
+  for (const BodyId c : {a1, b1})
+    if (c == a2 || c == b2) {
+      if (hub != kNoBody) throw std::invalid_argument("hold_pair_through: the joints join the same two bodies");
+      hub = c;
+    }
+  if (hub == kNoBody) throw std::invalid_argument("hold_pair_through: the joints share no body");
+  body_1 = a1 == hub ? b1 : a1;
+  body_2 = a2 == hub ? b2 : a2;
+  held_through_.push_back({std::int32_t(joint_1), std::int32_t(joint_2), body_1, body_2});
+  if (bonded_) bonded_->add(body_1, body_2);
+}
+
 // axis: 0, 1, 2 joint-frame axis of a point spring; -1 axial link, -2 other link.
 void JointSystem::add_spring_(std::int32_t joint, SpringRole role, std::int8_t axis, const Vec3& attach_a_local,
                               const Vec3& attach_b_local, double rest_length_m, const SpringDef& def,
@@ -757,7 +778,16 @@ void JointSystem::finish_step(const BodyStore& bodies, const StepInfo& step, Eve
       joint_broken_[j] = 1;
       joint_books_open_[j] = 1;
       for (std::size_t s = first; s < last; ++s) kill_spring_(s);
-      if (bonded_) bonded_->release(joint_body_a_[j], joint_body_b_[j]);
+      if (bonded_) {
+        bonded_->release(joint_body_a_[j], joint_body_b_[j]);
+        // Pairs held through this joint and another still intact end now
+        // (when the other broke first, they ended then).
+        for (const HeldThrough& h : held_through_) {
+          if (h.joint_1 != std::int32_t(j) && h.joint_2 != std::int32_t(j)) continue;
+          const auto other = std::size_t(h.joint_1 == std::int32_t(j) ? h.joint_2 : h.joint_1);
+          if (!joint_broken_[other]) bonded_->release(h.body_1, h.body_2);
+        }
+      }
     }
   }
 }

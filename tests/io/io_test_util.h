@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -36,6 +37,14 @@ class TempDir {
  private:
   std::filesystem::path path_;
 };
+
+// A file's whole text (empty if it cannot be read).
+inline std::string file_text(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
 
 // Two-column record "time acceleration", dt = 0.01 s from 0 to end_s, every
 // value `value`.

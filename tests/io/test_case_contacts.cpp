@@ -82,6 +82,8 @@ TEST(CaseContacts, ContactParameterErrorsNameTheField) {
       {"contact: {pairs: [{materials: [wood, wood], restitution: 0.3}, {materials: [wood, wood]}]}\n",
        "contact.pairs[1].materials", "is already given at line"},
       {"contact: {floor: {}}\n", "contact.floor", "unknown key"},
+      {"contact: {intact_nodes: always}\n", "contact.intact_nodes", "expected one of touch, ground_only, none"},
+      {"contact: {intact_nodes: [touch]}\n", "contact.intact_nodes", "expected text"},
   };
   for (const Bad& b : table) {
     SCOPED_TRACE(b.text);

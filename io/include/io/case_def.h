@@ -280,8 +280,39 @@ struct ContactPairDef {
   int line = 0;
 };
 
+// Which contacts act across connections that still hold (contact.intact_nodes;
+// cases/README.md, "Contact across intact joints"). Pairs joined to each
+// other directly by an intact joint never touch, in every mode.
+enum class IntactNodeContact {
+  // Members that meet at a node without a joint between them (two columns
+  // both tenoned into the hub beam, a cross beam against a column) touch and
+  // bear on each other while the joints hold; supported members bear on the
+  // ground. The model frames A-C are argued with (the default).
+  Touch,
+  // Members joined at a node through a common member by intact joints touch
+  // only once one of those joints breaks; supported members still bear on
+  // the ground.
+  GroundOnly,
+  // Seed 001's model, literally: "the model behaves as continuous medium
+  // before the fracture of the springs"; no contact across an intact
+  // connection, neither between members at a node nor between a supported
+  // member and the ground, until a joint breaks.
+  None,
+};
+
+// "touch", "ground_only", "none": the case file's words.
+inline const char* intact_node_contact_name(IntactNodeContact mode) {
+  switch (mode) {
+    case IntactNodeContact::GroundOnly: return "ground_only";
+    case IntactNodeContact::None: return "none";
+    case IntactNodeContact::Touch: break;
+  }
+  return "touch";
+}
+
 struct ContactDef {
   std::optional<ContactParams> ground;  // box-ground half-space at ground.level_m; unset = no ground contact
+  IntactNodeContact intact_nodes = IntactNodeContact::Touch;
   ContactParams default_pair;           // every material pair without an entry in `pairs`
   std::vector<ContactPairDef> pairs;
   int line = 0;

@@ -127,6 +127,14 @@ class JointSystem final : public ForceProvider {
   // std::invalid_argument naming the joint and field on bad data. Must be
   // called before the first step.
   std::int32_t add_joint(const BodyStore& bodies, const JointDef& def);
+  // Holds the two bodies that joints joint_1 and joint_2 join to one common
+  // body (the hub of a node: two columns tenoned into the same beam) as a
+  // bonded pair while both joints are intact, so that contacts skip them
+  // until one of the joints breaks (contact.intact_nodes, io/case_def.h).
+  // Throws std::invalid_argument unless the joints exist and share exactly
+  // one body. Must be called before the first step; a checkpoint keeps the
+  // bonded pairs, and the joints' broken flags say which holds have ended.
+  void hold_pair_through(std::size_t joint_1, std::size_t joint_2);
 
   const char* name() const override { return "joints"; }
   void prepare(const BodyStore& bodies) override;
@@ -296,6 +304,13 @@ class JointSystem final : public ForceProvider {
   LaneIsa lane_form_ = LaneIsa::Sse2;      // the SIMD form of the kernels that runs (prepare_lanes_)
 
   BondedPairs* bonded_;
+  // Pairs held through a common body (hold_pair_through): released when the
+  // first of the two joints breaks.
+  struct HeldThrough {
+    std::int32_t joint_1, joint_2;
+    BodyId body_1, body_2;
+  };
+  std::vector<HeldThrough> held_through_;
   JointSystemSettings settings_;
   bool prepared_ = false;
   std::size_t body_count_ = 0;
