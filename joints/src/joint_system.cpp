@@ -105,6 +105,8 @@ void JointSystem::hold_pair_through(std::size_t joint_1, std::size_t joint_2) {
   if (hub == kNoBody) throw std::invalid_argument("hold_pair_through: the joints share no body");
   body_1 = a1 == hub ? b1 : a1;
   body_2 = a2 == hub ? b2 : a2;
+  if (held_through_of_joint_.size() < n) held_through_of_joint_.resize(n);
+  for (const std::size_t j : {joint_1, joint_2}) held_through_of_joint_[j].push_back(std::int32_t(held_through_.size()));
   held_through_.push_back({std::int32_t(joint_1), std::int32_t(joint_2), body_1, body_2});
   if (bonded_) bonded_->add(body_1, body_2);
 }
@@ -782,8 +784,9 @@ void JointSystem::finish_step(const BodyStore& bodies, const StepInfo& step, Eve
         bonded_->release(joint_body_a_[j], joint_body_b_[j]);
         // Pairs held through this joint and another still intact end now
         // (when the other broke first, they ended then).
-        for (const HeldThrough& h : held_through_) {
-          if (h.joint_1 != std::int32_t(j) && h.joint_2 != std::int32_t(j)) continue;
+        const std::size_t holds = j < held_through_of_joint_.size() ? held_through_of_joint_[j].size() : 0;
+        for (std::size_t i = 0; i < holds; ++i) {
+          const HeldThrough& h = held_through_[std::size_t(held_through_of_joint_[j][i])];
           const auto other = std::size_t(h.joint_1 == std::int32_t(j) ? h.joint_2 : h.joint_1);
           if (!joint_broken_[other]) bonded_->release(h.body_1, h.body_2);
         }

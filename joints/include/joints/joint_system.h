@@ -311,6 +311,7 @@ class JointSystem final : public ForceProvider {
     BodyId body_1, body_2;
   };
   std::vector<HeldThrough> held_through_;
+  std::vector<std::vector<std::int32_t>> held_through_of_joint_;  // indices into held_through_, per joint
   JointSystemSettings settings_;
   bool prepared_ = false;
   std::size_t body_count_ = 0;
