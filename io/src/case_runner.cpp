@@ -1413,19 +1413,32 @@ namespace {
 // contact.intact_nodes other than touch: every two joints planned at the same
 // node that join one common body (the hub, or the ground of a support) hold
 // their other two bodies together, as the node's connection does, until one
-// of them breaks. Joints are planned node by node (joint_builder.h), so a
-// node's joints are found by its id.
+// of them breaks -- unless a joint joins those two directly: then that joint
+// alone decides (a column and a brace each supported at one node and joined
+// to each other would otherwise keep the column off the ground, under none,
+// after its own support broke, for as long as the brace's held). Joints are
+// planned node by node (joint_builder.h), so a node's joints are found by its id.
 void hold_pairs_at_nodes(JointSystem& joints, const std::vector<PlannedJoint>& planned) {
+  const auto pair_of = [](BodyId a, BodyId b) { return a < b ? std::pair(a, b) : std::pair(b, a); };
+  std::set<std::pair<BodyId, BodyId>> joined_directly;
   std::map<std::string, std::vector<std::size_t>> joints_at_node;
-  for (std::size_t j = 0; j < planned.size(); ++j) joints_at_node[planned[j].node].push_back(j);
+  for (std::size_t j = 0; j < planned.size(); ++j) {
+    joints_at_node[planned[j].node].push_back(j);
+    joined_directly.insert(pair_of(planned[j].def.body_a, planned[j].def.body_b));
+  }
   for (const auto& [node, at] : joints_at_node) {
     (void)node;
     for (std::size_t i = 0; i < at.size(); ++i)
       for (std::size_t k = i + 1; k < at.size(); ++k) {
         const JointDef& p = planned[at[i]].def;
         const JointDef& q = planned[at[k]].def;
-        const int shared = int(p.body_a == q.body_a || p.body_a == q.body_b) + int(p.body_b == q.body_a || p.body_b == q.body_b);
-        if (shared == 1) joints.hold_pair_through(at[i], at[k]);
+        const bool p_a_shared = p.body_a == q.body_a || p.body_a == q.body_b;
+        const bool p_b_shared = p.body_b == q.body_a || p.body_b == q.body_b;
+        if (p_a_shared == p_b_shared) continue;  // no common body, or the same two
+        const BodyId hub = p_a_shared ? p.body_a : p.body_b;
+        const BodyId x = p_a_shared ? p.body_b : p.body_a;
+        const BodyId y = q.body_a == hub ? q.body_b : q.body_a;
+        if (!joined_directly.count(pair_of(x, y))) joints.hold_pair_through(at[i], at[k]);
       }
   }
 }

@@ -173,6 +173,68 @@ TEST(IntactNodes, UnderNoneAColumnWhoseSupportBreaksStandsOnTheGroundFromItsOver
   EXPECT_LT(sim.ledger().balance_error_relative(), 1e-5);
 }
 
+// A post and a light brace footed at the same support node, each with its
+// own crushing support tenon and joined to each other by a soft joint (a
+// triangle of joints at one node). When the post's support breaks, the post
+// must stand on the ground from then on, whatever the brace's support does:
+// the post and the ground are joined directly, so that joint alone decides
+// (a hold through the brace kept the post falling through the ground for
+// 11 ms, 0.64 mm deep, until the brace's support broke too; review probe).
+TEST(IntactNodes, UnderNoneAPostWhoseSupportBreaksStandsOnTheGroundBesideASupportedBrace) {
+  const std::string text =
+      "framequake_case: 1\n"
+      "time: {dt_s: 2.0e-6, duration_s: 0.05}\n"
+      "materials: [{name: wood, density_kg_per_m3: 450}, {name: light, density_kg_per_m3: 45}]\n"
+      "sections: [{name: s, width_m: 0.01, depth_m: 0.01}, {name: b, width_m: 0.005, depth_m: 0.005}]\n"
+      "nodes:\n"
+      "  - {id: base, xyz_m: [0, 0, 0]}\n"
+      "  - {id: top, xyz_m: [0, 0, 0.2]}\n"
+      "  - {id: tip, xyz_m: [0.1, 0, 0.1]}\n"
+      "members:\n"
+      "  - {id: post, kind: column, nodes: [base, top], section: s, material: wood}\n"
+      "  - {id: brace, kind: beam, nodes: [base, tip], section: b, material: light, trim_m: [0.012, 0]}\n"
+      "joint_types:\n"
+      "  - name: soft\n"
+      "    layout: four_corner\n"
+      "    normal: {law: linear, stiffness_N_per_m: 1.0, damping_ratio: 0.05}\n"
+      "    shear: {law: linear, stiffness_N_per_m: 1.0, damping_ratio: 0.05}\n"
+      "  - name: crush\n"
+      "    layout: four_corner\n" +
+      kCrushingNormal +
+      "    shear: {law: linear, stiffness_N_per_m: 1.0e5, damping_ratio: 0.05}\n"
+      "    fracture: {criterion: any_spring_deleted}\n"
+      "joints: {support_type: crush, rules: [{kinds: [column, beam], type: soft}]}\n" +
+      supported_on_the_ground("none");
+  TempDir dir;
+  Scene scene = build_scene(load_case_file(dir.write("post_and_brace.yaml", text)));
+  Simulation& sim = *scene.simulation;
+  const BodyId post = 1;
+  ASSERT_EQ(sim.bodies().info[post].name, "post");
+  std::size_t post_support = scene.joint_names.size();
+  for (std::size_t j = 0; j < scene.joint_names.size(); ++j)
+    if (scene.joint_names[j] == "base:ground-post") post_support = j;
+  ASSERT_LT(post_support, scene.joint_names.size());
+  // Lowest corner of the post (m): an upright 10 x 10 x 200 mm box.
+  const auto lowest_z = [&] { return sim.bodies().position_m[post].z() - 0.1; };
+  double deepest_after_break = 0.0;
+  bool broken = false;
+  while (sim.steps_done() < sim.total_steps()) {
+    ASSERT_TRUE(sim.step());
+    broken = broken || scene.joints->joint_status(post_support) == JointStatus::Broken;
+    if (broken) deepest_after_break = std::min(deepest_after_break, lowest_z());
+  }
+  ASSERT_TRUE(broken) << "the post's support must crush under its weight";
+  // At most the crush it had at the break (1e-5 m, the tenon's ultimate
+  // deformation) and m g / k_c beyond it: far from the 0.64 mm of a post
+  // that fell through.
+  EXPECT_GT(deepest_after_break, -5e-5);
+  double ground_on_post_N = 0.0;
+  for (const ContactPoint& c : scene.contacts->contacts())
+    if (c.body_b == post && c.body_a == 0) ground_on_post_N += c.force_N().z();
+  const double weight_N = sim.bodies().mass_kg[post] * kG;
+  EXPECT_NEAR(ground_on_post_N, weight_N, 0.05 * weight_N);
+}
+
 // A node whose hub is a beam: column1 below, column2 on top of it, both
 // tenoned into the beam (joints.hub_kind: beam), so the two columns touch end
 // to end without a joint between them. Column2's tenon is weak in

@@ -289,9 +289,9 @@ enum class IntactNodeContact {
   // bear on each other while the joints hold; supported members bear on the
   // ground. The model frames A-C are argued with (the default).
   Touch,
-  // Members joined at a node through a common member by intact joints touch
-  // only once one of those joints breaks; supported members still bear on
-  // the ground.
+  // Members joined at a node through a common member by intact joints, and
+  // not joined to each other, touch only once one of those joints breaks;
+  // supported members still bear on the ground.
   GroundOnly,
   // Seed 001's model, literally: "the model behaves as continuous medium
   // before the fracture of the springs"; no contact across an intact
