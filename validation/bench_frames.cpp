@@ -164,9 +164,10 @@ int main(int argc, char** argv) {
       }
     } else if (std::strncmp(a, "--intact_nodes=", 15) == 0) {
       mode_name = a + 15;
-      for (const auto k : {fq::IntactNodeContact::Touch, fq::IntactNodeContact::GroundOnly, fq::IntactNodeContact::None})
-        if (mode_name == fq::intact_node_contact_name(k)) g_intact_nodes = k;
-      if (!g_intact_nodes) {
+      fq::IntactNodeContact mode{};
+      if (fq::parse_intact_node_contact(mode_name, mode)) {
+        g_intact_nodes = mode;
+      } else {
         std::fprintf(stderr, "bench_frames: --intact_nodes expects touch, ground_only or none, got '%s'\n", a + 15);
         return 2;
       }

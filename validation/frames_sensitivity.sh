@@ -117,12 +117,13 @@ grep '^|' "$work/dashpots/comparison.md" >> "$out"
 # 6. Contact across intact joints (cases/README.md, contact.intact_nodes): the
 # shipped frames let members that meet at a node without a joint between
 # them bear on each other, and supported feet on the ground, while the
-# joints hold (touch). ground_only keeps the members apart until a joint at
-# their node breaks; none, seed 001's "continuous medium before the
-# fracture", keeps supported feet off the ground too. The joints' values
-# were argued for touch, so this shows how much the verdicts rest on that
-# choice; ground_only is run twice more with the record x (1 + 1e-12), as
-# in section 3, to show how far round-off moves it.
+# joints hold (touch). ground_only keeps such members apart until one of
+# their joints to the member between them breaks; none, seed 001's
+# "continuous medium before the fracture", keeps supported feet off the
+# ground too. The joints' values were argued for touch, so this shows how
+# much the verdicts rest on that choice; ground_only is run once more with
+# the record x (1 + 1e-12), as in section 3, to show how far round-off
+# moves it.
 for mode in ground_only none; do
   echo >> "$out"; echo "## Contact across intact joints: intact_nodes: $mode" >> "$out"; echo >> "$out"
   files=()

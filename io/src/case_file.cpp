@@ -827,11 +827,7 @@ void parse_contact(const Reader& r, const Field& f, CaseDef& def) {
   ContactDef c;
   c.line = f.line;
   if (const auto m = r.get(f.value, "intact_nodes", f.path)) {
-    const std::string mode = r.to_text(*m);
-    bool known = false;
-    for (const IntactNodeContact k : {IntactNodeContact::Touch, IntactNodeContact::GroundOnly, IntactNodeContact::None})
-      if (mode == intact_node_contact_name(k)) c.intact_nodes = k, known = true;
-    if (!known)
+    if (!parse_intact_node_contact(r.to_text(*m), c.intact_nodes))
       r.fail(*m, "expected one of touch, ground_only, none (contacts across joints that still hold), got " +
                      describe(m->value));
   }

@@ -1426,8 +1426,8 @@ void hold_pairs_at_nodes(JointSystem& joints, const std::vector<PlannedJoint>& p
     joints_at_node[planned[j].node].push_back(j);
     joined_directly.insert(pair_of(planned[j].def.body_a, planned[j].def.body_b));
   }
-  for (const auto& [node, at] : joints_at_node) {
-    (void)node;
+  for (const auto& node_joints : joints_at_node) {
+    const std::vector<std::size_t>& at = node_joints.second;
     for (std::size_t i = 0; i < at.size(); ++i)
       for (std::size_t k = i + 1; k < at.size(); ++k) {
         const JointDef& p = planned[at[i]].def;
@@ -1849,8 +1849,8 @@ void describe_case(const CaseDef& case_def, std::ostream& out, std::optional<Int
                "members bear on the ground)\n";
         break;
       case IntactNodeContact::GroundOnly:
-        out << "ground_only (members joined through a common member at a node touch once a joint there "
-               "breaks; supported members bear on the ground)\n";
+        out << "ground_only (members joined at a node through a common member, not to each other, touch once "
+               "one of their joints to it breaks; supported members bear on the ground)\n";
         break;
       case IntactNodeContact::None:
         out << "none (seed 001: no contact across an intact joint, the ground under a supported member "

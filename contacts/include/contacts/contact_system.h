@@ -225,9 +225,10 @@ struct ContactSystemSettings {
   // every step, rebuilds) on threads (broad_phase.h). Its per-body work is
   // short, so it pays only for large scenes.
   int broad_phase_parallel_bodies = 4096;
-  // false: a body held to the ground body by an intact joint (a supported
-  // column) does not touch the ground until that joint breaks, and then
-  // starts from the overlap it has (as a released pair, above). Seed 001's
+  // false: a body bonded to the ground body (BondedPairs: held by an intact
+  // support joint, or through a member at a support node) does not touch
+  // the ground until that hold ends, and then starts from the overlap it
+  // has (as a released pair, above). Seed 001's
   // "continuous medium before the fracture" (contact.intact_nodes: none,
   // io/case_def.h); true keeps a supported foot bearing on the ground.
   bool ground_under_intact_supports = true;

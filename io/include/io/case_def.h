@@ -309,6 +309,15 @@ inline const char* intact_node_contact_name(IntactNodeContact mode) {
   }
   return "touch";
 }
+// The mode a case file's word names; false for any other word.
+inline bool parse_intact_node_contact(std::string_view word, IntactNodeContact& mode) {
+  for (const IntactNodeContact m : {IntactNodeContact::Touch, IntactNodeContact::GroundOnly, IntactNodeContact::None})
+    if (word == intact_node_contact_name(m)) {
+      mode = m;
+      return true;
+    }
+  return false;
+}
 
 struct ContactDef {
   std::optional<ContactParams> ground;  // box-ground half-space at ground.level_m; unset = no ground contact
