@@ -38,4 +38,16 @@ std::string warnings_note(const std::vector<LabelledReport>& cases) {
   return "\nWarnings of the runs (also in each run's summary.json, `warnings`):\n" + lines;
 }
 
+std::string contact_model_note(const std::vector<LabelledContactModel>& cases) {
+  const bool all_default = std::all_of(cases.begin(), cases.end(), [](const LabelledContactModel& c) {
+    return c.second.empty() || c.second == "touch";
+  });
+  if (all_default) return {};
+  std::string lines;
+  for (const auto& [label, model] : cases)
+    lines += "- " + label + ": " + (model.empty() ? std::string("no contacts") : model) + "\n";
+  return "\nContact across intact joints (`contact.intact_nodes`, cases/README.md; the verdicts depend on it):\n" +
+         lines;
+}
+
 }  // namespace fq_app

@@ -29,4 +29,12 @@ std::string collapse_order_note(const std::vector<LabelledReport>& cases);
 // for the cases with warnings; "" when none has any.
 std::string warnings_note(const std::vector<LabelledReport>& cases);
 
+// The contact model of each case (contact.intact_nodes: "touch",
+// "ground_only", "none"; "" for a case without contacts) listed under the
+// table when any case with contacts is not on the default, touch: the
+// verdicts depend on it (docs/performance.md, "Contacts across intact
+// joints"), and the table does not show it. "" when every case is on touch.
+using LabelledContactModel = std::pair<std::string, std::string>;
+std::string contact_model_note(const std::vector<LabelledContactModel>& cases);
+
 }  // namespace fq_app

@@ -1024,7 +1024,11 @@ int command_compare(int argc, char** argv, const std::atomic<bool>* stop_request
     std::vector<LabelledReport> labelled;
     for (std::size_t i = 0; i < jobs.size(); ++i)
       labelled.emplace_back(jobs[i].label, outcomes[i].ok ? &outcomes[i].report : nullptr);
-    md << collapse_order_note(labelled) << warnings_note(labelled);
+    std::vector<LabelledContactModel> contact_models;
+    for (const fq::BatchJob& job : jobs)
+      contact_models.emplace_back(job.label,
+                                  job.def.contact ? fq::intact_node_contact_name(job.def.contact->intact_nodes) : "");
+    md << contact_model_note(contact_models) << collapse_order_note(labelled) << warnings_note(labelled);
     // A shortened window can miss the record's strongest part, and with
     // it a verdict (workflow probe: B standing at --window-length 8,
     // damaged over its whole window).

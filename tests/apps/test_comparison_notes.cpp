@@ -1,5 +1,6 @@
 // The notes under the comparison table (apps/comparison_notes.h): the order
-// in which each case's storeys collapsed, and each run's warnings, on made-up
+// in which each case's storeys collapsed, each run's warnings, and the cases'
+// contact models, on made-up
 // reports (the expected text follows from the reports given, by the
 // definition in the header).
 #include <gtest/gtest.h>
@@ -45,6 +46,18 @@ TEST(ComparisonNotes, EveryWarningOfEveryRunIsListedUnderItsCase) {
   EXPECT_NE(note.find("- A_one_face: second warning\n"), std::string::npos) << note;
   EXPECT_EQ(note.find("frame_B"), std::string::npos) << note;
   EXPECT_EQ(fq_app::warnings_note({{"frame_B", &b}}), "");
+}
+
+// A comparison of one frame under two contact models reads the same as
+// one of two frames unless the model is named: it is, as soon as one case
+// leaves the default (touch), for every case; cases without contacts say so.
+TEST(ComparisonNotes, ContactModelsAreNamedWhenAnyCaseLeavesTheDefault) {
+  const std::string note = fq_app::contact_model_note(
+      {{"frame_B", "touch"}, {"frame_B_seed", "none"}, {"blocks", ""}});
+  EXPECT_NE(note.find("- frame_B: touch\n"), std::string::npos) << note;
+  EXPECT_NE(note.find("- frame_B_seed: none\n"), std::string::npos) << note;
+  EXPECT_NE(note.find("- blocks: no contacts\n"), std::string::npos) << note;
+  EXPECT_EQ(fq_app::contact_model_note({{"frame_A", "touch"}, {"frame_B", "touch"}, {"blocks", ""}}), "");
 }
 
 }  // namespace
