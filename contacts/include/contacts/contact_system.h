@@ -228,9 +228,9 @@ struct ContactSystemSettings {
   // false: a body bonded to the ground body (BondedPairs: held by an intact
   // support joint, or through a member at a support node) does not touch
   // the ground until that hold ends, and then starts from the overlap it
-  // has (as a released pair, above). Seed 001's
-  // "continuous medium before the fracture" (contact.intact_nodes: none,
-  // io/case_def.h); true keeps a supported foot bearing on the ground.
+  // has (as a released pair, above): seed 001's "continuous medium before
+  // the fracture" (contact.intact_nodes: none, io/case_def.h). true keeps
+  // a supported foot bearing on the ground.
   bool ground_under_intact_supports = true;
 };
 
