@@ -95,10 +95,12 @@ done
 echo "# end $(date -u)" >> "$log"
 echo "[compare_builds] raw log: $log" >&2
 status=0
-# At 1e5 bodies the joint stage's counter is one sampled step per run (the
-# engine profiles one step in 64); the wall time per step of all 64 timed
-# steps and the busiest thread's CPU time per step (which other tenants
-# taking the core move less) are compared beside it.
+# At 1e5 bodies the joint stage's counter of a build before 2026-11-27
+# (stop 35) is one sampled step per run (the engine profiles one step in
+# 64; bench_joints now times every step, and the two counts agreed in
+# median: docs/performance_history.md, stop 35); the wall time per step of
+# all 64 timed steps and the busiest thread's CPU time per step (which
+# other tenants taking the core move less) are compared beside it.
 counters=()
 [[ ",$scenes," == *,joints_1e5,* ]] &&
   counters=(us_per_step joints_s contacts_s ns_per_spring_step ns_per_body_step ns_per_step_total busy_ns_per_step)
