@@ -7,12 +7,14 @@
 # The two study scripts check their arguments before anything starts: a
 # stray argument must not launch an hour of runs.
 #   study_cli_checks.sh STABILITY_LIMITS_BIN WORK_PRECISION_BIN SOURCE_DIR COMPARE_ROUNDS_BIN BENCH_FRAMES_BIN
+#                       BENCH_JOINTS_BIN
 set -u
 stability=$1
 precision=$2
 source_dir=$3
 compare=$4
 bench_frames=$5
+bench_joints=$6
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cd "$work"
@@ -122,6 +124,15 @@ expect 0 "--benchmark_filter" out -- "$bench_frames" --help
 grep -qF "BM_Frame" out.txt && fail "bench_frames --help ran a benchmark"
 expect 2 "--threads expects a list like 1,2, got 'x'" err -- "$bench_frames" --threads=x
 only_io_files "bench_frames --help"
+
+# bench_joints' own option (validation/README.md): listed by --help, which
+# runs nothing; a value that is not a step count is refused before any run.
+expect 0 "--profile_every=N" out -- "$bench_joints" --help
+grep -qF "BM_JointLattice" out.txt && fail "bench_joints --help ran a benchmark"
+expect 2 "--profile_every expects a whole number of steps from 1, got '0'" err -- "$bench_joints" --profile_every=0
+expect 2 "got '3x'" err -- "$bench_joints" --profile_every=3x
+grep -qF "BM_JointLattice" out.txt && fail "bench_joints ran a benchmark with a refused option"
+only_io_files "bench_joints --help"
 
 if [ "$failures" -ne 0 ]; then echo "$failures check(s) failed"; exit 1; fi
 echo "all study command-line checks passed"
