@@ -58,6 +58,7 @@ namespace {
 constexpr int kElementsPerColumn = 10;
 // Steps between two timed ones in the engine's stage profile (--profile_every).
 int g_profile_every = 1;
+constexpr int kWarmSteps = 64;  // untimed steps before the timed ones
 
 fq::SpringDef frame_b_spring() {
   // cases/frame_B.yaml, joint type tenon_new.
@@ -142,12 +143,22 @@ void BM_JointLattice(benchmark::State& state) {
   }
 #endif
   const int timed_steps = bodies <= 1000 ? 2000 : bodies <= 10000 ? 256 : 64;
+  // The timed steps are kWarmSteps .. kWarmSteps + timed_steps - 1; the
+  // profile times those whose index is a multiple of the interval.
+  int profiled = 0;
+  for (int k = kWarmSteps; k < kWarmSteps + timed_steps; ++k) profiled += k % g_profile_every == 0;
+  if (profiled == 0) {
+    state.SkipWithError(("--profile_every=" + std::to_string(g_profile_every) + " times none of the " +
+                         std::to_string(timed_steps) + " timed steps")
+                            .c_str());
+    return;
+  }
   double ns_spring = 0.0, ns_body = 0.0, ns_step = 0.0, cpu_ns_spring = 0.0, busy_ns_step = 0.0;
   std::uint64_t hash = 0;
   for (auto _ : state) {
     Lattice l = make_lattice(bodies);
     l.sim->initialize();
-    for (int k = 0; k < 64; ++k) l.sim->step();  // warm caches and the profile's phase
+    for (int k = 0; k < kWarmSteps; ++k) l.sim->step();  // warm caches and the profile's phase
     const fq::StageProfile p0 = l.sim->profile();
     const double cpu0 = fq::bench::process_cpu_s();
     const std::vector<double> busy0 = fq::bench::thread_cpu_s(threads);
@@ -164,8 +175,10 @@ void BM_JointLattice(benchmark::State& state) {
     const double integrate_s = p1.seconds[int(fq::Stage::Integrate)] - p0.seconds[int(fq::Stage::Integrate)];
     state.SetIterationTime(wall);
     const double spring_steps = double(l.springs) * timed_steps;
-    ns_spring = 1e9 * joints_s / spring_steps;
-    ns_body = 1e9 * integrate_s / (double(l.free_bodies) * timed_steps);
+    // The profile scales each timed step by the interval; per step timed:
+    const double profile_steps = double(profiled) * g_profile_every;
+    ns_spring = 1e9 * joints_s / (double(l.springs) * profile_steps);
+    ns_body = 1e9 * integrate_s / (double(l.free_bodies) * profile_steps);
     ns_step = 1e9 * wall / timed_steps;
     cpu_ns_spring = 1e9 * cpu / spring_steps;
     busy_ns_step = 1e9 * busy / timed_steps;
@@ -177,8 +190,6 @@ void BM_JointLattice(benchmark::State& state) {
   state.counters["ns_per_step_total"] = ns_step;
   state.counters["cpu_ns_per_spring_step"] = cpu_ns_spring;
   state.counters["busy_ns_per_step"] = busy_ns_step;
-  int profiled = 0;  // steps 64 .. 64 + timed_steps - 1 whose index is a multiple of the interval
-  for (int k = 64; k < 64 + timed_steps; ++k) profiled += k % g_profile_every == 0;
   state.counters["profiled_steps"] = profiled;
   state.counters["state_hash"] = double(hash & ((std::uint64_t(1) << 48) - 1));
   fq::bench::thread_hashes().record("joint lattice, " + std::to_string(bodies) + " bodies", threads, hash);

@@ -97,8 +97,9 @@ echo "[compare_builds] raw log: $log" >&2
 status=0
 # At 1e5 bodies the joint stage's counter of a build before 2026-11-27
 # (stop 35) is one sampled step per run (the engine profiles one step in
-# 64; bench_joints now times every step, and the two counts agreed in
-# median: docs/performance_history.md, stop 35); the wall time per step of
+# 64; bench_joints now times every step: against a build from before,
+# the two counts are mixed at every size, and differed by 1-2 % in one
+# sitting, docs/performance_history.md, stop 35); the wall time per step of
 # all 64 timed steps and the busiest thread's CPU time per step (which
 # other tenants taking the core move less) are compared beside it.
 counters=()

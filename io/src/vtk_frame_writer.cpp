@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <limits>
 #if defined(__GLIBC__)
 #include <malloc.h>
@@ -154,14 +155,23 @@ void select_sequential_vtk_backend_once() {
 // in again by the next: a run of frame B made 25 482 brk calls, and its
 // page faults and brk calls took about 8 % of the run's samples (perf,
 // 2026-11-27). A trim threshold of 256 MiB keeps the freed pages for the
-// next frame (12 brk calls; the run's peak resident set stays 32 MB, and a
-// process that frees more than 256 MiB at the top still returns it).
-// Setting the threshold ends glibc's own adjustment of the mmap threshold,
-// so that one is set to 32 MiB, the highest value glibc's adjustment could
-// reach on 64-bit, and blocks below it keep coming from the heap.
+// next frame (13 brk calls; the run's peak resident set stays 32 MB). The
+// main heap still returns a free top above 256 MiB; the heaps glibc gives
+// other threads (compare and sweep run each case on one) are at most
+// 64 MiB each and now keep what they freed, for the next case on that
+// thread. Setting the threshold ends glibc's own adjustment of the mmap
+// threshold, so that one is set to 32 MiB, the highest value glibc
+// accepts and its adjustment could reach on 64-bit, and blocks below it
+// keep coming from the heap. A user who sets either threshold (glibc's
+// MALLOC_TRIM_THRESHOLD_, MALLOC_MMAP_THRESHOLD_ or a glibc.malloc
+// tunable in GLIBC_TUNABLES) keeps their own.
 void keep_freed_heap_once() {
 #if defined(__GLIBC__)
   static const bool set = [] {
+    const char* tunables = std::getenv("GLIBC_TUNABLES");
+    if (std::getenv("MALLOC_TRIM_THRESHOLD_") || std::getenv("MALLOC_MMAP_THRESHOLD_") ||
+        (tunables && std::strstr(tunables, "glibc.malloc.") != nullptr))
+      return false;
     return ::mallopt(M_TRIM_THRESHOLD, 256 << 20) == 1 && ::mallopt(M_MMAP_THRESHOLD, 32 << 20) == 1;
   }();
   (void)set;

@@ -132,6 +132,8 @@ grep -qF "BM_JointLattice" out.txt && fail "bench_joints --help ran a benchmark"
 expect 2 "--profile_every expects a whole number of steps from 1, got '0'" err -- "$bench_joints" --profile_every=0
 expect 2 "got '3x'" err -- "$bench_joints" --profile_every=3x
 grep -qF "BM_JointLattice" out.txt && fail "bench_joints ran a benchmark with a refused option"
+# an accepted value is taken out before Google Benchmark reads the rest
+expect 0 "BM_JointLattice/bodies:1000" out -- "$bench_joints" --profile_every=3 --benchmark_list_tests=true
 only_io_files "bench_joints --help"
 
 if [ "$failures" -ne 0 ]; then echo "$failures check(s) failed"; exit 1; fi
