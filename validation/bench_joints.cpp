@@ -27,10 +27,9 @@
 //                        cores, needs OMP_WAIT_POLICY=passive); the parallel
 //                        efficiency free of the host's noise is
 //                        busy(1 thread) / (2 busy(2 threads))
+//   profiled_steps       how many of the timed steps the profile timed
 //   state_hash           48-bit hash of the final state; the last lines of
 //                        the output compare 1 and 2 threads (bitwise)
-//
-//   profiled_steps       how many of the timed steps the profile timed
 //
 // Run: OMP_WAIT_POLICY=passive build_rel/validation/bench_joints
 //        --benchmark_repetitions=5 --benchmark_report_aggregates_only=true

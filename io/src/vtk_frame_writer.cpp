@@ -162,9 +162,9 @@ void select_sequential_vtk_backend_once() {
 // thread. Setting the threshold ends glibc's own adjustment of the mmap
 // threshold, so that one is set to 32 MiB, the highest value glibc
 // accepts and its adjustment could reach on 64-bit, and blocks below it
-// keep coming from the heap. A user who sets either threshold (glibc's
-// MALLOC_TRIM_THRESHOLD_, MALLOC_MMAP_THRESHOLD_ or a glibc.malloc
-// tunable in GLIBC_TUNABLES) keeps their own.
+// keep coming from the heap. A user who sets glibc's MALLOC_TRIM_THRESHOLD_
+// or MALLOC_MMAP_THRESHOLD_, or any glibc.malloc tunable in GLIBC_TUNABLES,
+// keeps glibc's allocator as they set it.
 void keep_freed_heap_once() {
 #if defined(__GLIBC__)
   static const bool set = [] {
