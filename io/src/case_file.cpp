@@ -329,7 +329,10 @@ void parse_time(const Reader& r, const Field& f, CaseDef& def) {
   // Lines of the keys a run's start checks name (case_runner.cpp).
   if (const auto d = r.get(f.value, "dt_s", f.path)) def.section_line["time.dt_s"] = d->line;
   if (const auto m = r.get(f.value, "integrator", f.path)) def.section_line["time.integrator"] = m->line;
-  if (const auto d = r.get(f.value, "duration_s", f.path)) def.time.duration_s = r.to_positive(*d);
+  if (const auto d = r.get(f.value, "duration_s", f.path)) {
+    def.time.duration_s = r.to_positive(*d);
+    def.section_line["time.duration_s"] = d->line;
+  }
   def.time.gravity_mps2 =
       r.optional_vec3(f.value, "gravity_mps2", f.path, def.time.gravity_mps2, "gx, gy, gz in m/s^2");
   if (const auto m = r.get(f.value, "integrator", f.path)) {
@@ -951,6 +954,7 @@ void parse_ground_motion(const Reader& r, const Field& f, CaseDef& def) {
   gm.window_start_s = start_field ? r.to_non_negative(*start_field) : gm.window_start_s;
   const auto length_field = r.get(f.value, "window_length_s", p);
   gm.window_length_s = length_field ? r.to_positive(*length_field) : gm.window_length_s;
+  if (length_field) def.section_line["ground_motion.window_length_s"] = length_field->line;
 
   const Field comps = r.require(f.value, "components", p, "a list of records with file, format, axis");
   r.to_list(comps, "ground-motion components", true);

@@ -372,24 +372,36 @@ Model build_model(const CaseDef& def_in) {
   // A run of no step would "complete" having done nothing (the case reader
   // refuses an explicit duration_s below dt_s; this catches a window, or a
   // duration shortened by compare/sweep --window-length).
+  // The line of a key of the case file where it was read, else its section's.
+  auto line_of = [&](const char* key) {
+    const auto it = def.section_line.find(key);
+    return it != def.section_line.end() ? it->second : time_line;
+  };
   if (model.settings.duration_s < model.settings.dt_s) {
     if (def.time.duration_s)
-      fail(time_line, "time.duration_s",
+      fail(line_of("time.duration_s"), "time.duration_s",
            "the run lasts " + fmt(model.settings.duration_s) + " s, less than one time step (dt_s = " +
                fmt(model.settings.dt_s) + " s)");
-    fail(time_line, "ground_motion.window_length_s",
-         "the ground-motion window lasts " + fmt(model.settings.duration_s) +
-             " s of simulated time, less than one time step (dt_s = " + fmt(model.settings.dt_s) +
-             " s); give a longer window or a duration_s");
+    // Named at dt_s, with the window beside it: either may be the mistake
+    // (a probe's dt_s of 10 s was blamed on the window, at the time: line).
+    const auto window = def.section_line.find("ground_motion.window_length_s");
+    fail(line_of("time.dt_s"), "time.dt_s",
+         "the time step dt_s = " + fmt(model.settings.dt_s) +
+             " s is longer than the run: the ground-motion window lasts " + fmt(model.settings.duration_s) +
+             " s of simulated time (ground_motion.window_length_s" +
+             (window != def.section_line.end() ? ", line " + std::to_string(window->second) : "") +
+             ", times time_scale); give a smaller dt_s, a longer window or a duration_s");
   }
-  if (const double steps = model.settings.duration_s / model.settings.dt_s; !(steps <= kMaxSimulationSteps))
+  if (const double steps = model.settings.duration_s / model.settings.dt_s; !(steps <= kMaxSimulationSteps)) {
     // Which of the two is off: a step below 10 ns is no time step a frame
     // needs (a probe's 1e-300 s was blamed on a 2 s duration).
-    fail(time_line, def.time.duration_s && model.settings.dt_s >= 1e-8 ? "time.duration_s" : "time.dt_s",
+    const char* field = def.time.duration_s && model.settings.dt_s >= 1e-8 ? "time.duration_s" : "time.dt_s";
+    fail(line_of(field), field,
          "duration " + fmt(model.settings.duration_s) + " s at dt_s = " + fmt(model.settings.dt_s) + " s is " +
              (std::isfinite(steps) ? fmt(steps) : "more than " + fmt(kMaxSimulationSteps)) + " steps; at most " +
              fmt(kMaxSimulationSteps) +
              " are accepted (check the units of dt_s and duration_s)");
+  }
   return model;
 }
 

@@ -12,6 +12,7 @@
 #include <thread>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -213,18 +214,24 @@ TEST(CliErrors, TheBaseCaseIsValid) {
 
 // A run shorter than one time step is refused, not "completed" after no
 // step: a ground-motion window that short (the run lasts the window when
-// duration_s is not given), named with the time section's line.
+// duration_s is not given). Named at dt_s's own line (4) with the window's
+// line beside it: either may be the mistake (a probe's dt_s of 10 s was
+// blamed on the window, at the time section's line 3).
 TEST(CliErrors, WindowShorterThanOneStepIsRefused) {
   std::string text = kBaseCase;
   const std::string duration = "  duration_s: 0.01\n", motion = "ground_motion:\n";
   ASSERT_NE(text.find(duration), std::string::npos);
   text.erase(text.find(duration), duration.size());
   text.replace(text.find(motion), motion.size(), "ground_motion:\n  window_length_s: 1.0e-9\n");
+  const auto window_line = 1 + std::count(text.begin(), text.begin() + long(text.find("  window_length_s")), '\n');
   const Outcome o = run_case(text, kBaseRecord);
   EXPECT_EQ(o.app.code, 2) << o.app.err;
   EXPECT_FALSE(o.out_folder_exists);
-  EXPECT_NE(o.app.err.find("case.yaml:3: field 'ground_motion.window_length_s'"), std::string::npos) << o.app.err;
-  EXPECT_NE(o.app.err.find("less than one time step"), std::string::npos) << o.app.err;
+  EXPECT_NE(o.app.err.find("case.yaml:4: field 'time.dt_s'"), std::string::npos) << o.app.err;
+  EXPECT_NE(o.app.err.find("dt_s = 0.0001 s is longer than the run"), std::string::npos) << o.app.err;
+  EXPECT_NE(o.app.err.find("(ground_motion.window_length_s, line " + std::to_string(window_line) + ","),
+            std::string::npos)
+      << o.app.err;
 }
 
 // Text of the user's that is not UTF-8 (typed in Latin-1: "D\xFCzce") is

@@ -719,6 +719,29 @@ TEST(CaseFile, BuilderRejectsMoreStepsThanTheLimit) {
         EXPECT_NE(std::string(e.what()).find(phrase), std::string::npos) << e.what();
     }
   }
+  // Written as a block, each key on its own line: the error names the line
+  // of the key it blames, not the time section's (a review probe found
+  // both at `time:`).
+  struct BadBlock {
+    const char* time;
+    const char* field;
+    int line;
+  };
+  for (const BadBlock& b : {BadBlock{"\n  dt_s: 1.0e-300\n  duration_s: 0.2", "time.dt_s", 3},
+                            BadBlock{"\n  dt_s: 1.0e-5\n  duration_s: 1.0e8", "time.duration_s", 4}}) {
+    SCOPED_TRACE(b.time);
+    TempDir dir;
+    const fs::path file = dir.write("steps.yaml", std::string("framequake_case: 1\ntime:") + b.time +
+                                                      "\nmaterials: [{name: spruce, density_kg_per_m3: 450}]\n" +
+                                                      kBlock);
+    try {
+      fq::build_model(fq::load_case_file(file));
+      FAIL();
+    } catch (const fq::InputError& e) {
+      EXPECT_EQ(e.line(), b.line);
+      EXPECT_EQ(e.field(), b.field);
+    }
+  }
 }
 
 // A case built in code: one column of section "col" (10 x 20 mm) from
