@@ -37,6 +37,7 @@
 #include "io/checkpoint.h"
 #include "io/case_runner.h"
 #include "io/input_error.h"
+#include "io/name_hint.h"
 #include "progress_display.h"
 #include "run_outcome.h"
 #include "study_commands.h"
@@ -220,8 +221,12 @@ RunArgs parse_run_args(int argc, char** argv, int first, const char* help, bool 
     } else if (integrator_option && arg == "--integrator") {
       const std::string v = need_value("--integrator");
       fq::Integrator m;
-      if (!fq::parse_integrator(v, m))
-        usage_error("--integrator expects one of " + fq::integrator_names_list() + ", got '" + v + "'", help);
+      if (!fq::parse_integrator(v, m)) {
+        const auto hint = fq::nearest_name(v, fq::integrator_names());
+        usage_error("--integrator expects one of " + fq::integrator_names_list() + ", got '" + v + "'" +
+                        (hint ? " (did you mean '" + *hint + "'?)" : ""),
+                    help);
+      }
       a.integrator = m;
     } else if (info_options && arg == "--joints") {
       a.list_joints = true;

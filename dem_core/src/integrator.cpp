@@ -39,6 +39,12 @@ bool parse_integrator(const std::string& name, Integrator& out_integrator) {
   return false;
 }
 
+std::vector<std::string> integrator_names() {
+  std::vector<std::string> names;
+  for (const NamedIntegrator& n : kIntegrators) names.emplace_back(n.name);
+  return names;
+}
+
 std::string integrator_names_list() {
   std::string s;
   for (const NamedIntegrator& n : kIntegrators) {

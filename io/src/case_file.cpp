@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "io/input_error.h"
+#include "io/name_hint.h"
 
 // How the reader is organised. A case file is a mapping of top-level sections;
 // each has an entry in kSections (key, required or not, parser function).
@@ -78,21 +79,6 @@ std::string join_names(const std::vector<std::string_view>& names) {
   std::string s;
   for (std::size_t i = 0; i < names.size(); ++i) s += (i ? ", " : "") + std::string(names[i]);
   return s;
-}
-
-std::size_t edit_distance(std::string_view a, std::string_view b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diag = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t up = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0u : 1u)});
-      diag = up;
-    }
-  }
-  return row[b.size()];
 }
 
 // A key found in a mapping: its value, the line to report and the field path.
@@ -336,8 +322,11 @@ void parse_time(const Reader& r, const Field& f, CaseDef& def) {
   def.time.gravity_mps2 =
       r.optional_vec3(f.value, "gravity_mps2", f.path, def.time.gravity_mps2, "gx, gy, gz in m/s^2");
   if (const auto m = r.get(f.value, "integrator", f.path)) {
-    if (!parse_integrator(r.to_text(*m), def.time.integrator))
-      r.fail(*m, "expected one of " + integrator_names_list() + ", got " + describe(m->value));
+    if (!parse_integrator(r.to_text(*m), def.time.integrator)) {
+      const auto hint = nearest_name(r.to_text(*m), integrator_names());
+      r.fail(*m, "expected one of " + integrator_names_list() + ", got " + describe(m->value) +
+                     (hint ? " (did you mean '" + *hint + "'?)" : ""));
+    }
   }
   // One step (dt_s == duration_s) is a run; less than one is not.
   if (def.time.duration_s && def.time.dt_s > *def.time.duration_s) {

@@ -540,6 +540,10 @@ TEST(CliInfo, IntegratorOptionPreviewsWhatRunWouldDoWithIt) {
   EXPECT_EQ(bad.code, 2) << bad.err;
   EXPECT_NE(bad.err.find("--integrator expects one of"), std::string::npos) << bad.err;
   EXPECT_NE(bad.err.find("Usage: framequake info"), std::string::npos) << bad.err;
+  EXPECT_EQ(bad.err.find("did you mean"), std::string::npos) << bad.err;
+  const auto upper = run_app({"info", cube_case, "--integrator", "RK4"}, dir.path());
+  EXPECT_EQ(upper.code, 2) << upper.err;
+  EXPECT_NE(upper.err.find("got 'RK4' (did you mean 'rk4'?)"), std::string::npos) << upper.err;
 }
 
 // info --joints ends with one line per joint (id, name, node, members,

@@ -16,10 +16,13 @@
 #include <filesystem>
 #include <fstream>
 #include <numbers>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "dem_core/integrator.h"
 #include "io/case_file.h"
+#include "io/name_hint.h"
 #include "io/input_error.h"
 #include "io/model.h"
 
@@ -368,6 +371,13 @@ std::vector<BadCase> bad_cases() {
        5,
        "time.integrator",
        {"expected one of central_difference, velocity_verlet, symplectic_euler, rk4", "rk45"}},
+      {"MisspelledIntegratorWithHint",
+       "framequake_case: 1\ntime:\n  dt_s: 1.0e-5\n  duration_s: 1.0\n  integrator: Velocity_Verlet\n"
+       "materials: [{name: spruce, density_kg_per_m3: 450}]\n" +
+           kBlock,
+       5,
+       "time.integrator",
+       {"expected one of central_difference", "'Velocity_Verlet'", "(did you mean 'velocity_verlet'?)"}},
       {"UnknownTopLevelKey",
        kHead + kBlock + "member: []\n",
        5,
@@ -1046,3 +1056,19 @@ TEST(CaseFile, NameFromTheFileStemKeepsTheNameRule) {
 }
 
 }  // namespace
+
+// The names a misspelled choice is matched against (io/name_hint.h): the
+// same name up to case and separators, else within two edits; nothing for
+// a word that is none of them (a review probe's "RK4", "rk_4" and
+// "velocity_verlett" got only the list of names).
+TEST(NameHint, NearestNameFoldsCaseAndSeparatorsThenAllowsTwoEdits) {
+  const std::vector<std::string> names = fq::integrator_names();
+  EXPECT_EQ(fq::nearest_name("RK4", names), std::optional<std::string>("rk4"));
+  EXPECT_EQ(fq::nearest_name("rk_4", names), std::optional<std::string>("rk4"));
+  EXPECT_EQ(fq::nearest_name("Velocity-Verlet", names), std::optional<std::string>("velocity_verlet"));
+  EXPECT_EQ(fq::nearest_name("velocity_verlett", names), std::optional<std::string>("velocity_verlet"));
+  EXPECT_EQ(fq::nearest_name("symplectic euler", names), std::optional<std::string>("symplectic_euler"));
+  EXPECT_EQ(fq::nearest_name("leapfrog", names), std::nullopt);
+  EXPECT_EQ(fq::nearest_name("", names), std::nullopt);
+  EXPECT_EQ(fq::edit_distance("kitten", "sitting"), 3u);
+}

@@ -24,6 +24,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace fq {
 
@@ -42,6 +43,8 @@ const char* integrator_name(Integrator integrator);
 bool parse_integrator(const std::string& name, Integrator& out_integrator);
 // "central_difference, velocity_verlet, ..." for error messages.
 std::string integrator_names_list();
+// The same names, one per element.
+std::vector<std::string> integrator_names();
 // True for methods that evaluate forces at trial states within a step.
 bool integrator_is_multistage(Integrator integrator);
 
