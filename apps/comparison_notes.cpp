@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <iomanip>
+#include <sstream>
 
 namespace fq_app {
 
@@ -47,6 +49,22 @@ std::string contact_model_note(const std::vector<LabelledContactModel>& cases) {
   for (const auto& [label, model] : cases)
     lines += "- " + label + ": " + (model.empty() ? std::string("no contacts") : model) + "\n";
   return "\nContact across intact joints (`contact.intact_nodes`, cases/README.md; the verdicts depend on it):\n" +
+         lines;
+}
+
+std::string time_integration_note(const std::vector<CaseTimeIntegration>& cases) {
+  const bool alike = std::all_of(cases.begin(), cases.end(), [&](const CaseTimeIntegration& c) {
+    return c.integrator == cases.front().integrator && c.dt_s == cases.front().dt_s;
+  });
+  if (alike) return {};
+  std::string lines;
+  for (const CaseTimeIntegration& c : cases) {
+    std::ostringstream dt;
+    dt << std::setprecision(6) << c.dt_s;
+    lines += "- " + c.label + ": " + c.integrator + ", dt_s = " + dt.str() + " s\n";
+  }
+  return "\nTime integration (`time.integrator`, `time.dt_s`; the balance errors, and beyond round-off the motions, "
+         "depend on them):\n" +
          lines;
 }
 

@@ -1028,7 +1028,11 @@ int command_compare(int argc, char** argv, const std::atomic<bool>* stop_request
     for (const fq::BatchJob& job : jobs)
       contact_models.emplace_back(job.label,
                                   job.def.contact ? fq::intact_node_contact_name(job.def.contact->intact_nodes) : "");
-    md << contact_model_note(contact_models) << collapse_order_note(labelled) << warnings_note(labelled);
+    std::vector<CaseTimeIntegration> time_integration;
+    for (const fq::BatchJob& job : jobs)
+      time_integration.push_back({job.label, fq::integrator_name(job.def.time.integrator), job.def.time.dt_s});
+    md << time_integration_note(time_integration) << contact_model_note(contact_models)
+       << collapse_order_note(labelled) << warnings_note(labelled);
     // A shortened window can miss the record's strongest part, and with
     // it a verdict (workflow probe: B standing at --window-length 8,
     // damaged over its whole window).

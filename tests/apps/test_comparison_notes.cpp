@@ -60,4 +60,19 @@ TEST(ComparisonNotes, ContactModelsAreNamedWhenAnyCaseLeavesTheDefault) {
   EXPECT_EQ(fq_app::contact_model_note({{"frame_A", "touch"}, {"frame_B", "touch"}, {"blocks", ""}}), "");
 }
 
+// Cases run with different integrators or steps say so under the table,
+// each with its own; cases that share both say nothing.
+TEST(ComparisonNotes, IntegratorsAndStepsAreNamedWhenTheCasesDiffer) {
+  const std::string note = fq_app::time_integration_note(
+      {{"portal", "central_difference", 1e-5}, {"portal_rk4", "rk4", 1e-5}, {"portal_vv", "velocity_verlet", 2e-5}});
+  EXPECT_NE(note.find("- portal: central_difference, dt_s = 1e-05 s\n"), std::string::npos) << note;
+  EXPECT_NE(note.find("- portal_rk4: rk4, dt_s = 1e-05 s\n"), std::string::npos) << note;
+  EXPECT_NE(note.find("- portal_vv: velocity_verlet, dt_s = 2e-05 s\n"), std::string::npos) << note;
+  EXPECT_NE(fq_app::time_integration_note({{"a", "central_difference", 1e-5}, {"b", "central_difference", 2e-5}}),
+            "");
+  EXPECT_EQ(fq_app::time_integration_note(
+                {{"frame_A", "central_difference", 1e-5}, {"frame_B", "central_difference", 1e-5}}),
+            "");
+}
+
 }  // namespace

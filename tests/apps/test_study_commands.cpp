@@ -203,6 +203,29 @@ TEST(StudyCommands, CompareShowsTheWarningsOfAForcedRun) {
       << md;
 }
 
+// Two cases of different time steps: comparison.md lists each case's
+// integrator and dt_s under the table (apps/comparison_notes.h), which it
+// did not (black-box probe).
+TEST(StudyCommands, CompareNamesEachCasesIntegratorAndStepWhenTheyDiffer) {
+  TempDir dir;
+  std::string finer = fq_test::kForcedCubeCase;
+  const std::string coarse_time = "time: {dt_s: 1.0e-3,", name = "name: cube\n";
+  ASSERT_NE(finer.find(coarse_time), std::string::npos);
+  finer.replace(finer.find(coarse_time), coarse_time.size(), "time: {dt_s: 5.0e-4,");
+  finer.replace(finer.find(name), name.size(), "name: cube_fine\n");
+  std::ofstream(dir.path() / "cube.yaml") << fq_test::kForcedCubeCase;
+  std::ofstream(dir.path() / "cube_fine.yaml") << finer;
+  const fs::path out = dir.path() / "cmp";
+  const auto r = run_app({"compare", (dir.path() / "cube.yaml").string(), (dir.path() / "cube_fine.yaml").string(),
+                          "--out", out.string(), "--force", "--no-figure"},
+                         dir.path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string md = fq_test::read_text(out / "comparison.md");
+  EXPECT_NE(md.find("\nTime integration (`time.integrator`, `time.dt_s`;"), std::string::npos) << md;
+  EXPECT_NE(md.find("- cube: central_difference, dt_s = 0.001 s\n"), std::string::npos) << md;
+  EXPECT_NE(md.find("- cube_fine: central_difference, dt_s = 0.0005 s\n"), std::string::npos) << md;
+}
+
 // The sweep's PGA is the horizontal ground acceleration's magnitude, so a
 // frame turned about the vertical with its record reports the record's
 // peak (818.1 cm/s^2 at 8.52 s, ../shared/data/ground_motions/README.md)
