@@ -1093,7 +1093,7 @@ std::string runge_kutta_sampling_warning(const Simulation& sim) {
   std::ostringstream w;
   // Times to 10 digits (a sample at 0.005 s printed as 0.00500000000000012
   // to 15); the suggested step to 15, so that it can be typed back.
-  w << std::setprecision(10) << "time.integrator rk4 is fourth order only where the forcing is smooth within each "
+  w << std::setprecision(10) << "the integrator rk4 is fourth order only where the forcing is smooth within each "
     << "step; at dt_s = " << dt << " s ";
   if (sample_in != nullptr)
     w << "a sample of " << sample_in->record.source << " (at t = " << sample_in_s
@@ -1115,7 +1115,9 @@ std::string runge_kutta_sampling_warning(const Simulation& sim) {
   }
   if (sample_in != nullptr && end_in != nullptr) w << ", and ";
   if (end_in != nullptr)
-    w << "give window_length_s a whole number of the record's samples (" << end_in->record.dt_s << " s)";
+    w << "give the window's length (window_length_s, or --window-length of compare and sweep) a whole number of "
+         "the record's samples ("
+      << end_in->record.dt_s << " s)";
   return w.str();
 }
 

@@ -1008,7 +1008,9 @@ TEST(RunWarnings, RungeKutta4SuggestionsClearTheWarningForLongRunsWindowEndsAndT
       "{time_scale: 0.3162, window_length_s: 19.99, components: [{file: coarse.txt, format: two_column, axis: x}]}";
   const std::string end = warning_for(dt, cut);
   EXPECT_NE(end.find("the end of the window of"), std::string::npos) << end;
-  EXPECT_NE(end.find("give window_length_s a whole number of the record's samples (0.02 s)"), std::string::npos)
+  EXPECT_NE(end.find("give the window's length (window_length_s, or --window-length of compare and sweep) a whole "
+                     "number of the record's samples (0.02 s)"),
+            std::string::npos)
       << end;
   EXPECT_EQ(end.find("give dt_s"), std::string::npos) << end;
   // Two records: 0.01 / 3 = 0.00333 s divides both 0.01 s and 0.02 s. The
