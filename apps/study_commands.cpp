@@ -227,6 +227,18 @@ void shorten_window(fq::CaseDef& def, double length_s, bool say_when_not_shorter
   // stops with the shortened motion too.
   if (def.time.duration_s) {
     const double simulated = def.ground_motion->window_length_s * def.ground_motion->time_scale;
+    // The case's own window may be the shorter one, and shorter than a step
+    // (a run of the case goes on to its duration_s): named here as the
+    // option's doing, not as the case's duration_s, which was not the
+    // mistake (review probe).
+    if (simulated < def.time.dt_s) {
+      std::ostringstream why;
+      why << "expected at least one time step: with --window-length, '" << def.name
+          << "' stops with its ground motion, whose window (window_length_s = " << gm.window_length_s
+          << " record s at the time scale " << gm.time_scale << ") lasts " << simulated
+          << " s, less than its dt_s = " << def.time.dt_s << " s";
+      throw fq::InputError("", 0, "--window-length", why.str());
+    }
     def.time.duration_s = std::min(*def.time.duration_s, simulated);
   }
 }

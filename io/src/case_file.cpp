@@ -941,6 +941,7 @@ void parse_ground_motion(const Reader& r, const Field& f, CaseDef& def) {
   gm.time_scale = r.optional_positive(f.value, "time_scale", p, gm.time_scale);
   const auto start_field = r.get(f.value, "window_start_s", p);
   gm.window_start_s = start_field ? r.to_non_negative(*start_field) : gm.window_start_s;
+  if (start_field) def.section_line["ground_motion.window_start_s"] = start_field->line;
   const auto length_field = r.get(f.value, "window_length_s", p);
   gm.window_length_s = length_field ? r.to_positive(*length_field) : gm.window_length_s;
   if (length_field) def.section_line["ground_motion.window_length_s"] = length_field->line;

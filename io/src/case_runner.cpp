@@ -1180,8 +1180,9 @@ double record_aligned_step_s(const GroundMotion& motion, double dt_max_s) {
 
 std::string ground_motion_sampling_warning(const Simulation& sim) {
   // gsl_rk8pd evaluates the motion wherever its adaptive sub-steps fall
-  // within dt_s, so it steps over no sample (a probe's elastic frame at
-  // dt_s = 0.01 s drifted as at 1e-5 s to 9e-14 m, and was told otherwise).
+  // within dt_s, and its error control follows the record between samples
+  // to its tolerance (a probe's elastic frame at dt_s = 0.01 s drifted as
+  // at 1e-5 s to 9e-14 m, and was told it stepped over samples).
   if (sim.settings().integrator == Integrator::GslRk8pd) return {};
   const GroundMotion& motion = sim.ground_motion();
   const double dt = sim.settings().dt_s;

@@ -384,13 +384,21 @@ Model build_model(const CaseDef& def_in) {
                fmt(model.settings.dt_s) + " s)");
     // Named at dt_s, with the window beside it: either may be the mistake
     // (a probe's dt_s of 10 s was blamed on the window, at the time: line).
-    const auto window = def.section_line.find("ground_motion.window_length_s");
+    // Without window_length_s the window runs from window_start_s to the
+    // record's end (review probe: the message named the absent key).
+    auto at_line = [&](const char* key) {
+      const auto it = def.section_line.find(key);
+      return it != def.section_line.end() ? ", line " + std::to_string(it->second) : std::string();
+    };
+    const std::string window = def.section_line.count("ground_motion.window_length_s")
+                                   ? "ground_motion.window_length_s" + at_line("ground_motion.window_length_s")
+                                   : "from ground_motion.window_start_s" + at_line("ground_motion.window_start_s") +
+                                         " to the record's end";
     fail(line_of("time.dt_s"), "time.dt_s",
          "the time step dt_s = " + fmt(model.settings.dt_s) +
              " s is longer than the run: the ground-motion window lasts " + fmt(model.settings.duration_s) +
-             " s of simulated time (ground_motion.window_length_s" +
-             (window != def.section_line.end() ? ", line " + std::to_string(window->second) : "") +
-             ", times time_scale); give a smaller dt_s, a longer window or a duration_s");
+             " s of simulated time (" + window + ", times time_scale); give a smaller dt_s, a longer window or a "
+             "duration_s");
   }
   if (const double steps = model.settings.duration_s / model.settings.dt_s; !(steps <= kMaxSimulationSteps)) {
     // Which of the two is off: a step below 10 ns is no time step a frame

@@ -35,9 +35,16 @@ std::optional<std::string> nearest_name(std::string_view given, const std::vecto
   if (g.empty()) return std::nullopt;
   for (const std::string& n : names)
     if (folded(n) == g) return n;
-  for (const std::string& n : names)
-    if (edit_distance(folded(n), g) <= 2) return n;
-  return std::nullopt;
+  // The closest within two edits, and within one of a name of fewer than six
+  // letters ("r", "ok" and "4" are not "rk4"; review probe).
+  std::optional<std::string> best;
+  std::size_t best_distance = 3;
+  for (const std::string& n : names) {
+    const std::string f = folded(n);
+    const std::size_t d = edit_distance(f, g), allowed = f.size() < 6 ? 1 : 2;
+    if (d <= allowed && d < best_distance) best = n, best_distance = d;
+  }
+  return best;
 }
 
 }  // namespace fq

@@ -234,6 +234,28 @@ TEST(CliErrors, WindowShorterThanOneStepIsRefused) {
       << o.app.err;
 }
 
+// Without window_length_s the window runs from window_start_s to the
+// record's end (0.05 s): started 0.01 s before it, it is shorter than a
+// 0.02 s step, and the message names window_start_s's line, not the absent
+// window_length_s (review probe).
+TEST(CliErrors, AWindowCutByTheRecordsEndIsNamedByItsStart) {
+  std::string text = kBaseCase;
+  const std::string duration = "  duration_s: 0.01\n", motion = "ground_motion:\n", step = "  dt_s: 1.0e-4\n";
+  text.erase(text.find(duration), duration.size());
+  text.replace(text.find(step), step.size(), "  dt_s: 0.02\n");
+  text.replace(text.find(motion), motion.size(), "ground_motion:\n  window_start_s: 0.04\n");
+  const auto start_line = 1 + std::count(text.begin(), text.begin() + long(text.find("  window_start_s")), '\n');
+  const Outcome o = run_case(text, kBaseRecord);
+  EXPECT_EQ(o.app.code, 2) << o.app.err;
+  EXPECT_FALSE(o.out_folder_exists);
+  EXPECT_NE(o.app.err.find("case.yaml:4: field 'time.dt_s'"), std::string::npos) << o.app.err;
+  EXPECT_NE(o.app.err.find("(from ground_motion.window_start_s, line " + std::to_string(start_line) +
+                           " to the record's end, times time_scale)"),
+            std::string::npos)
+      << o.app.err;
+  EXPECT_EQ(o.app.err.find("window_length_s"), std::string::npos) << o.app.err;
+}
+
 // Text of the user's that is not UTF-8 (typed in Latin-1: "D\xFCzce") is
 // shown with U+FFFD where it is quoted in an error or printed by info; the
 // raw byte reached the terminal (review probe). U+FFFD is EF BF BD.

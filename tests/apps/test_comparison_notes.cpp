@@ -5,6 +5,8 @@
 // definition in the header).
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include <string>
 #include <vector>
 
@@ -70,6 +72,13 @@ TEST(ComparisonNotes, IntegratorsAndStepsAreNamedWhenTheCasesDiffer) {
   EXPECT_NE(note.find("- portal_vv: velocity_verlet, dt_s = 2e-05 s\n"), std::string::npos) << note;
   EXPECT_NE(fq_app::time_integration_note({{"a", "central_difference", 1e-5}, {"b", "central_difference", 2e-5}}),
             "");
+  // The integrator alone, and steps that differ in the last bit, each
+  // printed as it reads back.
+  EXPECT_NE(fq_app::time_integration_note({{"a", "central_difference", 1e-5}, {"b", "rk4", 1e-5}}), "");
+  const std::string close =
+      fq_app::time_integration_note({{"a", "rk4", 1e-5}, {"b", "rk4", std::nextafter(1e-5, 1.0)}});
+  EXPECT_NE(close.find("- a: rk4, dt_s = 1e-05 s\n"), std::string::npos) << close;
+  EXPECT_NE(close.find("- b: rk4, dt_s = 1.00000000000000"), std::string::npos) << close;
   EXPECT_EQ(fq_app::time_integration_note(
                 {{"frame_A", "central_difference", 1e-5}, {"frame_B", "central_difference", 1e-5}}),
             "");

@@ -1244,6 +1244,17 @@ TEST(StudyCommands, BadInputIsRefusedBeforeAnythingIsWritten) {
                                              "ACCELERATION TIME SERIES IN UNITS OF G\nNPTS=    6, DT=   .0100 SEC\n"
                                              "  .1E-02  .2E-02 -.1E-02  .0E+00  .3E-02  .0E+00\n";
   const std::string block = (kSource / "cases/demo_falling_block.yaml").string();
+  // A case whose own ground-motion window (5e-5 s) is shorter than its step
+  // (1e-4 s), which a run takes to its duration_s (0.01 s): --window-length
+  // stops it with the motion, and the option is named, not the case's
+  // duration_s (review probe: it was blamed on duration_s's line).
+  std::ofstream(dir.path() / "ramp.txt") << "0 0\n0.01 0.1\n0.02 0\n0.03 0\n";
+  std::ofstream(dir.path() / "short_window.yaml")
+      << "framequake_case: 1\nname: short_window\ntime: {dt_s: 1.0e-4, duration_s: 0.01}\n"
+         "materials: [{name: spruce, density_kg_per_m3: 450}]\n"
+         "blocks: [{id: cube, size_m: [0.1, 0.1, 0.1], center_m: [0, 0, 1], material: spruce}]\n"
+         "ground_motion: {window_length_s: 5.0e-5, components: [{file: ramp.txt, format: two_column, axis: x}]}\n";
+  const std::string short_window = (dir.path() / "short_window.yaml").string();
   struct Case {
     std::vector<std::string> args;
     std::string message;
@@ -1259,6 +1270,9 @@ TEST(StudyCommands, BadInputIsRefusedBeforeAnythingIsWritten) {
       // Less than one step: the option is named, not the case's line.
       {{"compare", portal, "--window-length", "1e-9", "--out", out.string()},
        "option '--window-length': expected at least one time step"},
+      {{"compare", short_window, "--window-length", "0.02", "--out", out.string()},
+       "option '--window-length': expected at least one time step: with --window-length, 'short_window' stops with "
+       "its ground motion"},
       {{"sweep", portal, "--scales", "1,x", "--out", out.string()}, "--scales expects a positive number, got 'x'"},
       {{"sweep", portal, "--record", (dir.path() / "no.AT2").string(), "--out", out.string()}, "no.AT2"},
       {{"sweep", portal, "--jobs", "0", "--out", out.string()}, "--jobs expects a whole number"},

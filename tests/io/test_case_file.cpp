@@ -1058,8 +1058,8 @@ TEST(CaseFile, NameFromTheFileStemKeepsTheNameRule) {
 }  // namespace
 
 // The names a misspelled choice is matched against (io/name_hint.h): the
-// same name up to case and separators, else within two edits; nothing for
-// a word that is none of them (a review probe's "RK4", "rk_4" and
+// same name up to case and separators, else the closest within two edits
+// (one for a short name); nothing for a word that is none of them (a review probe's "RK4", "rk_4" and
 // "velocity_verlett" got only the list of names).
 TEST(NameHint, NearestNameFoldsCaseAndSeparatorsThenAllowsTwoEdits) {
   const std::vector<std::string> names = fq::integrator_names();
@@ -1068,7 +1068,9 @@ TEST(NameHint, NearestNameFoldsCaseAndSeparatorsThenAllowsTwoEdits) {
   EXPECT_EQ(fq::nearest_name("Velocity-Verlet", names), std::optional<std::string>("velocity_verlet"));
   EXPECT_EQ(fq::nearest_name("velocity_verlett", names), std::optional<std::string>("velocity_verlet"));
   EXPECT_EQ(fq::nearest_name("symplectic euler", names), std::optional<std::string>("symplectic_euler"));
-  EXPECT_EQ(fq::nearest_name("leapfrog", names), std::nullopt);
+  EXPECT_EQ(fq::nearest_name("rk", names), std::optional<std::string>("rk4"));
+  for (const char* far : {"leapfrog", "ok", "r", "4", "cd", "euler"})
+    EXPECT_EQ(fq::nearest_name(far, names), std::nullopt) << far;
   EXPECT_EQ(fq::nearest_name("", names), std::nullopt);
   EXPECT_EQ(fq::edit_distance("kitten", "sitting"), 3u);
 }

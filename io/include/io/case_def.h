@@ -348,8 +348,9 @@ struct CaseDef {
   // folder default: out/<name>, relative to the working directory (filled by
   // load_case_file; build_model fills it when left empty).
   OutputDef output;
-  // top-level key, and time.dt_s, time.duration_s, time.integrator and
-  // ground_motion.window_length_s where given -> 1-based line
+  // top-level key, and time.dt_s, time.duration_s, time.integrator,
+  // ground_motion.window_start_s and ground_motion.window_length_s where
+  // given -> 1-based line
   std::map<std::string, int> section_line;
 
   // Index of the item with that name/id, or -1.

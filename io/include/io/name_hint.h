@@ -16,7 +16,8 @@ std::size_t edit_distance(std::string_view a, std::string_view b);
 
 // The name among `names` that `given` most likely meant, or nothing: the
 // same name up to case, '_', '-' and spaces ("RK4", "rk_4", "Velocity-Verlet"),
-// else the first within two edits of it after that folding ("velocity_verlett").
+// else the closest after that folding within two edits ("velocity_verlett"),
+// one for a name of fewer than six letters ("rk" is "rk4", "ok" is nothing).
 std::optional<std::string> nearest_name(std::string_view given, const std::vector<std::string>& names);
 
 }  // namespace fq
