@@ -1119,6 +1119,18 @@ int command_sweep(int argc, char** argv, const std::atomic<bool>* stop_requested
                                      std::to_string(c.record.duration_s()) + " s)");
           }
           gm.window_length_s = std::min(gm.window_length_s, c.record.duration_s() - gm.window_start_s);
+          // A case that runs for its window (no duration_s) would run for
+          // less than a step: refused here, before any run, naming the
+          // record (review probe: it ended the sweep as an internal error,
+          // exit 4, after the other runs had started).
+          if (!v.time.duration_s && gm.window_length_s * gm.time_scale < v.time.dt_s) {
+            std::ostringstream why;
+            why << "expected at least one time step: with this record, '" << def.name << "' runs for its window of "
+                << gm.window_length_s << " record s at the time scale " << gm.time_scale << ", "
+                << gm.window_length_s * gm.time_scale << " s, less than its dt_s = " << v.time.dt_s
+                << " s (the record ends " << c.record.duration_s() << " s in)";
+            throw fq::InputError(args.records[r], 0, "--record", why.str());
+          }
           variants.emplace_back(fs::path(args.records[r]).stem().string(), std::move(v));
         }
       }

@@ -1255,6 +1255,17 @@ TEST(StudyCommands, BadInputIsRefusedBeforeAnythingIsWritten) {
          "blocks: [{id: cube, size_m: [0.1, 0.1, 0.1], center_m: [0, 0, 1], material: spruce}]\n"
          "ground_motion: {window_length_s: 5.0e-5, components: [{file: ramp.txt, format: two_column, axis: x}]}\n";
   const std::string short_window = (dir.path() / "short_window.yaml").string();
+  // The same case without duration_s runs for its window; with a --record of
+  // 5e-5 s (two samples) that is less than its step: refused naming the
+  // record, before any run (review probe: an internal error, exit 4).
+  std::string no_duration = read_text(short_window);
+  no_duration.replace(no_duration.find(", duration_s: 0.01"), std::string(", duration_s: 0.01").size(), "");
+  no_duration.replace(no_duration.find("window_length_s: 5.0e-5, "), std::string("window_length_s: 5.0e-5, ").size(),
+                      "");
+  std::ofstream(dir.path() / "no_duration.yaml") << no_duration;
+  std::ofstream(dir.path() / "tiny.AT2") << "PEER NGA STRONG MOTION DATABASE RECORD\nTest\n"
+                                            "ACCELERATION TIME SERIES IN UNITS OF G\nNPTS=    2, DT=   .0000500 SEC\n"
+                                            "  .1E-02  .2E-02\n";
   struct Case {
     std::vector<std::string> args;
     std::string message;
@@ -1270,6 +1281,10 @@ TEST(StudyCommands, BadInputIsRefusedBeforeAnythingIsWritten) {
       // Less than one step: the option is named, not the case's line.
       {{"compare", portal, "--window-length", "1e-9", "--out", out.string()},
        "option '--window-length': expected at least one time step"},
+      {{"sweep", (dir.path() / "no_duration.yaml").string(), "--scales", "1", "--record",
+        (dir.path() / "tiny.AT2").string(), "--out", out.string()},
+       "tiny.AT2: option '--record': expected at least one time step: with this record, 'short_window' runs for its "
+       "window of 5e-05 record s"},
       {{"compare", short_window, "--window-length", "0.02", "--out", out.string()},
        "option '--window-length': expected at least one time step: with --window-length, 'short_window' stops with "
        "its ground motion"},
