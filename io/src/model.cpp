@@ -372,11 +372,12 @@ Model build_model(const CaseDef& def_in) {
   // A run of no step would "complete" having done nothing (the case reader
   // refuses an explicit duration_s below dt_s; this catches a window, or a
   // duration shortened by compare/sweep --window-length).
-  // The line of a key of the case file where it was read, else its section's.
-  auto line_of = [&](const char* key) {
+  // The line of a key of the case file where it was read; 0 when not given.
+  auto key_line = [&](const char* key) {
     const auto it = def.section_line.find(key);
-    return it != def.section_line.end() ? it->second : time_line;
+    return it != def.section_line.end() ? it->second : 0;
   };
+  auto line_of = [&](const char* key) { return key_line(key) ? key_line(key) : time_line; };
   if (model.settings.duration_s < model.settings.dt_s) {
     if (def.time.duration_s)
       fail(line_of("time.duration_s"), "time.duration_s",
@@ -386,11 +387,8 @@ Model build_model(const CaseDef& def_in) {
     // (a probe's dt_s of 10 s was blamed on the window, at the time: line).
     // Without window_length_s the window runs from window_start_s to the
     // record's end (review probe: the message named the absent key).
-    auto at_line = [&](const char* key) {
-      const auto it = def.section_line.find(key);
-      return it != def.section_line.end() ? ", line " + std::to_string(it->second) : std::string();
-    };
-    const std::string window = def.section_line.count("ground_motion.window_length_s")
+    auto at_line = [&](const char* key) { return key_line(key) ? ", line " + std::to_string(key_line(key)) : ""; };
+    const std::string window = key_line("ground_motion.window_length_s")
                                    ? "ground_motion.window_length_s" + at_line("ground_motion.window_length_s")
                                    : "from ground_motion.window_start_s" + at_line("ground_motion.window_start_s") +
                                          " to the record's end";

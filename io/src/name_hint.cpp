@@ -33,10 +33,9 @@ std::string folded(std::string_view s) {
 std::optional<std::string> nearest_name(std::string_view given, const std::vector<std::string>& names) {
   const std::string g = folded(given);
   if (g.empty()) return std::nullopt;
-  for (const std::string& n : names)
-    if (folded(n) == g) return n;
-  // The closest within two edits, and within one of a name of fewer than six
-  // letters ("r", "ok" and "4" are not "rk4"; review probe).
+  // The closest after folding (0 edits: the same name), within two edits,
+  // and within one of a name of fewer than six letters ("r", "ok" and "4"
+  // are not "rk4"; review probe).
   std::optional<std::string> best;
   std::size_t best_distance = 3;
   for (const std::string& n : names) {
