@@ -41,6 +41,7 @@
 #include "progress_display.h"
 #include "run_outcome.h"
 #include "study_commands.h"
+#include "usage_error.h"
 #include "render/render_command.h"
 
 #if defined(_OPENMP)
@@ -179,10 +180,8 @@ struct RunArgs {
   bool list_joints = false;  // info --joints
 };
 
-[[noreturn]] void usage_error(const std::string& message, const char* help) {
-  std::cerr << "framequake: " << message << "\n\n" << help;
-  std::exit(kExitBadInput);
-}
+using fq_app::unknown_option;
+using fq_app::usage_error;
 
 // run_options: run's options (--out, --quiet, --force, --threads,
 // --checkpoint-every); --integrator is also info's; info_options: info's --joints.
@@ -238,7 +237,7 @@ RunArgs parse_run_args(int argc, char** argv, int first, const char* help, bool 
         usage_error("--checkpoint-every expects a positive number of simulated seconds, got '" + v + "'", help);
       a.checkpoint_every_s = s;
     } else if (!arg.empty() && arg[0] == '-') {
-      usage_error("unknown option '" + arg + "'", help);
+      unknown_option(arg, help);
     } else if (a.case_file.empty()) {
       a.case_file = arg;
     } else {
@@ -329,7 +328,7 @@ int command_resume(int argc, char** argv) {
       omp_set_num_threads(int(n));
 #endif
     } else if (!arg.empty() && arg[0] == '-') {
-      usage_error("unknown option '" + arg + "'", kResumeHelp);
+      unknown_option(arg, kResumeHelp);
     } else if (folder.empty()) {
       folder = arg;
     } else {

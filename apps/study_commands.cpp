@@ -29,6 +29,7 @@
 #include "collapse_bracket.h"
 #include "comparison_notes.h"
 #include "run_outcome.h"
+#include "usage_error.h"
 #include "fq_config.h"
 #include "io/accelerogram.h"
 #include "io/atomic_file.h"
@@ -111,11 +112,6 @@ const char* kSweepHelp =
     "Exit codes: 0 all runs completed and everything was written; 1 a run became\n"
     "unstable; 2 bad input (nothing run); 3 output failed; 130 interrupted (143 by SIGTERM, 129 by SIGHUP).\n";
 
-[[noreturn]] void usage_error(const std::string& message, const char* help) {
-  std::cerr << "framequake: " << message << "\n\n" << help;
-  std::exit(kExitBadInput);
-}
-
 double parse_positive(const std::string& text, const std::string& option, const char* help) {
   errno = 0;
   char* end = nullptr;
@@ -185,7 +181,7 @@ StudyArgs parse_study_args(int argc, char** argv, const char* help, bool sweep) 
     } else if (sweep && arg == "--record") {
       a.records.push_back(value("--record"));
     } else if (!arg.empty() && arg[0] == '-') {
-      usage_error("unknown option '" + arg + "'", help);
+      unknown_option(arg, help);
     } else {
       a.cases.push_back(arg);
     }

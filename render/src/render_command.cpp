@@ -132,7 +132,7 @@ int render_command(int argc, char** argv, int first, const std::atomic<bool>* st
     args = parse(argc, argv, first);
     args.options.stop_requested = stop_requested;
   } catch (const UsageError& e) {
-    std::cerr << "framequake: " << e.message << "\n\n" << kRenderHelp;
+    std::cerr << "framequake: error: " << e.message << "\n\n" << kRenderHelp;
     return kExitBadInput;
   }
   std::vector<RunData> runs;

@@ -748,6 +748,20 @@ TEST(CliUsage, UsageErrorsExitTwoWithUsageOnStderr) {
       {{"compare", c, "--jobs", "1", "--jobs", "2"}, "--jobs is given twice"},
       {{"sweep", c, "--scales", "1", "--scales", "2"}, "--scales is given twice"},
       {{"sweep", c, "--window-length", "1", "--window-length", "0.5"}, "--window-length is given twice"},
+      // An unknown option names the command's option it probably meant
+      // (io/name_hint.h, nearest_option): a misspelling, a longer word than
+      // the option, a beginning of it; nothing when no option is near.
+      {{"run", c, "--output", "x"}, "unknown option '--output' (did you mean '--out'?)"},
+      {{"run", c, "--thread", "2"}, "unknown option '--thread' (did you mean '--threads'?)"},
+      {{"run", c, "--integ", "rk4"}, "unknown option '--integ' (did you mean '--integrator'?)"},
+      {{"sweep", c, "--scale", "1"}, "unknown option '--scale' (did you mean '--scales'?)"},
+      {{"compare", c, "--window", "1"}, "unknown option '--window' (did you mean '--window-length'?)"},
+      {{"compare", c, "--no_figure"}, "unknown option '--no_figure' (did you mean '--no-figure'?)"},
+      {{"resume", dir.path().string(), "--quite"}, "unknown option '--quite' (did you mean '--quiet'?)"},
+      {{"run", c, "--bogus"}, "unknown option '--bogus'\n"},
+      {{"info", c, "--out", "x"}, "unknown option '--out'\n"},
+      {{"render"}, "missing OUT_DIR"},
+      {{"render", dir.path().string(), "--fsp", "3"}, "unknown option '--fsp'"},
   };
   for (const UsageRow& row : rows) {
     std::string shown;
@@ -755,7 +769,8 @@ TEST(CliUsage, UsageErrorsExitTwoWithUsageOnStderr) {
     SCOPED_TRACE(shown);
     const auto r = run_app(row.args, dir.path());
     EXPECT_EQ(r.code, 2) << r.err;
-    EXPECT_NE(r.err.find(row.message), std::string::npos) << r.err;
+    // Worded as every other error is ("framequake: error: ..."), then the usage.
+    EXPECT_NE(r.err.find(std::string("framequake: error: ") + row.message), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("Usage"), std::string::npos) << r.err;
     EXPECT_TRUE(r.out.empty()) << r.out;
   }

@@ -1056,4 +1056,45 @@ TEST(NameHint, NearestNameFoldsCaseAndSeparatorsThenAllowsTwoEdits) {
     EXPECT_EQ(fq::nearest_name(far, names), std::nullopt) << far;
   EXPECT_EQ(fq::nearest_name("", names), std::nullopt);
   EXPECT_EQ(fq::edit_distance("kitten", "sitting"), 3u);
+  // A swap of two neighbouring letters is one edit (two for Levenshtein);
+  // the swapped pair is not edited again ("ca" to "abc" is three).
+  EXPECT_EQ(fq::edit_distance("quite", "quiet"), 1u);
+  EXPECT_EQ(fq::edit_distance("ca", "abc"), 3u);
+}
+
+// An unknown command-line option is matched against the options its
+// command's usage text lists (the first word of a line of the list, so a
+// sentence's "--option=value" is none): nearest_name first, then the one
+// option the word begins with or that begins with the word.
+TEST(NameHint, NearestOptionReadsTheUsageText) {
+  const char* usage =
+      "Usage: tool CASE [options]\n"
+      "\n"
+      "Options:\n"
+      "  --out DIR      output folder\n"
+      "  --outline      draw outlines\n"
+      "  --threads N    threads\n"
+      "  --threshold X  limit\n"
+      "  --window-length S  seconds\n"
+      "  --no-figure    tables only\n"
+      "Every option also takes the form --option=value.\n";
+  EXPECT_EQ(fq::options_in_usage(usage),
+            (std::vector<std::string>{"--out", "--outline", "--threads", "--threshold", "--window-length", "--no-figure"}));
+  auto near = [&](const char* given) { return fq::nearest_option(given, usage); };
+  EXPECT_EQ(near("--thread"), std::optional<std::string>("--threads"));    // one edit
+  EXPECT_EQ(near("--no_figure"), std::optional<std::string>("--no-figure"));  // separators
+  EXPECT_EQ(near("--window"), std::optional<std::string>("--window-length"));  // its beginning
+  EXPECT_EQ(near("--threads-count"), std::optional<std::string>("--threads"));  // begins with it
+  EXPECT_EQ(near("--outlines"), std::optional<std::string>("--outline"));
+  // "--output" begins with "--out" only ("--outline" is not its beginning);
+  // "--outline-color" with both, and the longer is meant.
+  EXPECT_EQ(near("--output"), std::optional<std::string>("--out"));
+  EXPECT_EQ(near("--outline-color"), std::optional<std::string>("--outline"));
+  // Two options begin with "--thr": which was meant is not guessed; nor is
+  // one from two letters, nor a word that is no option's.
+  EXPECT_EQ(near("--thr"), std::nullopt);
+  EXPECT_EQ(near("--wi"), std::nullopt);
+  EXPECT_EQ(near("--option"), std::nullopt);
+  EXPECT_EQ(near("--bogus"), std::nullopt);
+  EXPECT_EQ(near("--"), std::nullopt);
 }

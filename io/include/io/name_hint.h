@@ -11,7 +11,9 @@
 
 namespace fq {
 
-// Levenshtein distance (insertions, deletions, substitutions) between a and b.
+// Edit distance between a and b: insertions, deletions, substitutions and
+// swaps of two neighbouring letters, each one edit (the optimal string
+// alignment distance; a swap is the commonest typing slip).
 std::size_t edit_distance(std::string_view a, std::string_view b);
 
 // The name among `names` that `given` most likely meant, or nothing: the
@@ -19,5 +21,16 @@ std::size_t edit_distance(std::string_view a, std::string_view b);
 // else the closest after that folding within two edits ("velocity_verlett"),
 // one for a name of fewer than six letters ("rk" is "rk4", "ok" is nothing).
 std::optional<std::string> nearest_name(std::string_view given, const std::vector<std::string>& names);
+
+// The options ("--name") a command's usage text lists, in order, once each:
+// the first word of each line of its option list.
+std::vector<std::string> options_in_usage(std::string_view usage);
+
+// The option of `usage` that an unknown option `given` most likely meant:
+// nearest_name among them ("--thread" is "--threads"), else the longest
+// option the given one begins with ("--output" is "--out"), else the one
+// option that begins with the given one ("--integ" is "--integrator"; at
+// least three letters after the dashes, and nothing when two do).
+std::optional<std::string> nearest_option(std::string_view given, std::string_view usage);
 
 }  // namespace fq
