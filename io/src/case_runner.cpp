@@ -374,6 +374,19 @@ std::string checkpoint_count_note(double every_s, const Simulation& sim) {
   return note.str();
 }
 
+// A note when an output interval is not shorter than the run: the file
+// then holds the start and the end only, which a user who asked for a
+// history is better told before the run than after it (closed-form probe:
+// history_interval_s 2 s on a 1 s run, accepted without a word).
+std::string interval_beyond_run_note(const char* field, double interval_s, const Simulation& sim, const char* what) {
+  const std::int64_t steps = sim.total_steps();
+  if (steps <= 1 || steps_per_interval(interval_s, sim.settings().dt_s) < steps) return "";
+  std::ostringstream note;
+  note << std::setprecision(6) << field << " = " << interval_s << " s is not shorter than the run ("
+       << double(steps) * sim.settings().dt_s << " s): " << what << " at the start and the end only";
+  return note.str();
+}
+
 // The ground motion a run applied, for summary.json: each component's
 // record, direction and scales and the part of the record used, and the
 // peaks the run felt (up to its end), so that a results folder can be
@@ -1642,7 +1655,10 @@ CaseRunReport run_case(const CaseDef& case_def, const CaseRunOptions& options) {
          {interval_rounding_note("output.frame_interval_s", output.frame_interval_s, dt),
           interval_rounding_note("output.history_interval_s", output.history_interval_s, dt),
           meta ? interval_rounding_note("--checkpoint-every", meta->checkpoint_every_s, dt) : std::string(),
-          meta ? checkpoint_count_note(meta->checkpoint_every_s, sim) : std::string(), ground_motion_end_note(sim)})
+          meta ? checkpoint_count_note(meta->checkpoint_every_s, sim) : std::string(),
+          interval_beyond_run_note("output.frame_interval_s", output.frame_interval_s, sim, "frames are written"),
+          interval_beyond_run_note("output.history_interval_s", output.history_interval_s, sim, "history.csv has rows"),
+          ground_motion_end_note(sim)})
       if (!note.empty()) options.on_note(note);
     for (const std::string& note : planar_link_system_notes(def, scene)) options.on_note(note);
   }

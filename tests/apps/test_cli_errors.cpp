@@ -298,6 +298,40 @@ TEST(CliInfo, NegativeAxisPrintsWithoutNegativeZeros) {
   EXPECT_EQ(r.out.find("(-0 "), std::string::npos) << r.out;
 }
 
+// An output interval not shorter than the run leaves its file with the
+// start and the end only (steps 0 and 100 of the base case's 100 steps of
+// 1e-4 s): run says so before it starts (a probe's history interval of 2 s
+// on a 1 s run passed without a word); half the run gets no note.
+TEST(CliErrors, AnOutputIntervalAsLongAsTheRunIsNoted) {
+  TempDir dir;
+  std::ofstream(dir.path() / "rec.AT2") << kBaseRecord;
+  std::ofstream(dir.path() / "long.yaml")
+      << std::string(kBaseCase) + "output: {frame_interval_s: 5, history_interval_s: 0.01}\n";
+  std::ofstream(dir.path() / "half.yaml")
+      << std::string(kBaseCase) + "output: {frame_interval_s: 0.005, history_interval_s: 0.005}\n";
+  const fs::path out = dir.path() / "out";
+  const auto run = run_app({"run", (dir.path() / "long.yaml").string(), "--out", out.string(), "--quiet"}, dir.path());
+  ASSERT_EQ(run.code, 0) << run.err;
+  EXPECT_NE(run.err.find("framequake: note: output.frame_interval_s = 5 s is not shorter than the run (0.01 s): "
+                         "frames are written at the start and the end only"),
+            std::string::npos)
+      << run.err;
+  EXPECT_NE(run.err.find("framequake: note: output.history_interval_s = 0.01 s is not shorter than the run (0.01 s): "
+                         "history.csv has rows at the start and the end only"),
+            std::string::npos)
+      << run.err;
+  EXPECT_EQ(std::distance(fs::directory_iterator(out / "frames"), fs::directory_iterator()), 2);
+  std::ifstream history(out / "history.csv");
+  int lines = 0;
+  for (std::string line; std::getline(history, line);) ++lines;
+  EXPECT_EQ(lines, 1 + 2);
+  const auto half =
+      run_app({"run", (dir.path() / "half.yaml").string(), "--out", (dir.path() / "half").string(), "--quiet"},
+              dir.path());
+  ASSERT_EQ(half.code, 0) << half.err;
+  EXPECT_EQ(half.err.find("not shorter than the run"), std::string::npos) << half.err;
+}
+
 // Output intervals are whole numbers of steps (io/run_output.h). info
 // counts the frames and rows run will write, and says, as run does, when
 // an interval was rounded; the run's own files are the reference. Base
