@@ -384,23 +384,52 @@ def plot_sweep(folder):
     save_figure(fig, os.path.join(folder, "sweep.png"), metadata=texts)
 
 
-def plot_stability(csv_path):
+def draw_stability(csv_path):
+    """Per integrator: omega_max dt at the bisected limit on the jointed
+    chain, at the engine's estimate of the stable step (which run and info
+    use) and in theory, each bar labelled with its value; an integrator with
+    no stable step (forward Euler: omega dt 0) is labelled so instead of
+    drawn empty. Returns the figure and its PNG texts (plot_stability)."""
     rows = read_csv(csv_path)
+    if not rows:
+        fail("no rows in " + csv_path)
     names = [r["integrator"] for r in rows]
     measured = [number(r["omega_dt"]) for r in rows]
     theory = [number(r["omega_dt_theory"]) for r in rows]
+    ratio = [number(r["ratio"]) for r in rows]
+    # The estimate's omega dt: the bisected one over bisected / estimate.
+    estimate = [m / q if q > 0 else 0.0 for m, q in zip(measured, ratio)]
     fig, ax = plt.subplots()
-    x = range(len(rows))
-    ax.bar([i - 0.2 for i in x], measured, width=0.4, color=COLOURS[1], label="bisected on the jointed chain")
-    ax.bar([i + 0.2 for i in x], theory, width=0.4, color="0.6", label="theory (linear oscillator)")
-    ax.set_xticks(list(x))
+    width = 0.27
+    series = [(measured, -width, COLOURS[1], "bisected on the jointed chain"),
+              (estimate, 0.0, COLOURS[2], "engine's estimate (run refuses a longer dt)"),
+              (theory, width, "0.6", "theory (linear oscillator)")]
+    labels = []
+    for values, shift, colour, label in series:
+        ax.bar([i + shift for i in range(len(rows))], values, width=width, color=colour, label=label)
+        for i, v in enumerate(values):
+            if v > 0:
+                ax.annotate("%.5g" % v, (i + shift, v), ha="center", va="bottom", fontsize=6, rotation=90,
+                            xytext=(0, 2), textcoords="offset points")
+    for i, (name, m) in enumerate(zip(names, measured)):
+        if m > 0:
+            labels.append("%s: bisected %.6g, estimate %.6g, theory %.6g" % (name, m, estimate[i], theory[i]))
+        else:
+            ax.annotate("unstable\nat every dt", (i, 0.1), ha="center", va="bottom", fontsize=8)
+            labels.append("%s: unstable at every dt" % name)
+    ax.set_xticks(list(range(len(rows))))
     ax.set_xticklabels(names, rotation=15)
     ax.set_ylabel("largest stable omega_max * dt (-)")
+    ax.set_ylim(0, 1.2 * max(measured + theory + estimate + [1.0]))
     ax.set_title("Stability limit per integrator")
     ax.legend(loc="upper left", fontsize=8)
     fig.tight_layout()
-    target = os.path.splitext(csv_path)[0] + ".png"
-    save_figure(fig, target)
+    return fig, {"Description": "; ".join(labels)}
+
+
+def plot_stability(csv_path):
+    fig, texts = draw_stability(csv_path)
+    save_figure(fig, os.path.splitext(csv_path)[0] + ".png", metadata=texts)
 
 
 # Fixed colour and marker per integrator, the same in every panel.

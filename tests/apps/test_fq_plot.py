@@ -276,5 +276,30 @@ class SweepFigure(FigureTest):
         self.assertAlmostEqual(float(filled[0].get_offsets()[0][1]), 0.04)
 
 
+
+class StabilityFigure(unittest.TestCase):
+    """The stability figure (fq_plot.py stability) from a made-up table in
+    the form validation/stability_limits writes: each integrator's bisected,
+    estimated (bisected / ratio) and theoretical omega dt, and an integrator
+    without a stable step named as such (an audit found its slot empty)."""
+
+    def test_estimate_drawn_and_no_stable_step_named(self):
+        with tempfile.TemporaryDirectory() as folder:
+            path = os.path.join(folder, "limits.csv")
+            with open(path, "w", newline="") as f:
+                w = csv.writer(f)
+                w.writerow(["integrator", "dt_bisected_s", "omega_dt", "omega_dt_theory", "dt_estimate_s", "ratio",
+                            "steps_to_energy_threshold"])
+                w.writerow(["central_difference", "1e-4", "2.1", "2", "0.95e-4", "1.05", ""])
+                w.writerow(["forward_euler", "0", "0", "0", "0", "0", "500"])
+            fig, texts = fq_plot.draw_stability(path)
+            self.assertEqual(texts["Description"], "central_difference: bisected 2.1, estimate 2, theory 2; "
+                             "forward_euler: unstable at every dt")
+            heights = sorted(round(p.get_height(), 12) for p in fig.axes[0].patches)
+            self.assertEqual(heights, [0.0, 0.0, 0.0, 2.0, 2.0, 2.1])
+            self.assertIn("unstable\nat every dt", [t.get_text() for t in fig.axes[0].texts])
+            plt.close(fig)
+
+
 if __name__ == "__main__":
     unittest.main(verbosity=2)
