@@ -13,8 +13,7 @@ void usage_error(const std::string& message, const char* usage) {
 }
 
 void unknown_option(const std::string& option, const char* usage) {
-  const auto hint = fq::nearest_option(option, usage);
-  usage_error("unknown option '" + option + "'" + (hint ? " (did you mean '" + *hint + "'?)" : ""), usage);
+  usage_error(fq::unknown_option_message(option, usage), usage);
 }
 
 }  // namespace fq_app

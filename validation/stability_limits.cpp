@@ -50,6 +50,7 @@
 #include "io/atomic_file.h"
 #include "io/case_file.h"
 #include "io/case_runner.h"
+#include "io/name_hint.h"
 #include "stability_limits_core.h"
 
 namespace {
@@ -127,7 +128,7 @@ int main(int argc, char** argv) {
       std::cout << kUsage;
       return 0;
     }
-    if (a.empty() || a[0] == '-') return usage_error("unknown option '" + a + "'");
+    if (a.empty() || a[0] == '-') return usage_error(fq::unknown_option_message(a, kUsage));
     if (argc > 2) return usage_error("one output prefix expected, got " + std::to_string(argc - 1) + " arguments");
     prefix = a;
   }

@@ -36,6 +36,7 @@
 
 #include "io/atomic_file.h"
 #include "io/input_error.h"
+#include "io/name_hint.h"
 #include "work_precision_core.h"
 
 namespace {
@@ -151,7 +152,7 @@ int main(int argc, char** argv) {
       } else if (a == "--quick") {
         quick = true;
       } else {
-        return usage_error("unknown option '" + a + "'");
+        return usage_error(fq::unknown_option_message(a, kUsage));
       }
     } catch (const std::invalid_argument& e) {
       return usage_error(std::string(e.what()).find("--") == 0 ? e.what() : a + " expects a positive integer");

@@ -92,4 +92,9 @@ std::optional<std::string> nearest_option(std::string_view given, std::string_vi
   return found;
 }
 
+std::string unknown_option_message(std::string_view given, std::string_view usage) {
+  const auto hint = nearest_option(given, usage);
+  return "unknown option '" + std::string(given) + "'" + (hint ? " (did you mean '" + *hint + "'?)" : "");
+}
+
 }  // namespace fq

@@ -64,6 +64,8 @@ rm -f stability_limits.csv stability_limits.md
 expect 0 "usage: work_precision" out -- "$precision" --help
 only_io_files "work_precision --help"
 expect 2 "unknown option '--bogus'" err -- "$precision" --bogus
+# A misspelt option names the one meant (io/name_hint.h, read from the usage).
+expect 2 "unknown option '--repetition' (did you mean '--repetitions'?)" err -- "$precision" --repetition 2
 expect 2 "--out folder '$work/missing' does not exist" err -- "$precision" --out "$work/missing"
 expect 2 "--repetitions expects a positive integer" err -- "$precision" --repetitions 0
 

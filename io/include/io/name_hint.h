@@ -33,4 +33,8 @@ std::vector<std::string> options_in_usage(std::string_view usage);
 // least three letters after the dashes, and nothing when two do).
 std::optional<std::string> nearest_option(std::string_view given, std::string_view usage);
 
+// The message of an unknown option: "unknown option '--given'", followed by
+// " (did you mean '--option'?)" when nearest_option finds one.
+std::string unknown_option_message(std::string_view given, std::string_view usage);
+
 }  // namespace fq
