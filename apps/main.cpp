@@ -146,7 +146,9 @@ const char* kResumeHelp =
     "  --help         this text\n"
     "\n"
     "Exit codes as for run; 2 also when the checkpoint is missing, damaged,\n"
-    "truncated, of another format version, or the case changed since.\n";
+    "truncated, of another format version, or the case changed since, and when\n"
+    "the run had completed (nothing to resume); 3 also when its events.csv has\n"
+    "the columns of an earlier framequake.\n";
 
 const char* kInfoHelp =
     "Usage: framequake info CASE [--integrator NAME] [--joints]\n"
