@@ -391,7 +391,9 @@ int command_info(int argc, char** argv) {
 // Offscreen animation of finished runs: everything lives in render/.
 int command_render(int argc, char** argv) {
   install_stop_handlers();
-  const int code = fq::render::render_command(argc, argv, 2, &g_stop_requested);
+  const int code = fq::render::render_command(argc, argv, 2, &g_stop_requested, [](const std::string& option) {
+    return fq::unknown_option_message(option, fq::render::kRenderHelp);
+  });
   return code == kExitInterrupted ? interrupted_exit_code() : code;
 }
 

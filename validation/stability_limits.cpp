@@ -59,7 +59,8 @@ constexpr const char* kUsage =
     "usage: stability_limits [OUT_PREFIX]\n"
     "  writes OUT_PREFIX.csv and OUT_PREFIX.md (default stability_limits, in the working folder; the folder\n"
     "  must exist) and prints the markdown table; validation/results/stability_limits is the recorded sitting,\n"
-    "  which that prefix overwrites\n";
+    "  which that prefix overwrites\n"
+    "  --help  this text\n";
 
 // Largest displacement (m) of any body over `steps` central-difference
 // steps of the case at dt, with gravity and ground motion removed and small

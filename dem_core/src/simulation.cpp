@@ -476,6 +476,7 @@ RunResult Simulation::run(const std::atomic<bool>* stop_requested) {
   initialize();
   RunResult result;
   const std::int64_t first = step_;  // 0, or the step a resumed run starts from
+  run_first_step_ = first;
   for (StepObserver* m : step_monitors_) m->on_start(*this);
   for (const ObserverSlot& o : observers_) o.observer->on_start(*this);
   if (step_ == 0) observe(true);

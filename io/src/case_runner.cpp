@@ -380,10 +380,16 @@ std::string checkpoint_count_note(double every_s, const Simulation& sim) {
 // history_interval_s 2 s on a 1 s run, accepted without a word).
 std::string interval_beyond_run_note(const char* field, double interval_s, const Simulation& sim, const char* what) {
   const std::int64_t steps = sim.total_steps();
-  if (steps <= 1 || steps_per_interval(interval_s, sim.settings().dt_s) < steps) return "";
+  const std::int64_t every = steps_per_interval(interval_s, sim.settings().dt_s);
+  if (steps <= 1 || every < steps) return "";
+  // Worded on the interval used: a requested one shorter than the run can
+  // round up to it (1.6e-5 s on a run of two 1e-5 s steps; review probe).
   std::ostringstream note;
-  note << std::setprecision(6) << field << " = " << interval_s << " s is not shorter than the run ("
-       << double(steps) * sim.settings().dt_s << " s): " << what << " at the start and the end only";
+  note << std::setprecision(6) << field << " = " << interval_s << " s";
+  if (interval_s < double(steps) * sim.settings().dt_s)
+    note << ", used as " << every << " steps (" << double(every) * sim.settings().dt_s << " s),";
+  note << " is not shorter than the run (" << double(steps) * sim.settings().dt_s << " s): " << what
+       << " at the start and the end only";
   return note.str();
 }
 
@@ -480,9 +486,9 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
                      steps_per_interval(checkpoints->checkpoint_every_s, sim.settings().dt_s));
   }
   {
-    std::ostringstream v;
-    v << std::setprecision(17) << scene.stable_time_step.dt_crit_s;
-    writer.add_summary_field("stable_dt_s", std::isfinite(scene.stable_time_step.dt_crit_s) ? v.str() : "null");
+    // The shortest text that reads back to the same double, as every number
+    // of the summary (17 digits printed a last digit too many; review probe).
+    writer.add_summary_field("stable_dt_s", JsonWriter::number(scene.stable_time_step.dt_crit_s));
     writer.add_summary_field("integrator", std::string("\"") + integrator_name(sim.settings().integrator) + "\"");
     if (def.contact)
       writer.add_summary_field("contact_intact_nodes",
@@ -522,12 +528,33 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
     if (const std::string w = initial_overlap_warning(scene.contacts->initial_overlaps(), sim.bodies()); !w.empty())
       warn(w);
   }
+  // What summary.json holds beside the run's own figures (docs/summary_json.md),
+  // as far as the run got; `assessed`: the storeys get verdicts.
+  auto add_end_fields = [&](bool assessed) {
+    JsonWriter list(0);
+    list.begin_array();
+    for (const std::string& w : report.warnings) list.value(w);
+    writer.add_summary_field("warnings", list.end_array().str());
+    writer.add_summary_field("ground_motion", ground_motion_summary(sim));
+    if (scene.joints) add_joint_summary(writer, *scene.joints, sim.events(), scene.joint_labels, scene.joint_names);
+    if (scene.contacts) add_contact_summary(writer, *scene.contacts, sim.bodies());
+    if (!scene.storeys.empty()) add_storey_summary(writer, storeys, assessed);
+    char hash[19];
+    std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(sim.state_hash()));
+    writer.add_summary_field("state_hash", std::string("\"") + hash + "\"");
+  };
   try {
     report.result = sim.run(options.stop_requested);
   } catch (const OutputError& e) {
     // A frame, a row or a checkpoint could not be written: the folder is
-    // left with whole rows and a summary saying so (where the disk allows).
-    writer.add_summary_field("ground_motion", ground_motion_summary(sim));
+    // left with whole rows and a summary saying so (where the disk allows),
+    // with the warnings, joints, storeys and state hash so far (the summary
+    // had the ground motion only; review probe).
+    try {
+      add_end_fields(true);
+    } catch (const std::exception&) {
+      // The summary is still written with the run's own figures.
+    }
     const bool summary_written = writer.abandon(sim, e.what());
     std::ostringstream m;
     m << e.what() << " (the run ended at t = " << sim.time_s() << " s; the rows and frames before it are kept"
@@ -558,20 +585,7 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
         if (const std::string w = storeys.peak_at_end_warning(i, sim.time_s()); !w.empty()) warn(w);
   }
   try {
-    {
-      JsonWriter list(0);
-      list.begin_array();
-      for (const std::string& w : report.warnings) list.value(w);
-      writer.add_summary_field("warnings", list.end_array().str());
-    }
-    writer.add_summary_field("ground_motion", ground_motion_summary(sim));
-    if (scene.joints) add_joint_summary(writer, *scene.joints, sim.events(), scene.joint_labels, scene.joint_names);
-    if (scene.contacts) add_contact_summary(writer, *scene.contacts, sim.bodies());
-    if (!scene.storeys.empty())
-      add_storey_summary(writer, storeys, report.result.status != RunStatus::Unstable);
-    char hash[19];
-    std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(sim.state_hash()));
-    writer.add_summary_field("state_hash", std::string("\"") + hash + "\"");
+    add_end_fields(report.result.status != RunStatus::Unstable);
     writer.finish(sim, report.result);
   } catch (const std::exception& e) {
     throw OutputError(e.what());
@@ -1006,6 +1020,20 @@ std::string no_columns_warning(const CaseDef& def) {
   return w.str();
 }
 
+std::string ground_without_contact_warning(const CaseDef& def) {
+  if (!def.ground || (def.contact && def.contact->ground)) return {};
+  if (def.members.empty() && def.blocks.empty()) return {};
+  const auto line = def.section_line.find("ground");
+  std::ostringstream w;
+  w << def.source_file.string();
+  if (line != def.section_line.end()) w << ":" << line->second;
+  w << ": the case has a ground (ground.level_m = " << def.ground->level_m
+    << " m) but no contact with it (contact.ground), so nothing rests on it: free bodies fall through its surface "
+       "(support joints still tie members to it); give contact: {ground: {normal_stiffness_N_per_m: ..., "
+       "restitution: ..., friction_coefficient: ...}} for a ground that bears (cases/README.md, contact)";
+  return w.str();
+}
+
 std::string unjoined_members_warning(const CaseDef& def, const Scene& scene) {
   if (scene.joints == nullptr || scene.joints->joint_count() == 0) return {};
   const BodyStore& bodies = scene.simulation->bodies();
@@ -1038,7 +1066,7 @@ std::vector<std::string> case_warnings(const CaseDef& def, const Scene& scene) {
                         brace_free_ends_warning(def, scene), brace_on_supported_node_warning(def, scene),
                         unused_joint_rules_warning(def),
                         horizontal_columns_warning(def), turned_column_sections_warning(def, scene),
-                        no_columns_warning(def)})
+                        no_columns_warning(def), ground_without_contact_warning(def)})
     if (!w.empty()) out.push_back(std::move(w));
   for (std::string& w : ground_motion_direction_warnings(scene.simulation->ground_motion())) out.push_back(std::move(w));
   if (std::string w = ground_motion_sampling_warning(*scene.simulation); !w.empty()) out.push_back(std::move(w));

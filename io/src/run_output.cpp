@@ -464,7 +464,11 @@ bool RunOutput::abandon(const Simulation& sim, const std::string& why) noexcept 
     RunResult reached;
     reached.status = RunStatus::Stopped;
     reached.steps = sim.steps_done();
+    reached.steps_this_call = sim.steps_this_run();
     reached.simulated_s = sim.time_s();
+    // The wall time the run had taken (it was written as 0, and
+    // steps_per_second as null, after seconds of running; review probe).
+    reached.wall_s = sim.wall_seconds();
     reached.message = "the output could not be written: " + why;
     o.write_summary(sim, reached, "output_failed");
     return true;

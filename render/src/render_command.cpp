@@ -70,7 +70,7 @@ int parse_int(const std::string& option, const std::string& v, int lo, int hi) {
   return int(n);
 }
 
-Args parse(int argc, char** argv, int first) {
+Args parse(int argc, char** argv, int first, const std::function<std::string(const std::string&)>& unknown_option) {
   Args a;
   for (int i = first; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -102,7 +102,7 @@ Args parse(int argc, char** argv, int first) {
       a.options.panel_width_px = parse_int("--size (width)", v.substr(0, x), 64, 4096);
       a.options.panel_height_px = parse_int("--size (height)", v.substr(x + 1), 64, 4096);
     } else if (!arg.empty() && arg[0] == '-') {
-      throw UsageError{"unknown option '" + arg + "'"};
+      throw UsageError{unknown_option ? unknown_option(arg) : "unknown option '" + arg + "'"};
     } else {
       a.runs.emplace_back(arg);
     }
@@ -126,10 +126,11 @@ Args parse(int argc, char** argv, int first) {
 
 }  // namespace
 
-int render_command(int argc, char** argv, int first, const std::atomic<bool>* stop_requested) {
+int render_command(int argc, char** argv, int first, const std::atomic<bool>* stop_requested,
+                   const std::function<std::string(const std::string&)>& unknown_option) {
   Args args;
   try {
-    args = parse(argc, argv, first);
+    args = parse(argc, argv, first, unknown_option);
     args.options.stop_requested = stop_requested;
   } catch (const UsageError& e) {
     std::cerr << "framequake: error: " << e.message << "\n\n" << kRenderHelp;

@@ -397,8 +397,9 @@ def draw_stability(csv_path):
     measured = [number(r["omega_dt"]) for r in rows]
     theory = [number(r["omega_dt_theory"]) for r in rows]
     ratio = [number(r["ratio"]) for r in rows]
-    # The estimate's omega dt: the bisected one over bisected / estimate.
-    estimate = [m / q if q > 0 else 0.0 for m, q in zip(measured, ratio)]
+    # The estimate's omega dt: the bisected one over bisected / estimate; 0
+    # with no stable step, NaN (drawn as no bar) where the table has no ratio.
+    estimate = [m / q if q > 0 else 0.0 if m == 0 else math.nan for m, q in zip(measured, ratio)]
     fig, ax = plt.subplots()
     width = 0.27
     series = [(measured, -width, COLOURS[1], "bisected on the jointed chain"),
@@ -408,11 +409,14 @@ def draw_stability(csv_path):
     for values, shift, colour, label in series:
         ax.bar([i + shift for i in range(len(rows))], values, width=width, color=colour, label=label)
         for i, v in enumerate(values):
-            if v > 0:
+            if math.isfinite(v) and v > 0:
                 ax.annotate("%.5g" % v, (i + shift, v), ha="center", va="bottom", fontsize=6, rotation=90,
                             xytext=(0, 2), textcoords="offset points")
     for i, (name, m) in enumerate(zip(names, measured)):
-        if m > 0:
+        if not math.isfinite(m):  # an empty or unreadable cell: not a finding
+            ax.annotate("no value", (i, 0.1), ha="center", va="bottom", fontsize=8)
+            labels.append("%s: no value" % name)
+        elif m > 0:
             labels.append("%s: bisected %.6g, estimate %.6g, theory %.6g" % (name, m, estimate[i], theory[i]))
         else:
             ax.annotate("unstable\nat every dt", (i, 0.1), ha="center", va="bottom", fontsize=8)
@@ -420,7 +424,7 @@ def draw_stability(csv_path):
     ax.set_xticks(list(range(len(rows))))
     ax.set_xticklabels(names, rotation=15)
     ax.set_ylabel("largest stable omega_max * dt (-)")
-    ax.set_ylim(0, 1.2 * max(measured + theory + estimate + [1.0]))
+    ax.set_ylim(0, 1.2 * max([v for v in measured + theory + estimate if math.isfinite(v)] + [1.0]))
     ax.set_title("Stability limit per integrator")
     ax.legend(loc="upper left", fontsize=8)
     fig.tight_layout()

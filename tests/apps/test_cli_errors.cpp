@@ -309,6 +309,9 @@ TEST(CliErrors, AnOutputIntervalAsLongAsTheRunIsNoted) {
       << std::string(kBaseCase) + "output: {frame_interval_s: 5, history_interval_s: 0.01}\n";
   std::ofstream(dir.path() / "half.yaml")
       << std::string(kBaseCase) + "output: {frame_interval_s: 0.005, history_interval_s: 0.005}\n";
+  // 0.00996 s is 99.6 steps, used as 100: the whole run, though shorter than it.
+  std::ofstream(dir.path() / "rounded.yaml")
+      << std::string(kBaseCase) + "output: {frame_interval_s: 0.005, history_interval_s: 0.00996}\n";
   const fs::path out = dir.path() / "out";
   const auto run = run_app({"run", (dir.path() / "long.yaml").string(), "--out", out.string(), "--quiet"}, dir.path());
   ASSERT_EQ(run.code, 0) << run.err;
@@ -330,6 +333,14 @@ TEST(CliErrors, AnOutputIntervalAsLongAsTheRunIsNoted) {
               dir.path());
   ASSERT_EQ(half.code, 0) << half.err;
   EXPECT_EQ(half.err.find("not shorter than the run"), std::string::npos) << half.err;
+  const auto rounded =
+      run_app({"run", (dir.path() / "rounded.yaml").string(), "--out", (dir.path() / "rounded").string(), "--quiet"},
+              dir.path());
+  ASSERT_EQ(rounded.code, 0) << rounded.err;
+  EXPECT_NE(rounded.err.find("framequake: note: output.history_interval_s = 0.00996 s, used as 100 steps (0.01 s), is "
+                             "not shorter than the run (0.01 s): history.csv has rows at the start and the end only"),
+            std::string::npos)
+      << rounded.err;
 }
 
 // Output intervals are whole numbers of steps (io/run_output.h). info
@@ -795,7 +806,7 @@ TEST(CliUsage, UsageErrorsExitTwoWithUsageOnStderr) {
       {{"run", c, "--bogus"}, "unknown option '--bogus'\n"},
       {{"info", c, "--out", "x"}, "unknown option '--out'\n"},
       {{"render"}, "missing OUT_DIR"},
-      {{"render", dir.path().string(), "--fsp", "3"}, "unknown option '--fsp'"},
+      {{"render", dir.path().string(), "--fsp", "3"}, "unknown option '--fsp' (did you mean '--fps'?)"},
   };
   for (const UsageRow& row : rows) {
     std::string shown;

@@ -277,6 +277,17 @@ class SweepFigure(FigureTest):
 
 
 
+def write_limits(folder, rows):
+    """A table in the form validation/stability_limits writes; returns its path."""
+    path = os.path.join(folder, "limits.csv")
+    with open(path, "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["integrator", "dt_bisected_s", "omega_dt", "omega_dt_theory", "dt_estimate_s", "ratio",
+                    "steps_to_energy_threshold"])
+        w.writerows(rows)
+    return path
+
+
 class StabilityFigure(unittest.TestCase):
     """The stability figure (fq_plot.py stability) from a made-up table in
     the form validation/stability_limits writes: each integrator's bisected,
@@ -285,19 +296,26 @@ class StabilityFigure(unittest.TestCase):
 
     def test_estimate_drawn_and_no_stable_step_named(self):
         with tempfile.TemporaryDirectory() as folder:
-            path = os.path.join(folder, "limits.csv")
-            with open(path, "w", newline="") as f:
-                w = csv.writer(f)
-                w.writerow(["integrator", "dt_bisected_s", "omega_dt", "omega_dt_theory", "dt_estimate_s", "ratio",
-                            "steps_to_energy_threshold"])
-                w.writerow(["central_difference", "1e-4", "2.1", "2", "0.95e-4", "1.05", ""])
-                w.writerow(["forward_euler", "0", "0", "0", "0", "0", "500"])
+            path = write_limits(folder, [["central_difference", "1e-4", "2.1", "2", "0.95e-4", "1.05", ""],
+                                         ["forward_euler", "0", "0", "0", "0", "0", "500"]])
             fig, texts = fq_plot.draw_stability(path)
             self.assertEqual(texts["Description"], "central_difference: bisected 2.1, estimate 2, theory 2; "
                              "forward_euler: unstable at every dt")
             heights = sorted(round(p.get_height(), 12) for p in fig.axes[0].patches)
             self.assertEqual(heights, [0.0, 0.0, 0.0, 2.0, 2.0, 2.1])
             self.assertIn("unstable\nat every dt", [t.get_text() for t in fig.axes[0].texts])
+            plt.close(fig)
+
+    def test_missing_values_are_named_not_drawn(self):
+        """An empty or NaN cell (a table edited by hand) is "no value", not an
+        integrator without a stable step, and does not break the axis."""
+        with tempfile.TemporaryDirectory() as folder:
+            path = write_limits(folder, [["rk4", "", "nan", "2.828", "", "", ""],
+                                         ["central_difference", "1e-4", "2", "2", "1e-4", "", ""]])
+            fig, texts = fq_plot.draw_stability(path)
+            self.assertEqual(texts["Description"], "rk4: no value; central_difference: bisected 2, estimate nan, "
+                             "theory 2")
+            self.assertAlmostEqual(fig.axes[0].get_ylim()[1], 1.2 * 2.828)
             plt.close(fig)
 
 

@@ -22,6 +22,7 @@
 #include <atomic>
 #include <cerrno>
 #include <cstdlib>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -1216,6 +1217,24 @@ TEST(RunOutput, AWriteFailingMidRunEndsWithAnOutputErrorWholeRowsAndASummarySayi
   const std::string summary = read_text(out / "summary.json");
   EXPECT_EQ(json_field(summary, "status"), "\"output_failed\"") << summary;
   EXPECT_EQ(json_field(summary, "steps"), "2100");  // the frame due at step 2100 failed
+  // The rest of a summary as far as the run got (it had the ground motion
+  // only, a wall time of 0 and no steps per second; review probe): the
+  // warnings, the contacts' press and the state hash, which is that of an
+  // undisturbed run of the same 2100 steps.
+  EXPECT_EQ(json_field(summary, "warnings").substr(0, 1), "[") << summary;
+  EXPECT_NE(json_field(summary, "contact_press_peak"), "") << summary;
+  EXPECT_GT(std::stod(json_field(summary, "wall_time_s")), 0.0) << summary;
+  EXPECT_GT(std::stod(json_field(summary, "steps_per_second")), 0.0) << summary;
+  {
+    fq::CaseDef def = fq::load_case_file(file);
+    def.time.duration_s = 2100 * 1.0e-5;
+    fq::CaseRunOptions undisturbed;
+    undisturbed.output_folder = dir.path() / "undisturbed";
+    fq::run_case(def, undisturbed);
+    const std::string reference = read_text(dir.path() / "undisturbed" / "summary.json");
+    EXPECT_EQ(json_field(reference, "steps"), "2100");
+    EXPECT_EQ(json_field(summary, "state_hash"), json_field(reference, "state_hash")) << summary;
+  }
   // The rows written before the failure (steps 0, 10, ..., 2100) and no
   // part of one; the summary counts what the file holds.
   const std::string history = read_text(out / "history.csv");
@@ -1229,6 +1248,32 @@ TEST(RunOutput, AWriteFailingMidRunEndsWithAnOutputErrorWholeRowsAndASummarySayi
   const std::vector<PvdEntry> entries = parse_pvd(out / "case.pvd", &ok);
   ASSERT_TRUE(ok);
   EXPECT_EQ(entries.size(), 21u);
+}
+
+// summary.json's stable_dt_s is the engine's estimate as the shortest text
+// that reads back to it, as every number of the summary (it was printed to
+// 17 digits, one too many for most values; review probe).
+TEST(RunOutput, SummaryGivesTheStableStepAsTheShortestTextOfTheEstimate) {
+  fq::test::TempDir dir;
+  const fs::path file = dir.path() / "cube.yaml";
+  std::ofstream(file) << "framequake_case: 1\n"
+                         "time: {dt_s: 1.0e-5, duration_s: 0.001}\n"
+                         "materials: [{name: spruce, density_kg_per_m3: 450}]\n"
+                         "ground: {level_m: 0.0}\n"
+                         "blocks: [{id: b, size_m: [0.1, 0.1, 0.1], center_m: [0, 0, 0.05], material: spruce}]\n"
+                         "contact: {ground: {normal_stiffness_N_per_m: 8.0e5, restitution: 0.5}}\n";
+  fq::CaseRunOptions options;
+  options.output_folder = dir.path() / "out";
+  const fq::CaseRunReport report = fq::run_case(fq::load_case_file(file), options);
+  // (At this stiffness the estimate's shortest text has 16 digits, so 17
+  // would differ: 0.0002645405806336698 against 0.00026454058063366979.)
+  const double estimate_s = report.stable_time_step.dt_crit_s;
+  ASSERT_TRUE(std::isfinite(estimate_s));
+  char shortest[32];
+  const auto end = std::to_chars(shortest, shortest + sizeof shortest, estimate_s).ptr;
+  const std::string text = json_field(read_text(options.output_folder.value() / "summary.json"), "stable_dt_s");
+  EXPECT_EQ(text, std::string(shortest, end));
+  EXPECT_EQ(std::stod(text), estimate_s);
 }
 
 // The cut itself: an appended file that ends in part of a row loses that

@@ -697,6 +697,50 @@ TEST(RunWarnings, AFrameWithoutColumnsIsToldItGetsNoStoreys) {
   }
 }
 
+// A ground section without contact.ground holds nothing up: the cube of
+// cube_case, 5 cm above it at its centre, falls through it under gravity
+// (free fall: g t^2 / 2 = 0.196 m in the 0.2 s run, so its centre ends
+// below the surface), and the run and info say why before it starts. With
+// the contact it rests, and no shipped case is warned.
+TEST(RunWarnings, AGroundWithoutContactIsToldItHoldsNothing) {
+  test::TempDir dir;
+  std::string text = cube_case(1e-5);
+  const std::string contact = text.substr(text.find("contact:\n"), text.find("output:") - text.find("contact:\n"));
+  text.replace(text.find(contact), contact.size(), "");
+  const CaseDef def = load_case_file(dir.write("cube.yaml", text));
+  const std::string w = ground_without_contact_warning(def);
+  EXPECT_NE(w.find("cube.yaml:5: the case has a ground (ground.level_m = 0 m) but no contact with it "
+                   "(contact.ground), so nothing rests on it: free bodies fall through its surface"),
+            std::string::npos)
+      << w;
+  CaseRunOptions options;
+  options.output_folder = dir.path() / "cube";
+  const CaseRunReport report = run_case(def, options);
+  EXPECT_TRUE(mentions(report.warnings, "but no contact with it (contact.ground)")) << report.warnings.size();
+  std::ostringstream info;
+  describe_case(def, info);
+  EXPECT_NE(info.str().find("warning     " + w), std::string::npos) << info.str();
+  // It fell: the largest displacement at the end is the free fall's
+  // (max_displacement_m of the last row of history.csv).
+  std::ifstream history(dir.path() / "cube" / "history.csv");
+  std::string header, row, last;
+  std::getline(history, header);
+  while (std::getline(history, row)) last = row;
+  const std::string column = "max_displacement_m";
+  ASSERT_NE(header.find(column), std::string::npos) << header;
+  const auto index = std::count(header.begin(), header.begin() + std::ptrdiff_t(header.find(column)), ',');
+  std::stringstream cells(last);
+  std::string cell;
+  for (std::ptrdiff_t k = 0; k <= index; ++k) std::getline(cells, cell, ',');
+  EXPECT_NEAR(std::stod(cell), 0.5 * 9.80665 * 0.2 * 0.2, 1e-6) << last;
+
+  EXPECT_EQ(ground_without_contact_warning(load_case_file(dir.write("rests.yaml", cube_case(1e-5)))), "");
+  for (const auto& e : std::filesystem::directory_iterator(std::filesystem::path(FQ_SOURCE_DIR) / "cases")) {
+    if (e.path().extension() != ".yaml") continue;
+    EXPECT_EQ(ground_without_contact_warning(load_case_file(e.path())), "") << e.path();
+  }
+}
+
 TEST(RunWarnings, AMemberNoJointHoldsIsNamed) {
   test::TempDir dir;
   const CaseDef floating = load_case_file(dir.write("floating.yaml", portal_case(0.31, 0.31)));

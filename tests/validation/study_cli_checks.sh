@@ -40,6 +40,7 @@ expect 0 "usage: stability_limits" out -- "$stability" --help
 only_io_files "stability_limits --help"
 expect 0 "usage: stability_limits" out -- "$stability" -h
 expect 2 "unknown option '--bogus'" err -- "$stability" --bogus
+expect 2 "unknown option '--hlep' (did you mean '--help'?)" err -- "$stability" --hlep
 expect 2 "one output prefix expected" err -- "$stability" a b
 expect 2 "output folder '$work/missing'" err -- "$stability" "$work/missing/limits"
 only_io_files "stability_limits with a missing folder"

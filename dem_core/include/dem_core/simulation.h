@@ -142,6 +142,9 @@ class Simulation {
   std::int64_t total_steps() const;
   Vec3 ground_acceleration_mps2() const { return ground_acceleration_; }  // a_g at the last force evaluation
   double wall_seconds() const;
+  // Steps taken since run() last began (a resumed run: since its checkpoint),
+  // for a summary written when run() did not return (an output failure).
+  std::int64_t steps_this_run() const { return step_ - run_first_step_; }
   // FNV-1a hash of the bits of every body's position, orientation,
   // velocity and angular momentum: equal hashes mean bitwise-equal states
   // (determinism checks across thread counts and runs).
@@ -226,6 +229,7 @@ class Simulation {
   double work_ground_through_prev_J_ = 0.0;
   std::chrono::steady_clock::time_point wall_start_;
   bool wall_started_ = false;
+  std::int64_t run_first_step_ = 0;  // step_ when run() last began
   double energy_floor_J_ = 0.0;  // kinetic energy of all free mass at 1 m/s (blow-up guard)
 
   // Integrators other than central difference.
