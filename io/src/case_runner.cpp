@@ -386,7 +386,9 @@ std::string interval_beyond_run_note(const char* field, double interval_s, const
   // round up to it (1.6e-5 s on a run of two 1e-5 s steps; review probe).
   std::ostringstream note;
   note << std::setprecision(6) << field << " = " << interval_s << " s";
-  if (interval_s < double(steps) * sim.settings().dt_s)
+  // (Only where rounding changed it: 30 x 1e-5 is 3.0000000000000003e-4, so
+  // an interval typed as the run's own length would be "used as" itself.)
+  if (std::abs(double(every) * sim.settings().dt_s - interval_s) > 1e-9 * interval_s)
     note << ", used as " << every << " steps (" << double(every) * sim.settings().dt_s << " s),";
   note << " is not shorter than the run (" << double(steps) * sim.settings().dt_s << " s): " << what
        << " at the start and the end only";
@@ -528,6 +530,24 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
     if (const std::string w = initial_overlap_warning(scene.contacts->initial_overlaps(), sim.bodies()); !w.empty())
       warn(w);
   }
+  // The warnings a run's end state gives (a run that was not unstable): the
+  // ledger, the contacts' press, storeys whose mean hides a column or a
+  // floor past a worse verdict (one side braced, the other not; workflow
+  // probe: a storey 'damaged' at 0.044 rad whose West columns had passed
+  // 0.1 rad), and, for a completed run (a stopped one's verdicts are
+  // already "so far"), a peak in the run's last moments.
+  auto warn_of_end_state = [&](bool completed) {
+    for (const std::string& w : energy_warnings(sim.ledger(), case_has_dashpots(def), sim.settings().integrator))
+      warn(w);
+    if (scene.contacts)
+      if (const std::string w = contact_press_warning(scene.contacts->press_peak(), sim.bodies()); !w.empty()) warn(w);
+    for (std::size_t i = 0; i < storeys.storeys().size(); ++i)
+      for (const std::string& w : {storeys.twist_warning(i), storeys.slip_warning(i)})
+        if (!w.empty()) warn(w);
+    if (completed)
+      for (std::size_t i = 0; i < storeys.storeys().size(); ++i)
+        if (const std::string w = storeys.peak_at_end_warning(i, sim.time_s()); !w.empty()) warn(w);
+  };
   // What summary.json holds beside the run's own figures (docs/summary_json.md),
   // as far as the run got; `assessed`: the storeys get verdicts.
   auto add_end_fields = [&](bool assessed) {
@@ -551,6 +571,7 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
     // with the warnings, joints, storeys and state hash so far (the summary
     // had the ground motion only; review probe).
     try {
+      warn_of_end_state(false);
       add_end_fields(true);
     } catch (const std::exception&) {
       // The summary is still written with the run's own figures.
@@ -568,22 +589,7 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
     report.result.message = m.str();
   }
   // An unstable run has already failed with its own message.
-  if (report.result.status != RunStatus::Unstable) {
-    for (const std::string& w : energy_warnings(sim.ledger(), case_has_dashpots(def), sim.settings().integrator))
-      warn(w);
-    if (scene.contacts)
-      if (const std::string w = contact_press_warning(scene.contacts->press_peak(), sim.bodies()); !w.empty()) warn(w);
-    // A storey whose mean drift hides a column past a worse verdict (one
-    // side braced, the other not; workflow probe: a storey 'damaged' at
-    // 0.044 rad whose West columns had passed 0.1 rad).
-    for (std::size_t i = 0; i < storeys.storeys().size(); ++i)
-      for (const std::string& w : {storeys.twist_warning(i), storeys.slip_warning(i)})
-        if (!w.empty()) warn(w);
-    // A stopped run's verdicts are already "so far".
-    if (report.result.status == RunStatus::Completed)
-      for (std::size_t i = 0; i < storeys.storeys().size(); ++i)
-        if (const std::string w = storeys.peak_at_end_warning(i, sim.time_s()); !w.empty()) warn(w);
-  }
+  if (report.result.status != RunStatus::Unstable) warn_of_end_state(report.result.status == RunStatus::Completed);
   try {
     add_end_fields(report.result.status != RunStatus::Unstable);
     writer.finish(sim, report.result);
@@ -1020,17 +1026,44 @@ std::string no_columns_warning(const CaseDef& def) {
   return w.str();
 }
 
-std::string ground_without_contact_warning(const CaseDef& def) {
-  if (!def.ground || (def.contact && def.contact->ground)) return {};
-  if (def.members.empty() && def.blocks.empty()) return {};
-  const auto line = def.section_line.find("ground");
+std::string ground_without_contact_warning(const CaseDef& def, const Scene& scene) {
+  // A ground body exists with a ground section or any support (cases/README.md, ground).
+  if (!def.ground && def.supports.empty()) return {};
+  if (def.contact && def.contact->ground) return {};
+  // The free bodies no chain of joints holds to a fixed body (the ground, a
+  // fixed block) fall from the start: a frame held by its supports gets no
+  // warning (review probe: the portal demo with a ground section was told
+  // to add a contact that would change its results).
+  const BodyStore& bodies = scene.simulation->bodies();
+  std::vector<std::size_t> root(bodies.size());
+  for (std::size_t i = 0; i < root.size(); ++i) root[i] = i;
+  auto find = [&](std::size_t i) {
+    while (root[i] != i) i = root[i] = root[root[i]];
+    return i;
+  };
+  if (scene.joints)
+    for (std::size_t j = 0; j < scene.joints->joint_count(); ++j)
+      root[find(std::size_t(scene.joints->joint_body_a(j)))] = find(std::size_t(scene.joints->joint_body_b(j)));
+  std::vector<char> held(bodies.size(), 0);
+  for (std::size_t i = 0; i < bodies.size(); ++i)
+    if (bodies.is_fixed[i]) held[find(i)] = 1;
+  std::vector<std::string> loose;
+  for (std::size_t i = 0; i < bodies.size(); ++i)
+    if (!bodies.is_fixed[i] && !held[find(i)]) loose.push_back(bodies.info[i].name);
+  if (loose.empty()) return {};
   std::ostringstream w;
   w << def.source_file.string();
+  const auto line = def.section_line.find(def.ground ? "ground" : "supports");
   if (line != def.section_line.end()) w << ":" << line->second;
-  w << ": the case has a ground (ground.level_m = " << def.ground->level_m
-    << " m) but no contact with it (contact.ground), so nothing rests on it: free bodies fall through its surface "
-       "(support joints still tie members to it); give contact: {ground: {normal_stiffness_N_per_m: ..., "
-       "restitution: ..., friction_coefficient: ...}} for a ground that bears (cases/README.md, contact)";
+  w << ": the case has a ground";
+  if (def.ground) w << " (ground.level_m = " << def.ground->level_m << " m)";
+  w << " but no contact with it (contact.ground), so nothing rests on it: " << loose.size()
+    << (loose.size() == 1 ? " body" : " bodies") << " no joint holds to a support ('" << loose.front() << "'"
+    << (loose.size() > 1 ? " and others" : "")
+    << (loose.size() == 1 ? ") falls" : ") fall")
+    << " through its surface, as will any member whose joints break; give contact: {ground: "
+       "{normal_stiffness_N_per_m: ..., restitution: ..., friction_coefficient: ...}} for a ground that bears "
+       "(cases/README.md, contact)";
   return w.str();
 }
 
@@ -1066,7 +1099,7 @@ std::vector<std::string> case_warnings(const CaseDef& def, const Scene& scene) {
                         brace_free_ends_warning(def, scene), brace_on_supported_node_warning(def, scene),
                         unused_joint_rules_warning(def),
                         horizontal_columns_warning(def), turned_column_sections_warning(def, scene),
-                        no_columns_warning(def), ground_without_contact_warning(def)})
+                        no_columns_warning(def), ground_without_contact_warning(def, scene)})
     if (!w.empty()) out.push_back(std::move(w));
   for (std::string& w : ground_motion_direction_warnings(scene.simulation->ground_motion())) out.push_back(std::move(w));
   if (std::string w = ground_motion_sampling_warning(*scene.simulation); !w.empty()) out.push_back(std::move(w));

@@ -309,6 +309,13 @@ TEST(CliErrors, AnOutputIntervalAsLongAsTheRunIsNoted) {
       << std::string(kBaseCase) + "output: {frame_interval_s: 5, history_interval_s: 0.01}\n";
   std::ofstream(dir.path() / "half.yaml")
       << std::string(kBaseCase) + "output: {frame_interval_s: 0.005, history_interval_s: 0.005}\n";
+  // 30 steps of 1e-5 s end at 3.0000000000000003e-4 s: an interval typed as
+  // 0.0003 s is the run's own length, used as it is (no "used as" clause).
+  {
+    std::string text = kBaseCase;
+    text.replace(text.find("  dt_s: 1.0e-4\n  duration_s: 0.01\n"), 34, "  dt_s: 1.0e-5\n  duration_s: 0.0003\n");
+    std::ofstream(dir.path() / "thirty.yaml") << text + "output: {frame_interval_s: 0.0003, history_interval_s: 1e-5}\n";
+  }
   // 0.00996 s is 99.6 steps, used as 100: the whole run, though shorter than it.
   std::ofstream(dir.path() / "rounded.yaml")
       << std::string(kBaseCase) + "output: {frame_interval_s: 0.005, history_interval_s: 0.00996}\n";
@@ -337,6 +344,14 @@ TEST(CliErrors, AnOutputIntervalAsLongAsTheRunIsNoted) {
       run_app({"run", (dir.path() / "rounded.yaml").string(), "--out", (dir.path() / "rounded").string(), "--quiet"},
               dir.path());
   ASSERT_EQ(rounded.code, 0) << rounded.err;
+  const auto thirty =
+      run_app({"run", (dir.path() / "thirty.yaml").string(), "--out", (dir.path() / "thirty").string(), "--quiet"},
+              dir.path());
+  ASSERT_EQ(thirty.code, 0) << thirty.err;
+  EXPECT_NE(thirty.err.find("framequake: note: output.frame_interval_s = 0.0003 s is not shorter than the run (0.0003 "
+                            "s): frames are written at the start and the end only"),
+            std::string::npos)
+      << thirty.err;
   EXPECT_NE(rounded.err.find("framequake: note: output.history_interval_s = 0.00996 s, used as 100 steps (0.01 s), is "
                              "not shorter than the run (0.01 s): history.csv has rows at the start and the end only"),
             std::string::npos)

@@ -283,11 +283,12 @@ std::string turned_column_sections_warning(const CaseDef& def, const Scene& scen
 
 std::string no_columns_warning(const CaseDef& def);
 
-// The warning for a case with a `ground` section but no contact with it
-// (no contact.ground): its free bodies fall through the ground's surface,
-// which a probe's blocks did without a word (4.9 m below it after 1 s).
-// Supports still tie members to the ground body. Empty otherwise.
-std::string ground_without_contact_warning(const CaseDef& def);
+// The warning for a case with a ground body (a `ground` section or a
+// support) but no contact with it (no contact.ground) and free bodies that
+// no chain of joints holds to a fixed body: they fall through the ground's
+// surface, which a probe's blocks did without a word (4.9 m below it after
+// 1 s). Names the first such body. Empty otherwise.
+std::string ground_without_contact_warning(const CaseDef& def, const Scene& scene);
 
 // The warning for members that no joint holds, in a case that has joints (a
 // beam drawn 10 mm above the columns it should sit on): they stand only on
