@@ -223,9 +223,8 @@ RunArgs parse_run_args(int argc, char** argv, int first, const char* help, bool 
       const std::string v = need_value("--integrator");
       fq::Integrator m;
       if (!fq::parse_integrator(v, m)) {
-        const auto hint = fq::nearest_name(v, fq::integrator_names());
         usage_error("--integrator expects one of " + fq::integrator_names_list() + ", got '" + v + "'" +
-                        (hint ? " (did you mean '" + *hint + "'?)" : ""),
+                        fq::did_you_mean(fq::nearest_name(v, fq::integrator_names())),
                     help);
       }
       a.integrator = m;

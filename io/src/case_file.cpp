@@ -121,7 +121,7 @@ class Reader {
       const std::string where = path.empty() ? std::string("at the top level") : "in '" + path + "'";
       if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
         std::string message = "unknown key '" + key + "' " + where + "; allowed keys here: " + join_names(allowed);
-        if (const auto hint = nearest(key, allowed)) message += " (did you mean '" + std::string(*hint) + "'?)";
+        if (const auto hint = nearest(key, allowed)) message += did_you_mean(std::string(*hint));
         fail(line, join(path, key), message);
       }
       for (const auto& [other, other_line] : seen)
@@ -323,9 +323,8 @@ void parse_time(const Reader& r, const Field& f, CaseDef& def) {
       r.optional_vec3(f.value, "gravity_mps2", f.path, def.time.gravity_mps2, "gx, gy, gz in m/s^2");
   if (const auto m = r.get(f.value, "integrator", f.path)) {
     if (!parse_integrator(r.to_text(*m), def.time.integrator)) {
-      const auto hint = nearest_name(r.to_text(*m), integrator_names());
       r.fail(*m, "expected one of " + integrator_names_list() + ", got " + describe(m->value) +
-                     (hint ? " (did you mean '" + *hint + "'?)" : ""));
+                     did_you_mean(nearest_name(r.to_text(*m), integrator_names())));
     }
   }
   // One step (dt_s == duration_s) is a run; less than one is not.

@@ -92,9 +92,12 @@ std::optional<std::string> nearest_option(std::string_view given, std::string_vi
   return found;
 }
 
+std::string did_you_mean(const std::optional<std::string>& hint) {
+  return hint ? " (did you mean '" + *hint + "'?)" : "";
+}
+
 std::string unknown_option_message(std::string_view given, std::string_view usage) {
-  const auto hint = nearest_option(given, usage);
-  return "unknown option '" + std::string(given) + "'" + (hint ? " (did you mean '" + *hint + "'?)" : "");
+  return "unknown option '" + std::string(given) + "'" + did_you_mean(nearest_option(given, usage));
 }
 
 }  // namespace fq

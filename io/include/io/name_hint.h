@@ -33,6 +33,10 @@ std::vector<std::string> options_in_usage(std::string_view usage);
 // least three letters after the dashes, and nothing when two do).
 std::optional<std::string> nearest_option(std::string_view given, std::string_view usage);
 
+// " (did you mean 'X'?)" for a hint X, "" for none: the one wording of every
+// "did you mean" (case-file keys and integrators, command-line options).
+std::string did_you_mean(const std::optional<std::string>& hint);
+
 // The message of an unknown option: "unknown option '--given'", followed by
 // " (did you mean '--option'?)" when nearest_option finds one.
 std::string unknown_option_message(std::string_view given, std::string_view usage);
