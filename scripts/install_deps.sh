@@ -32,5 +32,10 @@ if [ "$(id -u)" -ne 0 ]; then
     exit 1
   fi
 fi
-$SUDO apt-get update
-DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y --no-install-recommends "${missing[@]}"
+# A fresh machine often runs apt itself at boot (unattended-upgrades,
+# apt-daily), or another installer holds dpkg's lock: wait for it (up to
+# 10 minutes, apt's DPkg::Lock::Timeout) instead of failing at once with
+# "Could not get lock".
+lock_wait=(-o DPkg::Lock::Timeout=600)
+$SUDO apt-get "${lock_wait[@]}" update
+DEBIAN_FRONTEND=noninteractive $SUDO apt-get "${lock_wait[@]}" install -y --no-install-recommends "${missing[@]}"
