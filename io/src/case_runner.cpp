@@ -1719,7 +1719,7 @@ CaseRunReport run_case(const CaseDef& case_def, const CaseRunOptions& options) {
           meta ? checkpoint_count_note(meta->checkpoint_every_s, sim) : std::string(),
           interval_beyond_run_note("output.frame_interval_s", output.frame_interval_s, sim, "frames are written"),
           interval_beyond_run_note("output.history_interval_s", output.history_interval_s, sim, "history.csv has rows"),
-          ground_motion_end_note(sim)})
+          ground_motion_end_note(sim), hub_choice_note(def)})
       if (!note.empty()) options.on_note(note);
     for (const std::string& note : planar_link_system_notes(def, scene)) options.on_note(note);
   }
@@ -2031,7 +2031,7 @@ void describe_case(const CaseDef& case_def, std::ostream& out, std::optional<Int
       << ", " << samples(history_every) << " history rows " << spacing(history_every) << "\n";
   for (const std::string& note : {interval_rounding_note("output.frame_interval_s", o.frame_interval_s, s.dt_s),
                                   interval_rounding_note("output.history_interval_s", o.history_interval_s, s.dt_s),
-                                  ground_motion_end_note(sim)})
+                                  ground_motion_end_note(sim), hub_choice_note(def)})
     if (!note.empty()) out << "note        " << note << "\n";
   for (const std::string& note : planar_link_system_notes(def, scene)) out << "note        " << note << "\n";
   if (list_joints && scene.joints) {

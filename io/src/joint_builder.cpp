@@ -1,7 +1,9 @@
 #include "io/joint_builder.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
+#include <sstream>
 #include <string_view>
 #include <unordered_map>
 #include <vector>
@@ -239,6 +241,58 @@ std::vector<PlannedJoint> plan_joints(const Model& model) {
     }
   }
   return out;
+}
+
+std::string hub_choice_note(const CaseDef& def) {
+  if (!def.joints.automatic || (def.joint_types.empty() && def.joints.overrides.empty())) return "";
+  // Members end to end within 5 degrees are one piece of wood split at the
+  // node (a beam taking a brace, a typed node a few mm off line bends it by
+  // well under a degree); the members a file's order chooses among meet at
+  // 45-90 degrees.
+  const double collinear_cos = std::cos(5.0 * 3.14159265358979323846 / 180.0);
+  auto axis = [&](const MemberDef& m) -> Vec3 {
+    const Vec3 d = def.nodes[std::size_t(def.node_index(m.node_b))].xyz_m -
+                   def.nodes[std::size_t(def.node_index(m.node_a))].xyz_m;
+    return d.norm() > 0.0 ? Vec3(d.normalized()) : Vec3::Zero();
+  };
+  std::map<std::string, std::vector<int>> ends;  // members ending at each node, in file order
+  for (std::size_t i = 0; i < def.members.size(); ++i) {
+    ends[def.members[i].node_a].push_back(int(i));
+    ends[def.members[i].node_b].push_back(int(i));
+  }
+  std::vector<std::string> chosen;  // "'node': 'hub' (over 'other', ...)"
+  for (const NodeDef& node : def.nodes) {
+    const auto it = ends.find(node.id);
+    if (it == ends.end() || it->second.size() < 2) continue;
+    // plan_joints' candidates: the members of hub_kind, or every member
+    // when none is of that kind; the first listed is the hub.
+    std::vector<int> candidates;
+    for (int m : it->second)
+      if (def.members[std::size_t(m)].kind == def.joints.hub_kind) candidates.push_back(m);
+    if (candidates.empty()) candidates = it->second;
+    if (candidates.size() < 2) continue;
+    const Vec3 hub_axis = axis(def.members[std::size_t(candidates.front())]);
+    std::vector<std::string> across;
+    for (std::size_t k = 1; k < candidates.size(); ++k)
+      if (std::abs(hub_axis.dot(axis(def.members[std::size_t(candidates[k])]))) < collinear_cos)
+        across.push_back("'" + def.members[std::size_t(candidates[k])].id + "'");
+    if (across.empty()) continue;
+    std::string entry = "'" + node.id + "': '" + def.members[std::size_t(candidates.front())].id + "' over ";
+    for (std::size_t k = 0; k < across.size(); ++k) entry += (k ? ", " : "") + across[k];
+    chosen.push_back(entry);
+  }
+  if (chosen.empty()) return "";
+  std::ostringstream note;
+  const std::string kind = member_kind_name(def.joints.hub_kind);
+  note << "the order of the members in the case file chose the hub at " << chosen.size()
+     << (chosen.size() == 1 ? " node" : " nodes") << " where members of different directions could each be it (joints.hub_kind: "
+     << kind << "): the first listed runs through the node and the others there are joined to it (";
+  const std::size_t shown = std::min<std::size_t>(chosen.size(), 4);
+  for (std::size_t k = 0; k < shown; ++k) note << (k ? "; " : "") << chosen[k];
+  if (chosen.size() > shown) note << "; and " << chosen.size() - shown << " more";
+  note << "); to make another run through, list it first (info --joints lists every pair; cases/README.md, "
+          "joints)";
+  return note.str();
 }
 
 }  // namespace fq

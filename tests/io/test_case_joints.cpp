@@ -137,6 +137,83 @@ TEST(CaseJoints, JoinedMemberEndsAreThoseThePlannedJointsHold) {
   }
 }
 
+// A corner of a post-and-beam floor (hub_kind: beam): a column and two
+// beams, one along x and one along y, meet at node 'c'; a third member,
+// 'bx2', continues 'bx' straight on when asked. Which beam runs through the
+// node is decided by the order the beams are listed in, as plan_joints
+// makes it (its hub is side a of every joint at the node); the note names
+// that choice, and is silent where only collinear pieces of one beam, or
+// a single member of hub_kind, could be the hub.
+std::string corner_case(const std::string& members) {
+  return "framequake_case: 1\n"
+         "name: corner\n"
+         "time: {dt_s: 1.0e-5, duration_s: 0.01}\n"
+         "materials: [{name: wood, density_kg_per_m3: 450}]\n"
+         "sections: [{name: s, width_m: 0.010, depth_m: 0.010}]\n"
+         "nodes:\n"
+         "  - {id: f, xyz_m: [0, 0, 0]}\n"
+         "  - {id: c, xyz_m: [0, 0, 0.3]}\n"
+         "  - {id: x, xyz_m: [0.5, 0, 0.3]}\n"
+         "  - {id: x2, xyz_m: [-0.5, 0, 0.3]}\n"
+         "  - {id: y, xyz_m: [0, 0.5, 0.3]}\n"
+         "members:\n" +
+         members +
+         "joint_types:\n"
+         "  - {name: j, layout: four_corner, normal: {law: linear, stiffness_N_per_m: 2.0e4}, shear: {law: linear, "
+         "stiffness_N_per_m: 1.0e6}}\n"
+         "joints: {default_type: j, hub_kind: beam}\n";
+}
+
+TEST(CaseJoints, HubChoiceNoteNamesTheMemberTheFileOrderMadeRunThrough) {
+  TempDir dir;
+  const std::string column = "  - {id: col, kind: column, nodes: [f, c], section: s, material: wood}\n";
+  const std::string bx = "  - {id: bx, kind: beam, nodes: [c, x], section: s, material: wood}\n";
+  const std::string by = "  - {id: by, kind: beam, nodes: [c, y], section: s, material: wood}\n";
+  const std::string bx2 = "  - {id: bx2, kind: beam, nodes: [x2, c], section: s, material: wood}\n";
+  struct Case {
+    std::string members;
+    std::string hub;     // plan_joints' hub at c; "" for no note
+    std::string phrase;  // what the note must say
+  };
+  const Case cases[] = {
+      {column + bx + by, "bx", "'c': 'bx' over 'by'"},
+      {column + by + bx, "by", "'c': 'by' over 'bx'"},
+      {by + bx2 + column + bx, "by", "'c': 'by' over 'bx2', 'bx'"},
+      {column + bx + bx2, "", ""},  // one beam split at c: nothing to choose
+      {column + bx, "", ""},        // one member of hub_kind
+  };
+  int i = 0;
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.members);
+    const Model model = build_model(load_case_file(dir.write("corner" + std::to_string(i++) + ".yaml",
+                                                             corner_case(c.members))));
+    const std::string note = hub_choice_note(model.def);
+    if (c.hub.empty()) {
+      EXPECT_EQ(note, "");
+      continue;
+    }
+    EXPECT_NE(note.find("chose the hub at 1 node where members of different directions could each be it "
+                        "(joints.hub_kind: beam)"),
+              std::string::npos)
+        << note;
+    EXPECT_NE(note.find(c.phrase), std::string::npos) << note;
+    // The note's hub is the planner's: side a of every joint at c.
+    int at_c = 0;
+    for (const PlannedJoint& j : plan_joints(model))
+      if (j.node == "c") {
+        EXPECT_EQ(j.member_a, c.hub) << j.name;
+        ++at_c;
+      }
+    EXPECT_GE(at_c, 2);
+  }
+  // The shipped frames choose at their eight floor corners (two beams and
+  // the columns, hub_kind: beam), and the portal demo nowhere.
+  const Model frame_b = build_model(load_case_file(std::filesystem::path(FQ_SOURCE_DIR) / "cases" / "frame_B.yaml"));
+  EXPECT_NE(hub_choice_note(frame_b.def).find("chose the hub at 8 nodes "), std::string::npos) << hub_choice_note(frame_b.def);
+  const Model portal = build_model(load_case_file(dir.write("portal.yaml", portal_case())));
+  EXPECT_EQ(hub_choice_note(portal.def), "");
+}
+
 TEST(CaseJoints, UserErrorsNameFileLineAndField) {
   const std::string base = portal_case();
   auto replace = [&](const std::string& from, const std::string& to) {

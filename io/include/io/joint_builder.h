@@ -37,6 +37,16 @@ std::string joint_name(const std::string& node, const std::string& member_a, con
 // node and no joint type applies, or a support has no joint type.
 std::vector<PlannedJoint> plan_joints(const Model& model);
 
+// A note naming the nodes where the file's order of members chose the hub
+// among members of different directions (two beams meeting at a corner
+// under hub_kind: beam, two columns of a bent post): the hub runs through
+// the node and the others are joined to it, so listing the other member
+// first changes which members are joined and the joints' frames, and with
+// them the frame's stiffness (geometry probe 2026-11-27: storey 1 of a
+// four-column frame peaked at 0.030 rad with its x beams listed first and
+// at 0.075 rad with its y beams first). "" when no such node exists.
+std::string hub_choice_note(const CaseDef& def);
+
 // Which member ends plan_joints joins to another member, without planning
 // the joints (so without its errors): member m ending at node n is held
 // there when the case has joint types or overrides and either joints are
