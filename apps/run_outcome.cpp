@@ -51,7 +51,8 @@ void print_run_outcome(const fq::CaseRunReport& r, std::ostream& out) {
     if (r.first_joint_failure.empty())
       out << "none\n";
     else
-      out << r.first_joint_failure << " at t = " << number(r.first_joint_failure_time_s) << " s\n";
+      out << r.first_joint_failure << (r.first_joint_failure_broke ? " broke" : " lost a spring and held")
+          << " at t = " << number(r.first_joint_failure_time_s) << " s\n";
   }
   out << "framequake: energy balance error " << number(r.energy_balance_error_relative)
       << " of the energy scale (summary.json \"energy\")\n";
