@@ -1144,7 +1144,14 @@ int command_sweep(int argc, char** argv, const std::atomic<bool>* stop_requested
         for (double scale : args.scales) {
           fq::BatchJob job;
           job.def = variant;
-          for (fq::GroundMotionComponentDef& c : job.def.ground_motion->components) c.amplitude_scale *= scale;
+          for (fq::GroundMotionComponentDef& c : job.def.ground_motion->components) {
+            c.amplitude_scale *= scale;
+            // Refused before any run, as the case file refuses such an
+            // amplitude_scale (io/accelerogram.h).
+            if (const std::string why = fq::scaled_record_problem(c.record, c.amplitude_scale); !why.empty())
+              throw fq::InputError(def.source_file.string(), 0, "--scales",
+                                   "'" + def.name + "' with " + fs::path(c.resolved_file).filename().string() + ": " + why);
+          }
           // The scale in its shortest form that reads back as itself:
           // scales that differ in the 7th digit get folders of their own.
           char digits[32];

@@ -34,7 +34,6 @@ namespace {
 //   (dt 0.001-0.02 s). Above 1 s the record cannot carry motion above
 //   0.5 Hz, where a building's response lies; below 1e-6 s (1 MHz) no
 //   accelerometer samples, and a time in ms read as s gives that.
-constexpr double kMaxAbsAcceleration_g = 20.0;
 constexpr double kMinSampleInterval_s = 1e-6;
 constexpr double kMaxSampleInterval_s = 1.0;
 
@@ -754,6 +753,17 @@ AccelerationRecord read_accelerogram(const std::filesystem::path& file, RecordFo
       return read_two_column(file, two_column_unit);
   }
   throw InputError(file.string(), 0, "format", "expected peer_at2 or two_column");
+}
+
+std::string scaled_record_problem(const AccelerationRecord& record, double amplitude_scale) {
+  const double peak_g = std::abs(record.peak_mps2()) / kStandardGravity_mps2;
+  if (!(peak_g * amplitude_scale > kMaxAbsAcceleration_g)) return "";
+  std::ostringstream why;
+  why << "amplitude scale " << amplitude_scale << " takes the record's peak of " << peak_g << " g to "
+      << peak_g * amplitude_scale << " g, more than " << kMaxAbsAcceleration_g
+      << " g (five times the largest ground acceleration ever recorded): a scale meant as a percentage, or a "
+         "typing error?";
+  return why.str();
 }
 
 }  // namespace fq

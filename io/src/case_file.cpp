@@ -304,7 +304,13 @@ void parse_version(const Reader& r, const Field& f, CaseDef& def) {
   def.schema_version = v;
 }
 
-void parse_name(const Reader& r, const Field& f, CaseDef& def) { def.name = r.to_name(f, "a case name"); }
+void parse_name(const Reader& r, const Field& f, CaseDef& def) {
+  def.name = r.to_name(f, "a case name");
+  if (def.name.size() > kMaxCaseNameLength)
+    r.fail(f, "the case name is " + std::to_string(def.name.size()) + " characters long; at most " +
+                  std::to_string(kMaxCaseNameLength) +
+                  " (it names the run's output folder, and a sweep's folders add the record and the scale to it)");
+}
 
 void parse_description(const Reader& r, const Field& f, CaseDef& def) { def.description = r.to_text(f); }
 
@@ -321,6 +327,12 @@ void parse_time(const Reader& r, const Field& f, CaseDef& def) {
   }
   def.time.gravity_mps2 =
       r.optional_vec3(f.value, "gravity_mps2", f.path, def.time.gravity_mps2, "gx, gy, gz in m/s^2");
+  if (const auto g = r.get(f.value, "gravity_mps2", f.path); g && !(def.time.gravity_mps2.stableNorm() <= kMaxGravity_mps2)) {
+    std::ostringstream why;
+    why << "gravity of " << def.time.gravity_mps2.stableNorm() << " m/s^2 is more than " << kMaxGravity_mps2
+        << " m/s^2 (20 g; standard gravity is 9.80665): a typing error or a unit off?";
+    r.fail(*g, why.str());
+  }
   if (const auto m = r.get(f.value, "integrator", f.path)) {
     if (!parse_integrator(r.to_text(*m), def.time.integrator)) {
       r.fail(*m, "expected one of " + integrator_names_list() + ", got " + describe(m->value) +
@@ -367,6 +379,9 @@ void parse_sections(const Reader& r, const Field& f, CaseDef& def) {
                                      "] (line " + std::to_string(def.sections[std::size_t(other)].line) + ")");
                   s.width_m = r.required_positive(n, "width_m", path, "edge along member local y in m");
                   s.depth_m = r.required_positive(n, "depth_m", path, "edge along member local z in m");
+                  for (const char* key : {"width_m", "depth_m"})
+                    if (const std::string why = edge_out_of_range(key[0] == 'w' ? s.width_m : s.depth_m); !why.empty())
+                      r.fail(*r.get(n, key, path), why);
                   def.sections.push_back(s);
                 });
 }
@@ -506,6 +521,8 @@ void parse_blocks(const Reader& r, const Field& f, CaseDef& def) {
         for (std::size_t k = 0; k < 3; ++k)
           if (!(b.size_m[Eigen::Index(k)] > 0.0))
             r.fail(Reader::item(size, k), "expected a positive edge length in m, got " + describe(size.value[k]));
+          else if (const std::string why = edge_out_of_range(b.size_m[Eigen::Index(k)]); !why.empty())
+            r.fail(Reader::item(size, k), why);
         const Field centre = r.require(n, "center_m", path, "centre x, y, z in m");
         b.center_m = r.to_vec3(centre, "x, y, z in m");
         if (const std::string why = coordinate_out_of_range(b.center_m); !why.empty()) r.fail(centre, why);
@@ -897,6 +914,13 @@ void parse_ground(const Reader& r, const Field& f, CaseDef& def) {
   r.expect_keys(f.value, {"level_m"}, f.path);
   GroundDef g;
   g.level_m = r.optional_number(f.value, "level_m", f.path, g.level_m);
+  if (const auto level = r.get(f.value, "level_m", f.path); level && std::abs(g.level_m) > kMaxCoordinate_m) {
+    std::ostringstream why;
+    why << "ground level " << g.level_m << " m lies more than " << kMaxCoordinate_m
+        << " m from the origin, as no node may: place the structure and its ground near the origin (a typing error "
+           "or a unit off by powers of ten?)";
+    r.fail(*level, why.str());
+  }
   def.ground = g;
 }
 
@@ -975,6 +999,8 @@ void parse_ground_motion(const Reader& r, const Field& f, CaseDef& def) {
 
         // Read now: a bad record fails with its own file, line and field.
         c.record = read_accelerogram(c.resolved_file, c.format, c.unit);
+        if (const std::string why = scaled_record_problem(c.record, c.amplitude_scale); !why.empty())
+          r.fail(r.get(n, "amplitude_scale", path).value_or(file), why);
         const double record_end_s = c.record.duration_s();
         // Within half a sample of the end counts as at the end: the window
         // would hold no sample interval (a start written as the record's
@@ -1184,6 +1210,14 @@ std::string density_out_of_range(double density_kg_per_m3) {
       << kMaxDensity_kg_per_m3
       << " kg/m^3 (the lightest solids, aerogels, weigh about 1 kg/m^3 and the densest, osmium, 22 600; "
          "wood 300-900): a typing error or a unit off by powers of ten";
+  return why.str();
+}
+
+std::string edge_out_of_range(double edge_m) {
+  if (edge_m >= kMinEdge_m && edge_m <= kMaxEdge_m) return "";
+  std::ostringstream why;
+  why << "edge length " << edge_m << " m is outside " << kMinEdge_m << " to " << kMaxEdge_m
+      << " m (a micrometre to 100 km): a typing error or a unit off by powers of ten";
   return why.str();
 }
 

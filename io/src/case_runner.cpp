@@ -804,6 +804,27 @@ std::string unused_nodes_warning(const CaseDef& def) {
                       ", ", "a member meant to end there names another node, or the node is a leftover");
 }
 
+std::string duplicate_members_warning(const CaseDef& def) {
+  // Members by their two end nodes, either way round.
+  std::map<std::pair<std::string, std::string>, const MemberDef*> first_between;
+  std::size_t count = 0;
+  std::vector<std::string> found;
+  for (const MemberDef& m : def.members) {
+    const auto ends = std::minmax(m.node_a, m.node_b);
+    const auto [at, fresh] = first_between.emplace(std::make_pair(ends.first, ends.second), &m);
+    if (fresh) continue;
+    ++count;
+    if (found.size() < 3)
+      found.push_back("'" + m.id + "' (line " + std::to_string(m.line) + ") and '" + at->second->id + "' (line " +
+                      std::to_string(at->second->line) + ") between nodes '" + m.node_a + "' and '" + m.node_b + "'");
+  }
+  if (count == 0) return "";
+  return list_warning(def, count, " member runs between the same two nodes as another",
+                      " members run between the same two nodes as others", found, "; ",
+                      "two boxes in one place double that member's mass and stiffness, and their joints hold "
+                      "both; a line copied and not edited?");
+}
+
 std::string near_nodes_warning(const CaseDef& def) {
   const auto [nodes, sections] = nodes_and_sections_by_name(def);
   // Per end node: the thinnest section size of the members ending there (m).
@@ -1103,7 +1124,8 @@ std::string unjoined_members_warning(const CaseDef& def, const Scene& scene) {
 
 std::vector<std::string> case_warnings(const CaseDef& def, const Scene& scene) {
   std::vector<std::string> out;
-  for (std::string w : {nodes_inside_members_warning(def), near_nodes_warning(def), unused_nodes_warning(def),
+  for (std::string w : {duplicate_members_warning(def), nodes_inside_members_warning(def), near_nodes_warning(def),
+                        unused_nodes_warning(def),
                         slender_members_warning(def), stout_members_warning(def), unjoined_members_warning(def, scene),
                         brace_free_ends_warning(def, scene), brace_on_supported_node_warning(def, scene),
                         unused_joint_rules_warning(def),

@@ -101,6 +101,14 @@ fs::path history_path(const fs::path& folder) { return folder / kHistoryName; }
 fs::path frame_path(const fs::path& folder, std::size_t index) { return folder / kFramesDir / frame_file_name(index); }
 
 bool check_output_folder(const fs::path& folder) {
+  // A file system limits each name in a path to 255 bytes (NAME_MAX); a
+  // longer one failed later with the library's bare "File name too long".
+  for (const fs::path& part : folder)
+    if (part.native().size() > 255)
+      throw std::runtime_error("output folder '" + folder.string() + "': its part '" + part.native().substr(0, 40) +
+                               "...' is " + std::to_string(part.native().size()) +
+                               " bytes long, more than the 255 a file name may have; choose a shorter folder (or "
+                               "case or record name)");
   std::error_code ec;
   const fs::file_status st = fs::status(folder, ec);
   if (!fs::exists(st)) {

@@ -906,6 +906,55 @@ namespace {
 // shear along its t2 axis (joints/joint_layout.h: K_t2 = 4 k_s sin^2 theta);
 // info (and run) note it for each such type in use, and not for the same
 // type with shear links or for the shipped frames (four-corner joints).
+// Names a file system cannot hold, and scales no earthquake reaches, are
+// refused before anything runs (error probe, 2026-11-27: an output folder
+// name over 255 bytes ended the run with the library's bare "File name too
+// long", exit 3; an amplitude_scale of 100, a percentage, ran a record at
+// 83 g to the end). The base record peaks at 0.003 g.
+TEST(CliErrors, AnOutputFolderNameTooLongOrASweepScalePast20gIsRefusedBeforeAnyRun) {
+  TempDir dir;
+  std::ofstream(dir.path() / "case.yaml") << kBaseCase;
+  std::ofstream(dir.path() / "rec.AT2") << kBaseRecord;
+  const fs::path c = dir.path() / "case.yaml";
+  const std::string long_name(300, 'o');
+  const auto run = run_app({"run", c.string(), "--out", (dir.path() / long_name).string(), "--quiet"}, dir.path());
+  EXPECT_EQ(run.code, 3) << run.err;
+  EXPECT_NE(run.err.find("is 300 bytes long, more than the 255 a file name may have"), std::string::npos) << run.err;
+  EXPECT_EQ(run.err.find("File name too long"), std::string::npos) << run.err;
+  EXPECT_FALSE(fs::exists(dir.path() / long_name.substr(0, 255)));
+  // 0.003 g x 5000 = 15 g passes; x 7000 = 21 g does not.
+  const fs::path out = dir.path() / "sweep";
+  const auto sweep = run_app({"sweep", c.string(), "--scales", "5000,7000", "--out", out.string(), "--no-figure"},
+                             dir.path());
+  EXPECT_EQ(sweep.code, 2) << sweep.err;
+  EXPECT_NE(sweep.err.find("option '--scales': 'cli_errors' with rec.AT2: amplitude scale 7000 takes the record's "
+                           "peak of 0.003 g to 21 g, more than 20 g"),
+            std::string::npos)
+      << sweep.err;
+  EXPECT_FALSE(fs::exists(out / "cli_errors_rec_x5000"));
+}
+
+// A member copied and not edited: two boxes between the same two nodes.
+TEST(CliInfo, AMemberBetweenTheSameNodesAsAnotherIsWarnedOf) {
+  std::string text = kBaseCase;
+  const std::string col = "  - {id: col, kind: column, nodes: [a, b], section: s50, material: spruce}\n";
+  ASSERT_NE(text.find(col), std::string::npos);
+  text.insert(text.find(col) + col.size(), "  - {id: twin, kind: column, nodes: [b, a], section: s50, material: spruce}\n");
+  TempDir dir;
+  std::ofstream(dir.path() / "case.yaml") << text;
+  std::ofstream(dir.path() / "rec.AT2") << kBaseRecord;
+  const auto info = run_app({"info", (dir.path() / "case.yaml").string()}, dir.path());
+  EXPECT_EQ(info.code, 0) << info.err;
+  EXPECT_NE(info.out.find("1 member runs between the same two nodes as another ('twin' (line 18) and 'col' (line "
+                          "17) between nodes 'b' and 'a'): two boxes in one place double"),
+            std::string::npos)
+      << info.out;
+  // The base case has no such pair.
+  std::ofstream(dir.path() / "case.yaml") << kBaseCase;
+  const auto base = run_app({"info", (dir.path() / "case.yaml").string()}, dir.path());
+  EXPECT_EQ(base.out.find("same two nodes"), std::string::npos) << base.out;
+}
+
 TEST(CliErrors, InfoNotesAPlanarLinkSystem) {
   TempDir dir;
   auto info_of = [&](const std::string& shear_link) {

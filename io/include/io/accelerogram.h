@@ -29,6 +29,15 @@ namespace fq {
 
 enum class RecordFormat { PeerAt2, TwoColumn };
 
+// The largest ground acceleration a record may hold, and a record times its
+// amplitude scale may reach (g): five times the largest ever recorded
+// (accelerogram.cpp). A scale that passes it (100 for a percentage) is as
+// sure a mistake as a record in the wrong unit.
+inline constexpr double kMaxAbsAcceleration_g = 20.0;
+// Why `record` times `amplitude_scale` is refused (its peak beyond
+// kMaxAbsAcceleration_g), or "" when it is not.
+std::string scaled_record_problem(const AccelerationRecord& record, double amplitude_scale);
+
 // "peer_at2" | "two_column"; false (out untouched) if unknown.
 bool parse_record_format(const std::string& name, RecordFormat& out);
 const char* record_format_name(RecordFormat f);

@@ -100,6 +100,26 @@ inline constexpr double kMaxCoordinate_m = 1.0e5;
 // within kMaxCoordinate_m.
 std::string coordinate_out_of_range(const Vec3& xyz_m);
 
+// Edges of a member's section or of a block (m): from a micrometre (as
+// kMinMemberLength_m: no wooden part is thinner than a millimetre) to
+// kMaxCoordinate_m. Outside that only a typing error or a wrong unit gets
+// (a section 1e300 m wide gave an infinite mass and ended the run as an
+// internal error; one 1e-300 m wide a mass of zero).
+inline constexpr double kMinEdge_m = 1e-6;
+inline constexpr double kMaxEdge_m = kMaxCoordinate_m;
+// Why the edge length `edge_m` is refused, or "" when it lies in that range.
+std::string edge_out_of_range(double edge_m);
+
+// Gravity a case may give: up to 20 g (m/s^2), the bound a recorded ground
+// acceleration has (accelerogram.h). Zero (verification scenes) and any
+// direction are allowed; 9.80665 m/s^2 is standard.
+inline constexpr double kMaxGravity_mps2 = 20.0 * kStandardGravity_mps2;
+
+// A case's name names its output folder (out/<name>, and in a sweep
+// <name>_<record>_x<scale>), which a file system limits to 255 bytes: 128
+// leave room for the record and the scale.
+inline constexpr std::size_t kMaxCaseNameLength = 128;
+
 // Rectangular cross-section of a member.
 // A section side from which a member wider than it is long is taken for
 // sizes typed in millimetres (stout_members_warning, io/case_runner.h; the

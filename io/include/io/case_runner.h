@@ -237,6 +237,12 @@ std::string nodes_inside_members_warning(const CaseDef& def);
 // lines and distance; empty when there are none.
 std::string near_nodes_warning(const CaseDef& def);
 
+// The warning for members that run between the same two nodes as an
+// earlier one (a line copied and not edited; error probe: a doubled beam
+// ran with no word, twice the mass and stiffness). Names the first three
+// pairs with their lines; empty when there are none.
+std::string duplicate_members_warning(const CaseDef& def);
+
 // The warning for nodes that are the end of no member: a node is only a
 // place where members end and are joined, so one no member names is a
 // leftover, or the end a member was meant to have (its nodes name another).
