@@ -1,6 +1,7 @@
 #include "dem_core/body_store.h"
 
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 
 #include "dem_core/parallel_for.h"
@@ -52,11 +53,15 @@ BodyId BodyStore::add_box(const BoxBodyDef& def) {
   // infinite in doubles (edges of 1e-200 m, densities of 1e300 kg/m^3); the
   // first step would then divide by it.
   if (!std::isnormal(m) || !std::isnormal(inertia.minCoeff()) || !inertia.allFinite() ||
-      !std::isnormal(1.0 / inertia.maxCoeff()))
-    throw std::invalid_argument("body '" + def.name + "': its mass and moments of inertia (" + std::to_string(m) +
-                                " kg, edges " + std::to_string(def.size_m.minCoeff()) + ".." +
-                                std::to_string(def.size_m.maxCoeff()) +
-                                " m) are not representable: check the units of its size and density");
+      !std::isnormal(1.0 / inertia.maxCoeff())) {
+    // %g-style numbers: std::to_string's fixed form printed 1e300 with
+    // three hundred digits and 1e-300 as 0.000000 (error probe).
+    std::ostringstream why;
+    why << "body '" << def.name << "': its mass and moments of inertia (" << m << " kg, edges "
+        << def.size_m.minCoeff() << ".." << def.size_m.maxCoeff()
+        << " m) are not representable: check the units of its size and density";
+    throw std::invalid_argument(why.str());
+  }
   const Quat q = def.orientation.normalized();
   const Mat3 r = q.toRotationMatrix();
 

@@ -2,6 +2,8 @@
 // forms, fixed bodies, and refusal of unusable definitions.
 #include <gtest/gtest.h>
 
+#include <sstream>
+
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -181,6 +183,12 @@ TEST(BodyStore, InvalidSizeOrDensityThrowsAndNamesTheBody) {
     } catch (const std::invalid_argument& e) {
       EXPECT_NE(std::string(e.what()).find("'speck'"), std::string::npos) << e.what();
       EXPECT_NE(std::string(e.what()).find("not representable"), std::string::npos) << e.what();
+      // The edges as numbers can be read: "1e+200", not 201 digits or
+      // 1e-200 as 0.000000.
+      std::ostringstream edge;
+      edge << "edges " << x.size_m.x() << "..";
+      EXPECT_NE(std::string(e.what()).find(edge.str()), std::string::npos) << e.what();
+      EXPECT_LT(std::string(e.what()).size(), 200u) << e.what();
     }
     EXPECT_EQ(store.size(), 0u);
   }
