@@ -2,11 +2,10 @@
 // forms, fixed bodies, and refusal of unusable definitions.
 #include <gtest/gtest.h>
 
-#include <sstream>
-
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <sstream>
 #include <stdexcept>
 
 #include "dem_core/body_store.h"
