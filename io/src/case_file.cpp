@@ -38,6 +38,11 @@ namespace {
 std::string why_not_a_readable_file(const std::filesystem::path& file) {
   std::error_code ec;
   const auto status = std::filesystem::status(file, ec);
+  // A loop of symbolic links, or a folder on the way that may not be
+  // searched, is no missing file (error probe: a link loop read "not
+  // found").
+  if (ec && ec != std::errc::no_such_file_or_directory && ec != std::errc::not_a_directory)
+    return "cannot be reached: " + ec.message();
   if (ec || !std::filesystem::exists(status)) return "not found";
   if (std::filesystem::is_directory(status)) return "is a folder, not a file";
   if (!std::filesystem::is_regular_file(status)) return "is not a regular file";

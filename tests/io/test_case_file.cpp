@@ -697,6 +697,18 @@ TEST(CaseFile, MissingCaseFile) {
     EXPECT_EQ(e.line(), 0);
     EXPECT_NE(std::string(e.what()).find("not found"), std::string::npos);
   }
+  // A loop of symbolic links is named as such, not as a missing file.
+  TempDir dir;
+  fs::create_symlink(dir.path() / "loop_b.yaml", dir.path() / "loop_a.yaml");
+  fs::create_symlink(dir.path() / "loop_a.yaml", dir.path() / "loop_b.yaml");
+  try {
+    fq::load_case_file(dir.path() / "loop_a.yaml");
+    FAIL();
+  } catch (const fq::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("case file cannot be reached: Too many levels of symbolic links"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 // A run of one step is a run: dt_s equal to duration_s loads and builds
