@@ -11,6 +11,7 @@
 #include <string>
 #include <string_view>
 #include <system_error>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -175,7 +176,32 @@ std::string fmt(double v) {
 
 // ---- numbers -----------------------------------------------------------------
 
-enum class NumberStatus { Ok, NotANumber, OutOfRange };
+enum class NumberStatus { Ok, NotANumber, OutOfRange, TooSmall };
+
+// Whether a number from_chars found out of range is too small rather than
+// too large: its decimal order of magnitude (the exponent, plus the digits
+// before the point or less the zeros after it) is negative. "1e-400" rounds
+// to 0 and was refused as "not finite", which names the wrong problem.
+bool order_of_magnitude_negative(std::string_view tok) {
+  if (!tok.empty() && (tok.front() == '-' || tok.front() == '+')) tok.remove_prefix(1);
+  const std::size_t e_pos = tok.find_first_of("eE");
+  const std::string_view mantissa = tok.substr(0, e_pos);
+  long long exponent = 0;
+  if (e_pos != std::string_view::npos) {
+    std::string_view e = tok.substr(e_pos + 1);
+    const bool negative = !e.empty() && e.front() == '-';
+    if (!e.empty() && (e.front() == '+' || e.front() == '-')) e.remove_prefix(1);
+    // An exponent of 20 digits or more decides alone.
+    if (std::from_chars(e.data(), e.data() + e.size(), exponent).ec == std::errc::result_out_of_range) return negative;
+    if (negative) exponent = -exponent;
+  }
+  const std::size_t dot = std::min(mantissa.find('.'), mantissa.size());
+  const std::size_t first = mantissa.find_first_of("123456789");
+  if (first == std::string_view::npos) return false;  // zero is in range
+  const long long order = first < dot ? static_cast<long long>(dot - first - 1)
+                                      : -static_cast<long long>(first - dot);
+  return exponent + order < 0;
+}
 
 // Whole token as a double: from_chars' syntax plus a leading '+' and Fortran
 // 'D' exponents. ".5" and "-.1416764E-03" are valid (Fortran E-format drops
@@ -197,8 +223,10 @@ NumberStatus parse_number(std::string_view tok, double& out) {
   }
   const char* const end = tok.data() + tok.size();
   const auto [ptr, ec] = std::from_chars(tok.data(), end, out, std::chars_format::general);
-  if (ec == std::errc::result_out_of_range) return NumberStatus::OutOfRange;
-  if (ec != std::errc() || ptr != end) return NumberStatus::NotANumber;
+  if (ptr != end) return NumberStatus::NotANumber;
+  if (ec == std::errc::result_out_of_range)
+    return order_of_magnitude_negative(tok) ? NumberStatus::TooSmall : NumberStatus::OutOfRange;
+  if (ec != std::errc()) return NumberStatus::NotANumber;
   return NumberStatus::Ok;
 }
 
@@ -224,6 +252,15 @@ double printed_resolution(std::string_view tok) {
   return std::pow(10.0, double(exponent - decimals));
 }
 
+// Why a number that rounds to 0 is refused. Subnormals (down to about
+// 4.9e-324) are read; below them a value is refused rather than read as 0,
+// as the case file's numbers are: no record holds one, a mistyped exponent
+// does.
+std::string too_small_problem(std::string_view tok) {
+  return quoted(tok) + ", which is too small in magnitude to represent (below about 4.9e-324, the smallest "
+                       "double): a mistyped exponent?";
+}
+
 // Parses `tok` as a finite double or throws an InputError for `field`.
 double finite_number(const std::string& file, int line_no, const char* field, std::string_view tok,
                      const std::string& what) {
@@ -231,6 +268,8 @@ double finite_number(const std::string& file, int line_no, const char* field, st
   const NumberStatus st = parse_number(tok, v);
   if (st == NumberStatus::NotANumber)
     throw InputError(file, line_no, field, "expected " + what + ", got " + quoted(tok));
+  if (st == NumberStatus::TooSmall)
+    throw InputError(file, line_no, field, "expected " + what + ", got " + too_small_problem(tok));
   if (st == NumberStatus::OutOfRange || !std::isfinite(v))
     throw InputError(file, line_no, field, "expected " + what + " (finite), got " + quoted(tok));
   return v;
@@ -239,22 +278,23 @@ double finite_number(const std::string& file, int line_no, const char* field, st
 // ---- AT2 header line 4 -------------------------------------------------------
 
 // Value after "<keyword> =" in `line`, searching from `from`. Returns false if
-// the keyword or '=' is missing. `value` stops at a blank or comma; `after` is
+// no keyword is followed by '='. `value` stops at a blank or comma; `after` is
 // the index just past it.
 bool keyword_value(std::string_view line, std::string_view keyword, std::size_t from, std::string_view& value,
                    std::size_t& after) {
   std::size_t k = from;
-  for (;;) {
+  std::size_t i = 0;
+  for (;; k += 1) {
     k = find_ci(line, keyword, k);
     if (k == std::string_view::npos) return false;
     // Whole word only: "DT" must not match inside another word.
-    const bool starts_word = k == 0 || !is_alpha(line[k - 1]);
-    if (starts_word) break;
-    k += 1;
+    if (k > 0 && is_alpha(line[k - 1])) continue;
+    i = k + keyword.size();
+    while (i < line.size() && is_blank(line[i])) ++i;
+    // The word without '=' is not this keyword ("NPTS, DT"); one with it
+    // may still follow (a repeated key is found so).
+    if (i < line.size() && line[i] == '=') break;
   }
-  std::size_t i = k + keyword.size();
-  while (i < line.size() && is_blank(line[i])) ++i;
-  if (i >= line.size() || line[i] != '=') return false;
   ++i;
   while (i < line.size() && is_blank(line[i])) ++i;
   std::size_t j = i;
@@ -297,13 +337,58 @@ long long npts_value(const std::string& file, std::string_view tok) {
   return npts;
 }
 
+bool equals_ci(std::string_view a, std::string_view b) { return a.size() == b.size() && find_ci(a, b) == 0; }
+
+// The unit written after DT's value, glued (".0200SEC") or as the next word
+// ("DT= .0200 SEC"), must be seconds: any other was ignored, and
+// "DT= .5 MSEC" ran a record 1000 times too slow. Brackets and a trailing
+// '.' are punctuation ("(s)", "sec."); no unit at all means seconds.
+void check_dt_unit(const std::string& file, std::string_view unit, std::string_view shown_line) {
+  std::string_view word = unit;
+  if (!word.empty() && (word.front() == '(' || word.front() == '[')) word.remove_prefix(1);
+  if (!word.empty() && word.back() == '.') word.remove_suffix(1);
+  if (!word.empty() && (word.back() == ')' || word.back() == ']')) word.remove_suffix(1);
+  for (const char* seconds : {"SEC", "SECS", "S", "SECONDS"})
+    if (equals_ci(word, seconds)) return;
+  throw InputError(file, 4, "DT",
+                   "expected the time step in seconds (unit SEC, SECS, S, SECONDS or none) on header line 4, got "
+                   "unit " +
+                       quoted(unit) + " in " + std::string(shown_line) + ": convert DT to s");
+}
+
+// The word after DT's value in the keyword layout ("SEC" in "DT= .02 SEC,"):
+// up to a blank, comma or '='; empty if the value ends its item (a comma,
+// the line's end), the next word is a keyword ("DT= .02 NPTS= 5") or it
+// holds no letter (punctuation names no unit; "µs" is a unit).
+std::string_view word_after_value(std::string_view line, std::size_t after) {
+  std::size_t i = after;
+  while (i < line.size() && is_blank(line[i])) ++i;
+  std::size_t j = i;
+  while (j < line.size() && !is_blank(line[j]) && line[j] != ',' && line[j] != '=') ++j;
+  std::size_t k = j;
+  while (k < line.size() && is_blank(line[k])) ++k;
+  if (k < line.size() && line[k] == '=') return {};
+  const std::string_view word = line.substr(i, j - i);
+  const bool has_letter = std::any_of(word.begin(), word.end(), [](char c) {
+    return is_alpha(c) || static_cast<unsigned char>(c) >= 0x80;
+  });
+  return has_letter ? word : std::string_view();
+}
+
 // DT from its token on line 4, whatever the layout: a positive finite time
-// step in s within the sampling bounds.
-double dt_value(const std::string& file, std::string_view tok) {
+// step in s within the sampling bounds. A unit glued to the number
+// (".0200SEC") is checked by check_dt_unit.
+double dt_value(const std::string& file, std::string_view tok, std::string_view shown_line) {
   constexpr int kLine = 4;
-  // Tolerate a unit glued to the number (".0200SEC").
+  // The letters ending a token that starts as a number ("nan" does not).
   std::string_view number = tok;
-  if (number.size() > 3 && find_ci(number.substr(number.size() - 3), "SEC") == 0) number.remove_suffix(3);
+  while (!number.empty() && is_alpha(number.back())) number.remove_suffix(1);
+  const char last = number.empty() ? '\0' : number.back();
+  if (number.size() < tok.size() && ((last >= '0' && last <= '9') || last == '.')) {
+    check_dt_unit(file, tok.substr(number.size()), shown_line);
+  } else {
+    number = tok;
+  }
   double dt = 0.0;
   const NumberStatus st = parse_number(number, dt);
   if (st != NumberStatus::Ok || !std::isfinite(dt) || dt <= 0.0)
@@ -317,8 +402,6 @@ bool is_whole_number_text(std::string_view tok) {
   if (!tok.empty() && (tok.front() == '+' || tok.front() == '-')) tok.remove_prefix(1);
   return !tok.empty() && std::all_of(tok.begin(), tok.end(), [](char c) { return c >= '0' && c <= '9'; });
 }
-
-bool equals_ci(std::string_view a, std::string_view b) { return a.size() == b.size() && find_ci(a, b) == 0; }
 
 // Header line 4 in one of the layouts of kLineFourLayouts:
 //   keywords   "NPTS= 5372, DT= .0100 SEC" or "DT= .0100 SEC, NPTS= 5372"
@@ -335,10 +418,21 @@ At2Size parse_npts_dt(const std::string& file, std::string_view line) {
   constexpr int kLine = 4;
   const std::string shown = quoted(trim(line));
   std::string_view npts_tok, dt_tok;
-  std::size_t after = 0;
-  const bool npts_keyword = keyword_value(line, "NPTS", 0, npts_tok, after);
-  const bool dt_keyword = keyword_value(line, "DT", 0, dt_tok, after);
+  std::size_t npts_after = 0, dt_after = 0;
+  const bool npts_keyword = keyword_value(line, "NPTS", 0, npts_tok, npts_after);
+  const bool dt_keyword = keyword_value(line, "DT", 0, dt_tok, dt_after);
   if (npts_keyword || dt_keyword) {
+    // A key given twice left its second value unread ("NPTS= 6, DT= .01
+    // SEC, NPTS= 7" read 6): which one is meant, only the file's author knows.
+    for (const auto& [key, found, after] : {std::tuple{"NPTS", npts_keyword, npts_after},
+                                            std::tuple{"DT", dt_keyword, dt_after}}) {
+      std::string_view again;
+      std::size_t again_after = 0;
+      if (found && keyword_value(line, key, after, again, again_after))
+        throw InputError(file, kLine, key,
+                         std::string("expected ").append(key).append("= once on header line 4, got it twice in ")
+                             .append(shown));
+    }
     if (!npts_keyword || npts_tok.empty())
       throw InputError(file, kLine, "NPTS",
                        std::string("expected 'NPTS= <number of samples>' with 'DT= <time step> SEC' on header line "
@@ -353,6 +447,8 @@ At2Size parse_npts_dt(const std::string& file, std::string_view line) {
                            .append(shown)
                            .append("; ")
                            .append(kLineFourLayouts));
+    if (const std::string_view unit = word_after_value(line, dt_after); !unit.empty())
+      check_dt_unit(file, unit, shown);
   } else {
     std::vector<std::string_view> tokens;
     for (std::size_t i = 0; i < line.size();) {
@@ -382,7 +478,7 @@ At2Size parse_npts_dt(const std::string& file, std::string_view line) {
   }
   At2Size out;
   out.npts = npts_value(file, npts_tok);
-  out.dt_s = dt_value(file, dt_tok);
+  out.dt_s = dt_value(file, dt_tok, shown);
   return out;
 }
 
@@ -566,6 +662,10 @@ AccelerationRecord read_peer_at2(const std::filesystem::path& file) {
       }
       double v = 0.0;
       const NumberStatus st = parse_number(tok, v);
+      if (st == NumberStatus::TooSmall)
+        throw InputError(name, line_no, "value",
+                         "expected a number (value " + std::to_string(count) + " of NPTS=" +
+                             std::to_string(npts) + ", in g), got " + too_small_problem(tok));
       if (st != NumberStatus::Ok || !std::isfinite(v))
         throw InputError(name, line_no, "value",
                          "expected a finite number (value " + std::to_string(count) + " of NPTS=" +

@@ -247,6 +247,19 @@ TEST(PeerAt2, ReadsFortranEAndDExponentsAndTolerantLineFour) {
   for (std::size_t k = 0; k < 5; ++k) EXPECT_DOUBLE_EQ(rec.acceleration_mps2[k], expected_g[k] * kG) << k;
 }
 
+// Subnormal values (below 2.2e-308, down to about 4.9e-324) are read as
+// they are, as the case file's numbers are; only a value that rounds to 0
+// is refused (bad_inputs: at2_value_underflows, two_accel_underflows).
+TEST(PeerAt2, ReadsSubnormalValuesAsTheyAre) {
+  TempDir dir;
+  const fq::AccelerationRecord rec = fq::read_peer_at2(
+      dir.write("subnormal.AT2", kSynthHead + "NPTS= 3, DT= .0100 SEC\n  1E-310  -5D-324  .25E-307\n"));
+  ASSERT_EQ(rec.acceleration_mps2.size(), 3u);
+  EXPECT_DOUBLE_EQ(rec.acceleration_mps2[0], 1e-310 * kG);
+  EXPECT_DOUBLE_EQ(rec.acceleration_mps2[1], -5e-324 * kG);
+  EXPECT_DOUBLE_EQ(rec.acceleration_mps2[2], 0.25e-307 * kG);
+}
+
 // Line 4 in the layout of older PEER files (numbers first, then their
 // names), with the NGA keywords in reverse order, and as two bare numbers
 // (records probe: each was refused). NPTS and DT are those written in each
@@ -284,6 +297,18 @@ TEST(PeerAt2, ReadsTheOlderAndReversedLineFourLayouts) {
     ASSERT_EQ(rec.acceleration_mps2.size(), 5u);
     for (std::size_t k = 0; k < 5; ++k) EXPECT_DOUBLE_EQ(rec.acceleration_mps2[k], expected_g[k] * kG) << k;
     EXPECT_EQ(rec.description, "IMPERIAL VALLEY 05/19/40 0439, EL CENTRO ARRAY #9, 180");
+  }
+  // The spellings of seconds real files use, glued or not, in any case,
+  // with brackets or a trailing '.', or no unit (review probe: any other
+  // unit was ignored; those are refused in bad_inputs, at2_dt_in_*).
+  for (const char* line4 : {"NPTS= 5, DT= .0100 SEC", "NPTS= 5, DT= .0100 SECS,", "NPTS= 5, DT= .0100 S",
+                            "NPTS= 5, DT= .0100 seconds", "NPTS= 5, DT= .0100 Sec.", "NPTS= 5, DT= .0100 (s)",
+                            "NPTS= 5, DT= .0100", "NPTS= 5, DT= .0100,", "DT= .0100 NPTS= 5", "NPTS= 5, DT= .0100s",
+                            "NPTS= 5, DT= 1.0E-02SECS", "5 .0100S", "  5    0.0100sec    NPTS, DT"}) {
+    SCOPED_TRACE(line4);
+    const fq::AccelerationRecord rec = fq::read_peer_at2(dir.write("seconds.AT2", head + line4 + "\n" + values));
+    EXPECT_DOUBLE_EQ(rec.dt_s, 0.01);
+    EXPECT_EQ(rec.acceleration_mps2.size(), 5u);
   }
   // NPTS is checked against the values in every layout.
   try {
@@ -408,6 +433,21 @@ std::vector<BadInput> bad_inputs() {
        "value", "'-inf'"},
       {"at2_overflow_value", F::PeerAt2, kHead + "NPTS= 5, DT= .01 SEC\n  .1E-02  .1E+999  .3E-02  .4E-02  .5E-02\n",
        5, "value", "'.1E+999'"},
+      // A value that rounds to 0 (review probe: called "not finite");
+      // subnormals are read (SubnormalValuesAreRead).
+      {"at2_value_underflows", F::PeerAt2, kHead + "NPTS= 5, DT= .01 SEC\n  .1E-02  1e-400  .3E-02  .4E-02  .5E-02\n",
+       5, "value",
+       "expected a number (value 2 of NPTS=5, in g), got '1e-400', which is too small in magnitude to represent "
+       "(below about 4.9e-324"},
+      {"at2_value_underflows_fortran", F::PeerAt2,
+       kHead + "NPTS= 5, DT= .01 SEC\n  .1E-02  .2E-02  .3E-02  .4E-02\n  -.1D-999\n", 6, "value",
+       "'-.1D-999', which is too small in magnitude"},
+      {"at2_value_underflows_long_exponent", F::PeerAt2,
+       kHead + "NPTS= 5, DT= .01 SEC\n  1e-99999999999999999999  .2E-02  .3E-02  .4E-02  .5E-02\n", 5, "value",
+       "too small in magnitude"},
+      {"at2_value_overflows_below_one_exponent", F::PeerAt2,
+       kHead + "NPTS= 5, DT= .01 SEC\n  1" + std::string(400, '0') + "e-50  .2E-02  .3E-02  .4E-02  .5E-02\n", 5,
+       "value", "expected a finite number"},
       // 8 values over lines 5-6, the file ends at line 7 (blank).
       {"at2_too_few", F::PeerAt2, kHead + "NPTS= 10, DT= .01 SEC\n" + five + "  .1E-02  .2E-02  .3E-02\n\n", 7,
        "NPTS", "holds 8 values; expected 10"},
@@ -426,6 +466,22 @@ std::vector<BadInput> bad_inputs() {
       {"at2_dt_far_too_small", F::PeerAt2, kHead + "NPTS= 5, DT= 1E-300 SEC\n" + five, 4, "DT",
        "expected a sampling interval"},
       {"at2_dt_far_too_large", F::PeerAt2, kHead + "NPTS= 5, DT= 10.0 SEC\n" + five, 4, "DT", "got 10 s"},
+      // A time unit other than seconds (review probe: ignored, so DT= .5
+      // MSEC was read as 0.5 s and DT= .01 MIN as 0.01 s), glued or not.
+      {"at2_dt_in_msec", F::PeerAt2, kHead + "NPTS= 5, DT= .5 MSEC\n" + five, 4, "DT",
+       "expected the time step in seconds (unit SEC, SECS, S, SECONDS or none) on header line 4, got unit 'MSEC'"},
+      {"at2_dt_in_min", F::PeerAt2, kHead + "NPTS= 5, DT= .01 MIN,\n" + five, 4, "DT", "got unit 'MIN'"},
+      {"at2_dt_in_ms_glued", F::PeerAt2, kHead + "npts= 5 dt= 10ms\n" + five, 4, "DT", "got unit 'ms'"},
+      {"at2_dt_in_microseconds", F::PeerAt2, kHead + "NPTS= 5, DT= 500 \xC2\xB5s\n" + five, 4, "DT",
+       "got unit '\xC2\xB5s'"},
+      {"at2_reversed_dt_in_msec", F::PeerAt2, kHead + "DT= 10 MSEC, NPTS= 5\n" + five, 4, "DT", "got unit 'MSEC'"},
+      {"at2_labelled_dt_in_ms", F::PeerAt2, kHead + "  5    10MS    NPTS, DT\n" + five, 4, "DT", "got unit 'MS'"},
+      // A key given twice (review probe: the second value was ignored).
+      {"at2_npts_twice", F::PeerAt2, kHead + "NPTS= 5, DT= .01 SEC, NPTS= 7\n" + five, 4, "NPTS",
+       "expected NPTS= once on header line 4, got it twice"},
+      {"at2_dt_twice", F::PeerAt2, kHead + "NPTS= 5, DT= .01 SEC, DT= .02 SEC\n" + five, 4, "DT",
+       "expected DT= once on header line 4, got it twice"},
+      {"at2_reversed_dt_twice", F::PeerAt2, kHead + "dt= .01 sec npts= 5 dt =.01 sec\n" + five, 4, "DT", "twice"},
       // The other layouts of line 4 (older PEER files, keywords reversed,
       // two bare numbers) get the same checks and messages on their values.
       {"at2_labelled_npts_negative", F::PeerAt2, kHead + "  -5    .0100    NPTS, DT\n" + five, 4, "NPTS", "'-5'"},
@@ -466,6 +522,8 @@ std::vector<BadInput> bad_inputs() {
       {"two_time_inf", F::TwoColumn, "0.00 1\ninf 2\n", 2, "time", "'inf'"},
       {"two_accel_text", F::TwoColumn, "0.00 1\n0.01 2g\n", 2, "acceleration", "'2g'"},
       {"two_accel_nan", F::TwoColumn, "0.00 1\n\n0.01 nan\n", 3, "acceleration", "'nan'"},
+      {"two_accel_underflows", F::TwoColumn, "0.00 1\n0.01 -2.5e-400\n", 2, "acceleration",
+       "expected an acceleration in m/s2, got '-2.5e-400', which is too small in magnitude to represent"},
       {"two_three_columns", F::TwoColumn, "0.00 1\n0.01 2 3\n", 2, "value", "found 3"},
       {"two_one_column", F::TwoColumn, "0.00 1\n0.01\n", 2, "acceleration", "found 1"},
       {"two_empty_field", F::TwoColumn, "0.00, 1\n0.01,,2\n", 2, "value", "empty field"},

@@ -8,7 +8,8 @@
 //   "file"          missing, unreadable or empty file (line 0)
 //   "header"        AT2 header lines 1-4 missing, wrong units, non-text bytes there
 //   "NPTS", "DT"    AT2 line 4 (and NPTS also when the value count differs)
-//   "value"         a data token that is not a finite number, non-text bytes,
+//   "value"         a data token that is not a finite number or rounds to 0
+//                   (1e-400; subnormals are read), non-text bytes,
 //                   wrong column count, fewer than 2 samples
 //   "time", "acceleration"  the two columns of a two-column file
 //
@@ -74,7 +75,10 @@ double acceleration_unit_to_mps2(AccelerationUnit u);
 //             an exponent (DT).
 //           Every layout's NPTS must be a whole number >= 2 and DT a positive
 //           finite time step in s; a line in none of them is refused with
-//           a message that lists them.
+//           a message that lists them. A unit after DT, glued or as the
+//           next word, must be SEC, SECS, S or SECONDS (any case, or none):
+//           "DT= .5 MSEC" is refused, not read as 0.5 s. A key given twice
+//           ("NPTS= 6, DT= .01 SEC, NPTS= 7") is refused.
 // A DOS end-of-file mark (0x1A, Ctrl-Z) as the file's last byte(s) is
 // ignored (old DOS-written files end so); elsewhere it is a non-text byte.
 // The count of values must equal NPTS exactly: a short or long file means a
