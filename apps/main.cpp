@@ -94,7 +94,7 @@ const char* kMainHelp =
     "  framequake compare CASE...      run cases side by side; table of storey drifts and verdicts, figure\n"
     "  framequake sweep CASE...        run cases over amplitude scales (and records); collapse scales, figure\n"
     "  framequake render OUT_DIR       animate a finished run (GIF/MP4, PNG frames); --compare for several\n"
-    "  framequake --help               this text;  framequake COMMAND --help for a command\n"
+    "  framequake --help               this text;  framequake COMMAND --help (or help COMMAND) for a command\n"
     "  framequake --version            print the version\n"
     "\n"
     "Options may also be written --option=value; \"--\" ends the options (for a file\n"
@@ -440,8 +440,23 @@ static int dispatch(int argc, char** argv) {
       words.push_back(arg);
     }
   }
-  // "framequake help run": the command's own help.
-  if (words.size() >= 3 && words[1] == "help") words = {words[0], words[2], "--help"};
+  // "framequake help run" (or --help run, -h run): the command's own help.
+  // Nothing may follow the command, and nothing may follow --version: extra
+  // words were ignored with exit 0 ("--version --bogus", "--help run x y";
+  // CLI probe), as no command ignores them.
+  if (words.size() >= 3 && (words[1] == "help" || words[1] == "--help" || words[1] == "-h")) {
+    if (words[2].rfind('-', 0) == 0)
+      usage_error("unexpected argument '" + words[2] + "' after " + words[1] + " (give a command, e.g. " + words[1] +
+                      " run)",
+                  kMainHelp);
+    if (words.size() > 3)
+      usage_error("unexpected argument '" + words[3] + "' after " + words[1] + " " + words[2] +
+                      " (one command's help at a time)",
+                  kMainHelp);
+    words = {words[0], words[2], "--help"};
+  }
+  if (words.size() >= 3 && words[1] == "--version")
+    usage_error("unexpected argument '" + words[2] + "' after --version (it takes none)", kMainHelp);
   std::vector<char*> split_argv;
   for (std::string& w : words) split_argv.push_back(w.data());
   split_argv.push_back(nullptr);

@@ -767,11 +767,14 @@ TEST(CliUsage, HelpForEveryCommandExitsZeroWithUsage) {
   EXPECT_NE(run_help.out.find("--out DIR"), std::string::npos);
   EXPECT_NE(run_help.out.find("Exit codes"), std::string::npos);
   // "help COMMAND" gives that command's help, as "COMMAND --help" does.
+  // So do "--help COMMAND" and "-h COMMAND" (they printed the top-level help).
   for (const std::string command : {"run", "info", "resume", "compare", "sweep"}) {
-    const auto asked = run_app({"help", command}, dir.path());
     const auto direct = run_app({command, "--help"}, dir.path());
-    EXPECT_EQ(asked.code, 0) << command << ": " << asked.err;
-    EXPECT_EQ(asked.out, direct.out) << command;
+    for (const std::string asking : {"help", "--help", "-h"}) {
+      const auto asked = run_app({asking, command}, dir.path());
+      EXPECT_EQ(asked.code, 0) << asking << " " << command << ": " << asked.err;
+      EXPECT_EQ(asked.out, direct.out) << asking << " " << command;
+    }
   }
   const auto version = run_app({"--version"}, dir.path());
   EXPECT_EQ(version.code, 0);
@@ -822,6 +825,14 @@ TEST(CliUsage, UsageErrorsExitTwoWithUsageOnStderr) {
       {{"info", c, "--out", "x"}, "unknown option '--out'\n"},
       {{"render"}, "missing OUT_DIR"},
       {{"render", dir.path().string(), "--fsp", "3"}, "unknown option '--fsp' (did you mean '--fps'?)"},
+      // Words after --version or a help request are named, not ignored with
+      // exit 0 (CLI probe: "--version extra", "--help run x y").
+      {{"--version", "extra"}, "unexpected argument 'extra' after --version"},
+      {{"--version", "--bogus"}, "unexpected argument '--bogus' after --version"},
+      {{"--help", "run", "x", "y"}, "unexpected argument 'x' after --help run"},
+      {{"help", "run", "x"}, "unexpected argument 'x' after help run"},
+      {{"-h", "--bogus"}, "unexpected argument '--bogus' after -h"},
+      {{"help", "frobnicate"}, "unknown command 'frobnicate'"},
   };
   for (const UsageRow& row : rows) {
     std::string shown;
