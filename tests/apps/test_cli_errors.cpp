@@ -833,6 +833,18 @@ TEST(CliUsage, UsageErrorsExitTwoWithUsageOnStderr) {
       {{"help", "run", "x"}, "unexpected argument 'x' after help run"},
       {{"-h", "--bogus"}, "unexpected argument '--bogus' after -h"},
       {{"help", "frobnicate"}, "unknown command 'frobnicate'"},
+      // Numbers are decimal, as in the case file (which refuses 0x10):
+      // strtod read "--scales 0x1" as hexadecimal and ran a folder "..._x1"
+      // (black-box probe); strtol took leading spaces and '+'.
+      {{"sweep", c, "--scales", "0x1"}, "--scales expects a positive number, got '0x1'"},
+      {{"sweep", c, "--scales", "1,0x2"}, "--scales expects a positive number, got '0x2'"},
+      {{"sweep", c, "--window-length", "0x1p-1"}, "--window-length expects a positive number, got '0x1p-1'"},
+      {{"compare", c, "--window-length", " 1"}, "--window-length expects a positive number, got ' 1'"},
+      {{"run", c, "--checkpoint-every", "0x1"}, "--checkpoint-every expects a positive number of simulated seconds, got '0x1'"},
+      {{"run", c, "--threads", " 2"}, "--threads expects a whole number from 1 to 1024, got ' 2'"},
+      {{"compare", c, "--jobs", "+2"}, "--jobs expects a whole number from 1 to 256, got '+2'"},
+      {{"resume", dir.path().string(), "--threads", "0x2"}, "--threads expects a whole number from 1 to 1024, got '0x2'"},
+      {{"render", dir.path().string(), "--fps", " 5"}, "--fps expects a whole number from 1 to 100, got ' 5'"},
   };
   for (const UsageRow& row : rows) {
     std::string shown;
