@@ -127,6 +127,9 @@ const Row kCaseRows[] = {
     // yaml-cpp 0.7 alone would loop here until memory ran out (fuzz_case_file).
     {"yaml_stray_comma", "", ",\n", "case.yaml", 1, "", "unexpected ','"},
     {"control_byte", "name: cli_errors\n", "name: cli\x01_errors\n", "case.yaml", 2, "", "control byte 0x01"},
+    // The same written as YAML escapes: `info` printed them raw (probe).
+    {"escaped_control_characters", "name: cli_errors\n", "name: cli_errors\ndescription: \"red \\e[31m \\0 \\x7f\"\n",
+     "case.yaml", 3, "description", "control character 0x1B"},
     // Densities no solid has (a typing error or a wrong unit): 1e-300 made
     // every frequency overflow, so the stable-step check saw no limit and
     // the run went on; 1e308 gave an infinite mass.
@@ -296,6 +299,27 @@ TEST(CliInfo, NegativeAxisPrintsWithoutNegativeZeros) {
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.out.find("along ( 0  0 -1)"), std::string::npos) << r.out;
   EXPECT_EQ(r.out.find("(-0 "), std::string::npos) << r.out;
+}
+
+// `info` printed a description's YAML escapes "\e", "\0", "\x7f" as the
+// raw ESC, NUL and DEL bytes (black-box probe): the case is refused as one
+// with the raw bytes is, and no such byte reaches the terminal. A tab and
+// line breaks are text, and stay allowed.
+TEST(CliInfo, ControlCharactersWrittenAsEscapesAreRefused) {
+  TempDir dir;
+  std::ofstream(dir.path() / "rec.AT2") << kBaseRecord;
+  std::ofstream(dir.path() / "bad.yaml") << std::string(kBaseCase) + "description: \"red \\e[31m \\0 \\x7f\"\n";
+  std::ofstream(dir.path() / "good.yaml") << std::string(kBaseCase) + "description: \"one\\ttwo\\nthree\"\n";
+  const auto bad = run_app({"info", (dir.path() / "bad.yaml").string()}, dir.path());
+  EXPECT_EQ(bad.code, 2) << bad.err;
+  EXPECT_NE(bad.err.find("bad.yaml:23: field 'description': control character 0x1B"), std::string::npos) << bad.err;
+  for (const char c : {'\x1b', '\0', '\x7f'}) {
+    EXPECT_EQ(bad.out.find(c), std::string::npos) << int(c);
+    EXPECT_EQ(bad.err.find(c), std::string::npos) << int(c);
+  }
+  const auto good = run_app({"info", (dir.path() / "good.yaml").string()}, dir.path());
+  EXPECT_EQ(good.code, 0) << good.err;
+  EXPECT_NE(good.out.find("one\ttwo\nthree"), std::string::npos) << good.out;
 }
 
 // An output interval not shorter than the run leaves its file with the
