@@ -9,7 +9,10 @@ namespace fq_app {
 std::string collapse_order_note(const std::vector<LabelledReport>& cases) {
   std::string lines;
   for (const auto& [label, report] : cases) {
-    if (report == nullptr) continue;
+    // An unstable run's drifts after the blow-up are the arithmetic's, not
+    // the structure's: it is not assessed (the table says so), and is no
+    // collapse (a probe's forced run read "unstable: storey 1 at 0.004 s").
+    if (report == nullptr || report->result.status == fq::RunStatus::Unstable) continue;
     std::vector<std::pair<double, int>> fallen;  // (collapse time, storey number)
     for (const fq::StoreyOutcome& s : report->storeys)
       if (s.drift.collapse_time_s >= 0.0) fallen.emplace_back(s.drift.collapse_time_s, s.number);

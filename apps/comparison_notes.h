@@ -22,7 +22,8 @@ using LabelledReport = std::pair<std::string, const fq::CaseRunReport*>;
 
 // "\nStoreys collapsed, in the order they passed the collapse limit:\n- A:
 // storey 1 at 3.170 s, storey 2 at 3.716 s\n" for the cases with a
-// collapsed storey (collapse_time_s >= 0); "" when none collapsed.
+// collapsed storey (collapse_time_s >= 0); "" when none collapsed. An
+// unstable run is not listed: it is not assessed.
 std::string collapse_order_note(const std::vector<LabelledReport>& cases);
 
 // "\nWarnings of the runs (also in each summary.json):\n- A: text\n..."

@@ -38,6 +38,7 @@
 #include "io/case_runner.h"
 #include "io/input_error.h"
 #include "io/name_hint.h"
+#include "option_number.h"
 #include "progress_display.h"
 #include "run_outcome.h"
 #include "study_commands.h"
@@ -94,7 +95,7 @@ const char* kMainHelp =
     "  framequake compare CASE...      run cases side by side; table of storey drifts and verdicts, figure\n"
     "  framequake sweep CASE...        run cases over amplitude scales (and records); collapse scales, figure\n"
     "  framequake render OUT_DIR       animate a finished run (GIF/MP4, PNG frames); --compare for several\n"
-    "  framequake --help               this text;  framequake COMMAND --help for a command\n"
+    "  framequake --help               this text;  framequake COMMAND --help (or help COMMAND) for a command\n"
     "  framequake --version            print the version\n"
     "\n"
     "Options may also be written --option=value; \"--\" ends the options (for a file\n"
@@ -213,12 +214,7 @@ RunArgs parse_run_args(int argc, char** argv, int first, const char* help, bool 
     } else if (run_options && arg == "--force") {
       a.force = true;
     } else if (run_options && arg == "--threads") {
-      const std::string v = need_value("--threads");
-      char* end = nullptr;
-      const long n = std::strtol(v.c_str(), &end, 10);
-      if (end == v.c_str() || *end != '\0' || n < 1 || n > 1024)
-        usage_error("--threads expects a whole number from 1 to 1024, got '" + v + "'", help);
-      a.threads = int(n);
+      a.threads = fq_app::whole_number_option("--threads", need_value("--threads"), 1, 1024, help);
     } else if (integrator_option && arg == "--integrator") {
       const std::string v = need_value("--integrator");
       fq::Integrator m;
@@ -232,9 +228,8 @@ RunArgs parse_run_args(int argc, char** argv, int first, const char* help, bool 
       a.list_joints = true;
     } else if (run_options && arg == "--checkpoint-every") {
       const std::string v = need_value("--checkpoint-every");
-      char* end = nullptr;
-      const double s = std::strtod(v.c_str(), &end);
-      if (end == v.c_str() || *end != '\0' || !(s > 0.0) || !std::isfinite(s))
+      double s = 0.0;
+      if (!fq_app::read_decimal_number(v, s) || !(s > 0.0))
         usage_error("--checkpoint-every expects a positive number of simulated seconds, got '" + v + "'", help);
       a.checkpoint_every_s = s;
     } else if (!arg.empty() && arg[0] == '-') {
@@ -320,13 +315,9 @@ int command_resume(int argc, char** argv) {
       quiet = true;
     } else if (arg == "--threads") {
       if (i + 1 >= argc) usage_error("--threads needs a value", kResumeHelp);
-      const std::string v = argv[++i];
-      char* end = nullptr;
-      const long n = std::strtol(v.c_str(), &end, 10);
-      if (end == v.c_str() || *end != '\0' || n < 1 || n > 1024)
-        usage_error("--threads expects a whole number from 1 to 1024, got '" + v + "'", kResumeHelp);
+      [[maybe_unused]] const int n = fq_app::whole_number_option("--threads", argv[++i], 1, 1024, kResumeHelp);
 #if defined(_OPENMP)
-      omp_set_num_threads(int(n));
+      omp_set_num_threads(n);
 #endif
     } else if (!arg.empty() && arg[0] == '-') {
       unknown_option(arg, kResumeHelp);
@@ -440,8 +431,23 @@ static int dispatch(int argc, char** argv) {
       words.push_back(arg);
     }
   }
-  // "framequake help run": the command's own help.
-  if (words.size() >= 3 && words[1] == "help") words = {words[0], words[2], "--help"};
+  // "framequake help run" (or --help run, -h run): the command's own help.
+  // Nothing may follow the command, and nothing may follow --version: extra
+  // words were ignored with exit 0 ("--version --bogus", "--help run x y";
+  // CLI probe), as no command ignores them.
+  if (words.size() >= 3 && (words[1] == "help" || words[1] == "--help" || words[1] == "-h")) {
+    if (words[2].rfind('-', 0) == 0)
+      usage_error("unexpected argument '" + words[2] + "' after " + words[1] + " (give a command, e.g. " + words[1] +
+                      " run)",
+                  kMainHelp);
+    if (words.size() > 3)
+      usage_error("unexpected argument '" + words[3] + "' after " + words[1] + " " + words[2] +
+                      " (one command's help at a time)",
+                  kMainHelp);
+    words = {words[0], words[2], "--help"};
+  }
+  if (words.size() >= 3 && words[1] == "--version")
+    usage_error("unexpected argument '" + words[2] + "' after --version (it takes none)", kMainHelp);
   std::vector<char*> split_argv;
   for (std::string& w : words) split_argv.push_back(w.data());
   split_argv.push_back(nullptr);

@@ -28,6 +28,7 @@
 
 #include "collapse_bracket.h"
 #include "comparison_notes.h"
+#include "option_number.h"
 #include "run_outcome.h"
 #include "usage_error.h"
 #include "fq_config.h"
@@ -112,13 +113,10 @@ const char* kSweepHelp =
     "Exit codes: 0 all runs completed and everything was written; 1 a run became\n"
     "unstable; 2 bad input (nothing run); 3 output failed; 130 interrupted (143 by SIGTERM, 129 by SIGHUP).\n";
 
+// Decimal only, as the case file's numbers (option_number.h): strtod read
+// "--scales 0x1" as hexadecimal.
 double parse_positive(const std::string& text, const std::string& option, const char* help) {
-  errno = 0;
-  char* end = nullptr;
-  const double v = std::strtod(text.c_str(), &end);
-  if (text.empty() || end == text.c_str() || *end != '\0' || errno != 0 || !std::isfinite(v) || v <= 0.0)
-    usage_error(option + " expects a positive number, got '" + text + "'", help);
-  return v;
+  return positive_number_option(option, text, help);
 }
 
 struct StudyArgs {
@@ -156,12 +154,7 @@ StudyArgs parse_study_args(int argc, char** argv, const char* help, bool sweep) 
     } else if (arg == "--out") {
       a.out = value("--out");
     } else if (arg == "--jobs") {
-      const std::string v = value("--jobs");
-      char* end = nullptr;
-      const long n = std::strtol(v.c_str(), &end, 10);
-      if (end == v.c_str() || *end != '\0' || n < 1 || n > 256)
-        usage_error("--jobs expects a whole number from 1 to 256, got '" + v + "'", help);
-      a.jobs = int(n);
+      a.jobs = whole_number_option("--jobs", value("--jobs"), 1, 256, help);
     } else if (arg == "--window-length") {
       a.window_length_s = parse_positive(value("--window-length"), "--window-length", help);
     } else if (arg == "--force") {

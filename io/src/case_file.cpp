@@ -1236,6 +1236,63 @@ std::string coordinate_out_of_range(const Vec3& xyz_m) {
   return why.str();
 }
 
+namespace {
+
+// The first control character in `text` that YAML allows no raw byte of
+// (all of C0 but tab, LF and CR, and DEL: the check of load_case_file), or
+// -1 when there is none.
+int first_control_character(std::string_view text) {
+  for (const char ch : text) {
+    const auto c = static_cast<unsigned char>(ch);
+    if ((c < 0x20 && c != '\t' && c != '\n' && c != '\r') || c == 0x7f) return c;
+  }
+  return -1;
+}
+
+std::string control_hex(int c) {
+  static const char* const kHex = "0123456789ABCDEF";
+  return std::string("0x") + kHex[c >> 4] + kHex[c & 15];
+}
+
+// The same control characters written as YAML escapes in a quoted scalar
+// ("\e", "\0", "\x7f", "\u001b"): the raw bytes are refused before parsing,
+// and these reached the terminal just the same (`info` printed a
+// description's ESC, NUL and DEL bytes; a probe). Refused in every key and
+// value, with the scalar's line and field. `walked`: the positions of the
+// lists and mappings already walked, so that aliases of one node (`*a`) are
+// walked once: a "billion laughs" file of nested aliases would otherwise
+// take exponential time here.
+void refuse_escaped_control_characters(const std::string& file, const YAML::Node& node, const std::string& path,
+                                       std::unordered_set<int>& walked) {
+  const auto check = [&](const YAML::Node& n, const std::string& where) {
+    if (!n.IsScalar()) return;
+    const int c = first_control_character(n.Scalar());
+    if (c < 0) return;
+    throw InputError(file, Reader::line_of(n), where,
+                     "control character " + control_hex(c) +
+                         " (a YAML escape such as \\e, \\0 or \\x7f) in the text; expected printable text "
+                         "(tab and line breaks allowed)");
+  };
+  if (node.IsScalar()) {
+    check(node, path);
+    return;
+  }
+  if (node.Mark().pos >= 0 && !walked.insert(node.Mark().pos).second) return;
+  if (node.IsSequence()) {
+    for (std::size_t i = 0; i < node.size(); ++i)
+      refuse_escaped_control_characters(file, node[i], index_path(path, i), walked);
+  } else if (node.IsMap()) {
+    for (auto it = node.begin(); it != node.end(); ++it) {
+      const YAML::Node key = it->first;  // copies: see expect_keys
+      const YAML::Node value = it->second;
+      check(key, path);
+      refuse_escaped_control_characters(file, value, key.IsScalar() ? join(path, key.Scalar()) : path, walked);
+    }
+  }
+}
+
+}  // namespace
+
 CaseDef load_case_file(const std::filesystem::path& file) {
   const std::string name = file.string();
   if (const std::string why = why_not_a_readable_file(file); !why.empty())
@@ -1250,15 +1307,12 @@ CaseDef load_case_file(const std::filesystem::path& file) {
   // c-printable); they mean a binary or corrupted file. Refused here with
   // their position, before yaml-cpp would echo the raw byte in its message.
   std::size_t line_no = 1;
-  for (const char ch : text) {
-    const auto c = static_cast<unsigned char>(ch);
-    if (c == '\n') ++line_no;
-    if ((c < 0x20 && c != '\t' && c != '\n' && c != '\r') || c == 0x7f) {
-      static const char* const kHex = "0123456789ABCDEF";
+  for (const char& ch : text) {
+    if (ch == '\n') ++line_no;
+    if (const int c = first_control_character(std::string_view(&ch, 1)); c >= 0)
       throw InputError(name, int(line_no), "",
-                       std::string("control byte 0x") + kHex[c >> 4] + kHex[c & 15] +
+                       "control byte " + control_hex(c) +
                            " in the text; expected a YAML text file (is this a binary file?)");
-    }
   }
 
   const Reader r(name);
@@ -1324,6 +1378,8 @@ CaseDef load_case_file(const std::filesystem::path& file) {
   }
   if (!root.IsDefined() || root.IsNull())
     throw InputError(name, 0, "", "the file is empty; expected a mapping starting with 'framequake_case: 1'");
+  std::unordered_set<int> walked;
+  refuse_escaped_control_characters(name, root, "", walked);
   try {
     return parse_root(r, root, file);
   } catch (const YAML::Exception& e) {

@@ -1,12 +1,14 @@
 #include "render/render_command.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cstdlib>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <optional>
 #include <string>
+#include <system_error>
 #include <vector>
 
 #include "render/headless_display.h"
@@ -61,10 +63,12 @@ struct UsageError {
   std::string message;
 };
 
+// Decimal digits only, as the case file's whole numbers and the other
+// commands' options (std::from_chars; strtol also took " 4" and "+4").
 int parse_int(const std::string& option, const std::string& v, int lo, int hi) {
-  char* end = nullptr;
-  const long n = std::strtol(v.c_str(), &end, 10);
-  if (end == v.c_str() || *end != '\0' || n < lo || n > hi)
+  long n = 0;
+  const auto [end, ec] = std::from_chars(v.data(), v.data() + v.size(), n);
+  if (v.empty() || ec != std::errc() || end != v.data() + v.size() || n < lo || n > hi)
     throw UsageError{option + " expects a whole number from " + std::to_string(lo) + " to " + std::to_string(hi) +
                      ", got '" + v + "'"};
   return int(n);

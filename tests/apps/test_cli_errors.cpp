@@ -127,6 +127,9 @@ const Row kCaseRows[] = {
     // yaml-cpp 0.7 alone would loop here until memory ran out (fuzz_case_file).
     {"yaml_stray_comma", "", ",\n", "case.yaml", 1, "", "unexpected ','"},
     {"control_byte", "name: cli_errors\n", "name: cli\x01_errors\n", "case.yaml", 2, "", "control byte 0x01"},
+    // The same written as YAML escapes: `info` printed them raw (probe).
+    {"escaped_control_characters", "name: cli_errors\n", "name: cli_errors\ndescription: \"red \\e[31m \\0 \\x7f\"\n",
+     "case.yaml", 3, "description", "control character 0x1B"},
     // Densities no solid has (a typing error or a wrong unit): 1e-300 made
     // every frequency overflow, so the stable-step check saw no limit and
     // the run went on; 1e308 gave an infinite mass.
@@ -296,6 +299,27 @@ TEST(CliInfo, NegativeAxisPrintsWithoutNegativeZeros) {
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.out.find("along ( 0  0 -1)"), std::string::npos) << r.out;
   EXPECT_EQ(r.out.find("(-0 "), std::string::npos) << r.out;
+}
+
+// `info` printed a description's YAML escapes "\e", "\0", "\x7f" as the
+// raw ESC, NUL and DEL bytes (black-box probe): the case is refused as one
+// with the raw bytes is, and no such byte reaches the terminal. A tab and
+// line breaks are text, and stay allowed.
+TEST(CliInfo, ControlCharactersWrittenAsEscapesAreRefused) {
+  TempDir dir;
+  std::ofstream(dir.path() / "rec.AT2") << kBaseRecord;
+  std::ofstream(dir.path() / "bad.yaml") << std::string(kBaseCase) + "description: \"red \\e[31m \\0 \\x7f\"\n";
+  std::ofstream(dir.path() / "good.yaml") << std::string(kBaseCase) + "description: \"one\\ttwo\\nthree\"\n";
+  const auto bad = run_app({"info", (dir.path() / "bad.yaml").string()}, dir.path());
+  EXPECT_EQ(bad.code, 2) << bad.err;
+  EXPECT_NE(bad.err.find("bad.yaml:23: field 'description': control character 0x1B"), std::string::npos) << bad.err;
+  for (const char c : {'\x1b', '\0', '\x7f'}) {
+    EXPECT_EQ(bad.out.find(c), std::string::npos) << int(c);
+    EXPECT_EQ(bad.err.find(c), std::string::npos) << int(c);
+  }
+  const auto good = run_app({"info", (dir.path() / "good.yaml").string()}, dir.path());
+  EXPECT_EQ(good.code, 0) << good.err;
+  EXPECT_NE(good.out.find("one\ttwo\nthree"), std::string::npos) << good.out;
 }
 
 // An output interval not shorter than the run leaves its file with the
@@ -767,11 +791,14 @@ TEST(CliUsage, HelpForEveryCommandExitsZeroWithUsage) {
   EXPECT_NE(run_help.out.find("--out DIR"), std::string::npos);
   EXPECT_NE(run_help.out.find("Exit codes"), std::string::npos);
   // "help COMMAND" gives that command's help, as "COMMAND --help" does.
+  // So do "--help COMMAND" and "-h COMMAND" (they printed the top-level help).
   for (const std::string command : {"run", "info", "resume", "compare", "sweep"}) {
-    const auto asked = run_app({"help", command}, dir.path());
     const auto direct = run_app({command, "--help"}, dir.path());
-    EXPECT_EQ(asked.code, 0) << command << ": " << asked.err;
-    EXPECT_EQ(asked.out, direct.out) << command;
+    for (const std::string asking : {"help", "--help", "-h"}) {
+      const auto asked = run_app({asking, command}, dir.path());
+      EXPECT_EQ(asked.code, 0) << asking << " " << command << ": " << asked.err;
+      EXPECT_EQ(asked.out, direct.out) << asking << " " << command;
+    }
   }
   const auto version = run_app({"--version"}, dir.path());
   EXPECT_EQ(version.code, 0);
@@ -822,6 +849,26 @@ TEST(CliUsage, UsageErrorsExitTwoWithUsageOnStderr) {
       {{"info", c, "--out", "x"}, "unknown option '--out'\n"},
       {{"render"}, "missing OUT_DIR"},
       {{"render", dir.path().string(), "--fsp", "3"}, "unknown option '--fsp' (did you mean '--fps'?)"},
+      // Words after --version or a help request are named, not ignored with
+      // exit 0 (CLI probe: "--version extra", "--help run x y").
+      {{"--version", "extra"}, "unexpected argument 'extra' after --version"},
+      {{"--version", "--bogus"}, "unexpected argument '--bogus' after --version"},
+      {{"--help", "run", "x", "y"}, "unexpected argument 'x' after --help run"},
+      {{"help", "run", "x"}, "unexpected argument 'x' after help run"},
+      {{"-h", "--bogus"}, "unexpected argument '--bogus' after -h"},
+      {{"help", "frobnicate"}, "unknown command 'frobnicate'"},
+      // Numbers are decimal, as in the case file (which refuses 0x10):
+      // strtod read "--scales 0x1" as hexadecimal and ran a folder "..._x1"
+      // (black-box probe); strtol took leading spaces and '+'.
+      {{"sweep", c, "--scales", "0x1"}, "--scales expects a positive number, got '0x1'"},
+      {{"sweep", c, "--scales", "1,0x2"}, "--scales expects a positive number, got '0x2'"},
+      {{"sweep", c, "--window-length", "0x1p-1"}, "--window-length expects a positive number, got '0x1p-1'"},
+      {{"compare", c, "--window-length", " 1"}, "--window-length expects a positive number, got ' 1'"},
+      {{"run", c, "--checkpoint-every", "0x1"}, "--checkpoint-every expects a positive number of simulated seconds, got '0x1'"},
+      {{"run", c, "--threads", " 2"}, "--threads expects a whole number from 1 to 1024, got ' 2'"},
+      {{"compare", c, "--jobs", "+2"}, "--jobs expects a whole number from 1 to 256, got '+2'"},
+      {{"resume", dir.path().string(), "--threads", "0x2"}, "--threads expects a whole number from 1 to 1024, got '0x2'"},
+      {{"render", dir.path().string(), "--fps", " 5"}, "--fps expects a whole number from 1 to 100, got ' 5'"},
   };
   for (const UsageRow& row : rows) {
     std::string shown;

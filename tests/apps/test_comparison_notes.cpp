@@ -38,6 +38,21 @@ TEST(ComparisonNotes, StoreysAreListedInTheOrderTheyCollapsed) {
   EXPECT_EQ(fq_app::collapse_order_note({{"frame_C", &standing}}), "");
 }
 
+// A run that became unstable is not assessed (the table's verdict), so its
+// drifts past the collapse limit are no collapse (a probe's forced run was
+// listed as "unstable: storey 1 at 0.004 s").
+TEST(ComparisonNotes, AnUnstableRunIsNotListedAsCollapsed) {
+  fq::CaseRunReport blown, fallen;
+  blown.result.status = fq::RunStatus::Unstable;
+  blown.storeys = {storey(1, 0.004)};
+  fallen.result.status = fq::RunStatus::Completed;
+  fallen.storeys = {storey(1, 3.170)};
+  EXPECT_EQ(fq_app::collapse_order_note({{"unstable", &blown}}), "");
+  const std::string note = fq_app::collapse_order_note({{"unstable", &blown}, {"frame_A", &fallen}});
+  EXPECT_NE(note.find("- frame_A: storey 1 at 3.170 s\n"), std::string::npos) << note;
+  EXPECT_EQ(note.find("unstable"), std::string::npos) << note;
+}
+
 TEST(ComparisonNotes, EveryWarningOfEveryRunIsListedUnderItsCase) {
   fq::CaseRunReport a, b;
   a.warnings = {"storey 1 twists: column 'column1_sw' alone drifted 0.113 rad", "second warning"};

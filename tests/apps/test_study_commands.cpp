@@ -1189,6 +1189,28 @@ TEST(StudyCommands, TablesCountOnlyRunsThatCompleted) {
   EXPECT_NE(md.find(": unstable"), std::string::npos) << md;
 }
 
+// compare's notes agree with its table: an unstable run (the portal at
+// dt = 1e-3 s, forced) is "not assessed (unstable)" there, and was also
+// listed under "Storeys collapsed, in the order ..." as "storey 1 at
+// 0.004 s" (black-box probe), as if the frame had fallen.
+TEST(StudyCommands, CompareDoesNotListAnUnstableRunAsCollapsed) {
+  TempDir dir;
+  std::string coarse = read_text(kSource / "cases/demo_portal_frame.yaml");
+  const std::string dt = "dt_s: 1.0e-5", record = "file: ground_motions/";
+  ASSERT_NE(coarse.find(dt), std::string::npos);
+  coarse.replace(coarse.find(dt), dt.size(), "dt_s: 1.0e-3");
+  coarse.replace(coarse.find(record), record.size(), "file: " + (kSource / "cases/ground_motions").string() + "/");
+  std::ofstream(dir.path() / "coarse.yaml", std::ios::binary) << coarse;
+  const fs::path out = dir.path() / "cmp";
+  const auto r = run_app({"compare", (dir.path() / "coarse.yaml").string(), "--force", "--no-figure", "--out",
+                          out.string()},
+                         dir.path());
+  EXPECT_EQ(r.code, 1) << r.err;
+  const std::string md = read_text(out / "comparison.md");
+  EXPECT_NE(md.find("not assessed (unstable)"), std::string::npos) << md;
+  EXPECT_EQ(md.find("Storeys collapsed"), std::string::npos) << md;
+}
+
 // The stable limit info prints is one a user can copy into dt_s: printed
 // rounded down, so run and info accept it. The portal demo's limit,
 // 1.184375...e-4 s, printed to six digits by the stream's own rounding as

@@ -657,6 +657,20 @@ std::vector<BadCase> bad_cases() {
       {"ControlByte", kHead + kBlock + std::string("description: a\x01" "b\n"), 5, "",
        {"control byte 0x01", "expected a YAML text file"}},
       {"NulByte", kHead + std::string("\0", 1) + kBlock, 4, "", {"control byte 0x00"}},
+      // The same characters written as YAML escapes in quoted text reached
+      // the terminal through `info`'s description (black-box probe): refused
+      // as the raw bytes are, naming the field.
+      {"EscapedEscInDescription", kHead + kBlock + "description: \"red \\e[31m\"\n", 5, "description",
+       {"control character 0x1B", "YAML escape"}},
+      {"EscapedNulInDescription", kHead + kBlock + "description: \"a\\0b\"\n", 5, "description",
+       {"control character 0x00"}},
+      {"EscapedDelInDescription", kHead + kBlock + "description: \"a\\x7fb\"\n", 5, "description",
+       {"control character 0x7F"}},
+      {"EscapedControlInAName",
+       "framequake_case: 1\ntime: {dt_s: 1.0e-5, duration_s: 1.0}\n"
+       "materials: [{name: \"spr\\u001bce\", density_kg_per_m3: 450}]\n" + kBlock,
+       3, "materials[0].name", {"control character 0x1B"}},
+      {"EscapedControlInAKey", kHead + kBlock + "\"descr\\eiption\": x\n", 5, "", {"control character 0x1B"}},
       // yaml-cpp 0.7's LoadAll loops forever, allocating, on a stray ','
       // (found by fuzz_case_file: a timeout, then std::bad_alloc).
       {"StrayComma", ",", 1, "", {"YAML syntax error", "unexpected ','", "column 1"}},
