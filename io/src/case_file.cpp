@@ -1303,6 +1303,15 @@ CaseDef load_case_file(const std::filesystem::path& file) {
   buffer << in.rdbuf();
 
   const std::string text = buffer.str();
+  // A text editor's "Unicode" is UTF-16: every other byte of ASCII text is
+  // 0x00, which the check below would call a binary file (error probe).
+  // Known by its byte-order mark, or by a NUL beside the first character.
+  const auto byte = [&](std::size_t i) { return i < text.size() ? static_cast<unsigned char>(text[i]) : 0x100u; };
+  if ((byte(0) == 0xFF && byte(1) == 0xFE) || (byte(0) == 0xFE && byte(1) == 0xFF) ||
+      (text.size() >= 2 && ((byte(0) == 0 && byte(1) != 0) || (byte(0) != 0 && byte(1) == 0))))
+    throw InputError(name, 0, "",
+                     "the case file is UTF-16 text (a byte-order mark or a 0x00 byte beside each character); "
+                     "expected UTF-8: save it as UTF-8 (or plain ASCII) text");
   // YAML allows no control characters but tab, LF and CR (YAML 1.2, 5.1
   // c-printable); they mean a binary or corrupted file. Refused here with
   // their position, before yaml-cpp would echo the raw byte in its message.

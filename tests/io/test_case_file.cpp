@@ -331,6 +331,19 @@ const std::string kFrame =
     "  - {id: n1, xyz_m: [0, 0, 0]}\n"
     "  - {id: n2, xyz_m: [0, 0, 0.3]}\n";
 
+// ASCII `text` as UTF-16, little or big endian, with or without the
+// byte-order mark.
+std::string utf16(const std::string& text, bool little_endian, bool mark) {
+  std::string out;
+  auto unit = [&](char low, char high) {
+    out += little_endian ? low : high;
+    out += little_endian ? high : low;
+  };
+  if (mark) unit('\xFF', '\xFE');
+  for (const char c : text) unit(c, '\0');
+  return out;
+}
+
 struct BadCase {
   const char* name;
   std::string text;
@@ -657,6 +670,11 @@ std::vector<BadCase> bad_cases() {
       {"ControlByte", kHead + kBlock + std::string("description: a\x01" "b\n"), 5, "",
        {"control byte 0x01", "expected a YAML text file"}},
       {"NulByte", kHead + std::string("\0", 1) + kBlock, 4, "", {"control byte 0x00"}},
+      // Saved as "Unicode" (UTF-16) by an editor: named as such, not as a
+      // binary file (error probe).
+      {"Utf16LittleEndianWithMark", utf16(kHead + kBlock, true, true), 0, "", {"the case file is UTF-16 text"}},
+      {"Utf16LittleEndianWithoutMark", utf16(kHead + kBlock, true, false), 0, "", {"expected UTF-8"}},
+      {"Utf16BigEndianWithMark", utf16(kHead + kBlock, false, true), 0, "", {"the case file is UTF-16 text"}},
       // The same characters written as YAML escapes in quoted text reached
       // the terminal through `info`'s description (black-box probe): refused
       // as the raw bytes are, naming the field.
