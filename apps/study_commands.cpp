@@ -1019,9 +1019,13 @@ int command_compare(int argc, char** argv, const std::atomic<bool>* stop_request
       if (r.first_joint_failure.empty()) continue;
       firsts += "\n- " + jobs[i].label + ": " + r.first_joint_failure;
       if (!r.first_joint_failure_name.empty()) firsts += ", joint " + r.first_joint_failure_name;
-      firsts += " at t = " + fixed(r.first_joint_failure_time_s, 3) + " s";
+      firsts += std::string(r.first_joint_failure_broke ? " broke" : " lost a spring and held") + " at t = " +
+                fixed(r.first_joint_failure_time_s, 3) + " s";
+      // A blow-up tears joints apart: not a weak point (error probe).
+      if (r.result.status == fq::RunStatus::Unstable)
+        firsts += " (the run became unstable: this may be the blow-up's doing)";
     }
-    if (!firsts.empty()) md << "\nFirst joint to fail (a spring deleted or the joint broken):" << firsts << "\n";
+    if (!firsts.empty()) md << "\nFirst joint to fail:" << firsts << "\n";
     std::vector<LabelledReport> labelled;
     for (std::size_t i = 0; i < jobs.size(); ++i)
       labelled.emplace_back(jobs[i].label, outcomes[i].ok ? &outcomes[i].report : nullptr);

@@ -672,17 +672,19 @@ TEST(StudyCommands, TheFirstJointToFailIsNamed) {
   ASSERT_EQ(r.code, 0) << r.err;
   std::stringstream events(read_text(out / "demo_breaking_cantilever" / "events.csv"));
   std::string line, time_s;
-  while (std::getline(events, line))
-    if (line.find(",spring_deleted,") != std::string::npos) {
-      time_s = line.substr(0, line.find(','));
-      break;
-    }
+  bool broke = false;  // a joint_broken row at the first deletion's time
+  while (std::getline(events, line)) {
+    const std::string t = line.substr(0, line.find(','));
+    if (time_s.empty() && line.find(",spring_deleted,") != std::string::npos) time_s = t;
+    if (!time_s.empty() && t == time_s && line.find(",joint_broken,") != std::string::npos) broke = true;
+  }
   ASSERT_FALSE(time_s.empty()) << "the demo must break a joint";
   const std::string label = "node top: column column - beam arm (type weak_tenon)";
   const std::string md = read_text(out / "comparison.md");
   std::ostringstream expected;
   // Its name as events.csv gives it: node:member_a-member_b of the case file.
-  expected << "- demo_breaking_cantilever: " << label << ", joint top:column-arm at t = " << std::fixed
+  expected << "- demo_breaking_cantilever: " << label << ", joint top:column-arm "
+           << (broke ? "broke" : "lost a spring and held") << " at t = " << std::fixed
            << std::setprecision(3) << std::stod(time_s) << " s";
   EXPECT_NE(md.find(expected.str()), std::string::npos) << md;
   EXPECT_NE(read_text(out / "demo_breaking_cantilever" / "summary.json").find("\"first_joint_failure\": \"" + label + "\""),
@@ -1209,6 +1211,56 @@ TEST(StudyCommands, CompareDoesNotListAnUnstableRunAsCollapsed) {
   const std::string md = read_text(out / "comparison.md");
   EXPECT_NE(md.find("not assessed (unstable)"), std::string::npos) << md;
   EXPECT_EQ(md.find("Storeys collapsed"), std::string::npos) << md;
+  // Its joints torn apart by the blow-up are no weak point: said so.
+  EXPECT_NE(md.find("at t = 0.004 s (the run became unstable: this may be the blow-up's doing)"), std::string::npos)
+      << md;
+}
+
+// comparison.md's "First joint to fail" says whether that joint broke or
+// lost a spring and held. Two 0.1 kg hangers, each on a single-point joint
+// whose trilinear normal spring reaches its ultimate force of 1.5 N at
+// t = 1.5 s as the ground accelerates upward at 10 t m/s^2 (statics:
+// F = m a_g = 0.1 x 10 t N; test_run_outcome.cpp has the same hanger): one
+// breaks with its spring (fracture any_spring_deleted), one holds on its
+// shear springs (never).
+TEST(StudyCommands, CompareSaysWhetherTheFirstJointToFailBrokeOrHeld) {
+  TempDir dir;
+  {
+    std::ofstream ramp(dir.path() / "ramp.txt");
+    for (int i = 0; i <= 200; ++i) ramp << 0.01 * i << " " << 0.1 * i << "\n";
+  }
+  std::vector<std::string> files;
+  for (const std::string criterion : {"any_spring_deleted", "never"}) {
+    std::ofstream(dir.path() / (criterion + ".yaml"))
+        << "framequake_case: 1\nname: hanger_" << criterion
+        << "\ntime: {dt_s: 1.0e-5, duration_s: 1.6, gravity_mps2: [0, 0, 0]}\n"
+           "materials: [{name: heavy, density_kg_per_m3: 10000}]\n"
+           "sections: [{name: sq, width_m: 0.010, depth_m: 0.010}]\n"
+           "nodes: [{id: top, xyz_m: [0, 0, 0.2]}, {id: bot, xyz_m: [0, 0, 0.1]}]\n"
+           "members: [{id: hanger, kind: other, nodes: [top, bot], section: sq, material: heavy}]\n"
+           "joint_types:\n  - name: tri\n    layout: single_point\n"
+           "    normal: {law: trilinear, reference_length_m: 0.010, yield_strain_tension: 0.01, "
+           "yield_force_tension_N: 1.0, ultimate_strain_tension: 0.05, ultimate_force_tension_N: 1.5, "
+           "yield_strain_compression: 0.01, yield_force_compression_N: 1.0, ultimate_strain_compression: 0.05, "
+           "ultimate_force_compression_N: 1.5, damping_ratio: 0.02}\n"
+           "    shear: {law: linear, stiffness_N_per_m: 1.0e5, damping_ratio: 0.02}\n"
+           "    fracture: {criterion: "
+        << criterion
+        << "}\njoints: {support_type: tri}\nsupports: [{node: top}]\n"
+           "ground_motion: {components: [{file: ramp.txt, format: two_column, unit: m/s2, axis: z}]}\n"
+           "output: {frame_interval_s: 0.8, history_interval_s: 0.01}\n";
+    files.push_back((dir.path() / (criterion + ".yaml")).string());
+  }
+  const fs::path out = dir.path() / "cmp";
+  const auto r = run_app({"compare", files[0], files[1], "--no-figure", "--out", out.string()}, dir.path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string md = read_text(out / "comparison.md");
+  const std::string joint = ": support top: ground - other hanger (type tri), joint top:ground-hanger ";
+  EXPECT_NE(md.find("First joint to fail:\n- hanger_any_spring_deleted" + joint + "broke at t = 1.50"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("- hanger_never" + joint + "lost a spring and held at t = 1.50"), std::string::npos) << md;
+  EXPECT_EQ(md.find("unstable"), std::string::npos) << md;
 }
 
 // The stable limit info prints is one a user can copy into dt_s: printed
