@@ -1395,16 +1395,19 @@ std::string brace_on_supported_node_warning(const CaseDef& def, const Scene& sce
 
 std::string unused_joint_rules_warning(const CaseDef& def) {
   if (def.joints.rules.empty()) return {};
-  // Every planned joint carries the line of the rule, override, support or
-  // node that gave it its type.
-  std::set<int> lines;
-  for (const PlannedJoint& p : plan_joints(build_model(def))) lines.insert(p.line);
+  // Every planned joint names the rule that gave it its type, if one did
+  // (by its line, a rule written on the line where joints: {...} begins
+  // counted as used by every joint of default_type; docs probe).
+  std::set<int> used;
+  for (const PlannedJoint& p : plan_joints(build_model(def))) used.insert(p.rule);
   std::ostringstream list;
   std::size_t unused = 0;
-  for (const JointRuleDef& r : def.joints.rules)
-    if (!lines.count(r.line))
+  for (std::size_t k = 0; k < def.joints.rules.size(); ++k) {
+    const JointRuleDef& r = def.joints.rules[k];
+    if (!used.count(int(k)))
       list << (unused++ ? ", " : "") << "[" << member_kind_name(r.kind_1) << ", " << member_kind_name(r.kind_2)
            << "] (line " << r.line << ")";
+  }
   if (unused == 0) return {};
   std::ostringstream w;
   w << def.source_file.string() << ": " << unused << (unused == 1 ? " joint rule makes" : " joint rules make")

@@ -187,12 +187,14 @@ std::vector<PlannedJoint> plan_joints(const Model& model) {
       const MemberDef& mb = def.members[std::size_t(here[std::size_t(kb)].member)];
       std::string type;
       int line = node.line;
+      int rule = -1;
       if (const JointOverrideDef* o = override_for(node.id, ma.id, mb.id)) {
         type = o->type;
         line = o->line;
       } else if (const JointRuleDef* r = rule_for(ma.kind, mb.kind)) {
         type = r->type;
         line = r->line;
+        rule = int(r - def.joints.rules.data());
       } else if (!def.joints.default_type.empty()) {
         type = def.joints.default_type;
         line = def.joints.line;
@@ -211,6 +213,7 @@ std::vector<PlannedJoint> plan_joints(const Model& model) {
       p.member_a = ma.id;
       p.member_b = mb.id;
       p.line = line;
+      p.rule = rule;
       p.name = joint_name(p.node, p.member_a, p.member_b);
       p.label = "node " + node.id + ": " + member_kind_name(ma.kind) + " " + ma.id + " - " +
                 member_kind_name(mb.kind) + " " + mb.id + " (type " + type + ")";

@@ -886,6 +886,21 @@ TEST(RunWarnings, AJointRuleThatMakesNoJointIsNamed) {
       << w;
   EXPECT_NE(w.find("the first member of kind beam there"), std::string::npos) << w;
   EXPECT_EQ(unused_joint_rules_warning(load_case_file(shipped_c)), "");
+  // The same rule in a joints mapping written on one line, the line the
+  // default type's joints were tagged with: still named (docs probe).
+  std::string flow = shipped_case_text_to_copy("frame_C.yaml");
+  const std::string block = "joints:\n  hub_kind: beam\n  default_type: tenon_new\n  support_type: tenon_new\n"
+                            "  rules:\n    - {kinds: [beam, brace], type: brace_end}";
+  const std::size_t from = flow.find(block);
+  ASSERT_NE(from, std::string::npos);
+  flow.replace(from, block.size(),
+               "joints: {hub_kind: beam, default_type: tenon_new, support_type: tenon_new, rules: [{kinds: [beam, "
+               "brace], type: brace_end}, {kinds: [column, brace], type: brace_end}]}");
+  const int joints_line = int(std::count(flow.begin(), flow.begin() + long(from), '\n')) + 1;
+  const std::string one_line = unused_joint_rules_warning(load_case_file(dir.write("frame_C_flow.yaml", flow)));
+  EXPECT_NE(one_line.find("1 joint rule makes no joint ([column, brace] (line " + std::to_string(joints_line) + "))"),
+            std::string::npos)
+      << one_line;
 }
 
 TEST(RunWarnings, AVerticalRecordAppliedHorizontallyAndTheReverseAreNamed) {

@@ -23,6 +23,7 @@ struct PlannedJoint {
   std::string member_a;  // member id on side a ("ground" for supports)
   std::string member_b;  // member id on side b
   int line = 0;          // line of the rule, override, support or node that made it
+  int rule = -1;         // index into joints.rules of the rule that gave its type; -1: none did
 };
 
 // A joint's name in the outputs (events.csv joint_name, the frames'
