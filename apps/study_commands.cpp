@@ -293,6 +293,15 @@ std::string fixed(double x, int digits) {
   return s.str();
 }
 
+// A sweep's scale as given, in its shortest form that reads back as itself
+// (as in its runs' folder names): two decimals printed 0.004 as 0.00 and
+// 0.3333333 and 0.33333333 alike (workflow probe).
+std::string scale_text(double scale) {
+  char digits[32];
+  const auto end = std::to_chars(digits, digits + sizeof digits, scale).ptr;
+  return std::string(digits, end);
+}
+
 std::string scientific(double x) {
   if (!std::isfinite(x)) return "-";
   std::ostringstream s;
@@ -1063,6 +1072,7 @@ int command_sweep(int argc, char** argv, const std::atomic<bool>* stop_requested
   std::vector<JobKey> keys;
   std::vector<std::string> case_order, record_order;
   std::vector<WindowUse> window_uses;  // with --window-length: what each case runs of each record
+  std::string record_cuts;             // windows a --record's end cut, a line each
   try {
     std::vector<fq::CaseDef> defs = load_cases(args.cases);
     std::vector<fq::AccelerationRecord> records;
@@ -1111,7 +1121,19 @@ int command_sweep(int argc, char** argv, const std::atomic<bool>* stop_requested
                                      " s, after the end of --record " + args.records[r] + " (" +
                                      std::to_string(c.record.duration_s()) + " s)");
           }
+          // The case's window (its own record's) cut by this record's end:
+          // said under the tables, since this record's runs then cover less
+          // of the shaking than the others' (workflow probe: 1.98 of a 4 s
+          // window ran, said only in summary.json).
+          const double case_window_s = gm.window_length_s;
           gm.window_length_s = std::min(gm.window_length_s, c.record.duration_s() - gm.window_start_s);
+          if (std::isfinite(case_window_s) && gm.window_length_s < case_window_s) {
+            std::ostringstream cut;
+            cut << "\n- " << def.name << " with " << fs::path(args.records[r]).filename().string() << ": the record ends "
+                << c.record.duration_s() << " s in, so the window from " << gm.window_start_s << " s ran "
+                << gm.window_length_s << " record seconds of the case's " << case_window_s << " s";
+            record_cuts += cut.str();
+          }
           // A case that runs for its window (no duration_s) would run for
           // less than a step: refused here, before any run, naming the
           // record (review probe: it ended the sweep as an internal error,
@@ -1151,9 +1173,7 @@ int command_sweep(int argc, char** argv, const std::atomic<bool>* stop_requested
           }
           // The scale in its shortest form that reads back as itself:
           // scales that differ in the 7th digit get folders of their own.
-          char digits[32];
-          const auto end = std::to_chars(digits, digits + sizeof digits, scale).ptr;
-          job.label = def.name + "_" + record_name + "_x" + std::string(digits, end);
+          job.label = def.name + "_" + record_name + "_x" + scale_text(scale);
           job.output_folder = args.out / job.label;
           jobs.push_back(std::move(job));
           keys.push_back({def.name, record_name, scale});
@@ -1248,11 +1268,11 @@ int command_sweep(int argc, char** argv, const std::atomic<bool>* stop_requested
       cs << fq::csv_text(name) << "," << fq::csv_text(record) << "," << csv_number(stood) << "," << csv_number(fell)
          << "," << csv_number(pga) << "," << which << "," << stood_above_collapse_csv(b) << "\n";
       md << "| " << name << " | " << record << " | "
-         << (std::isnan(largest_completed) ? std::string("-") : std::isnan(stood) ? std::string("none") : fixed(stood, 2))
+         << (std::isnan(largest_completed) ? std::string("-") : std::isnan(stood) ? std::string("none") : scale_text(stood))
          << " | "
-         << (!std::isnan(fell)                ? fixed(fell, 2) + (b.stood_above_collapse.empty() ? "" : " (not monotonic)")
+         << (!std::isnan(fell)                ? scale_text(fell) + (b.stood_above_collapse.empty() ? "" : " (not monotonic)")
              : std::isnan(largest_completed) ? std::string("no run completed")
-                                             : "none up to " + fixed(largest_completed, 2))
+                                             : "none up to " + scale_text(largest_completed))
          << " | " << (std::isnan(pga) ? std::string("-") : fixed(pga, 2) + " (" + fixed(pga / fq::kStandardGravity_mps2, 3) + " g)")
          << " | " << (which.empty() ? "-" : which) << " |\n";
       if (const std::string note = non_monotonic_note(name, record, b); !note.empty()) not_monotonic += "\n" + note;
@@ -1271,6 +1291,10 @@ int command_sweep(int argc, char** argv, const std::atomic<bool>* stop_requested
     }
     if (!skipped.empty()) md << "\nNot counted above (the run did not complete):" << skipped << "\n";
   }
+  if (!record_cuts.empty())
+    md << "\nWindows cut by a --record's end (each such run applied less of the shaking than the case's window "
+          "asks for; the collapse scales hold for that part):"
+       << record_cuts << "\n";
   md << window_length_note(args, window_uses, "the collapse scales");
   if (!write_text(args.out / "sweep.csv", csv.str()) || !write_text(args.out / "collapse_scales.csv", cs.str()) ||
       !write_text(args.out / "collapse_scales.md", md.str()))

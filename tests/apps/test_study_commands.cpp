@@ -1154,6 +1154,33 @@ TEST(StudyCommands, TheWindowNoteSaysWhatEachRunApplied) {
                 .find("Ground motion cut to the first 0.4 record seconds of each case's window (--window-length): "
                       "the collapse scales hold for that part of the record only."),
             std::string::npos);
+
+  // Without --window-length, a --record that ends inside a case's window
+  // cuts it: a 0.15 s record (NPTS 16) under "windowed" (record seconds
+  // 0.05 to 0.25) runs 0.1 of its 0.2 s, and the table says so; "whole"
+  // runs the new record to its end, its window, and is not listed. The
+  // table gives the scale as given (0.004, which two decimals made 0.00).
+  {
+    std::ofstream at2(dir.path() / "shorter.AT2");
+    at2 << "PEER NGA STRONG MOTION DATABASE RECORD\nSynthetic, 1/1/2000, Nowhere, 0\n"
+           "ACCELERATION TIME SERIES IN UNITS OF G\nNPTS=   16, DT=   .0100 SEC\n";
+    for (int k = 0; k < 16; ++k) at2 << "  .1000000E-01" << (k % 5 == 4 ? "\n" : "");
+    at2 << "\n";
+  }
+  const auto cut = run_app({"sweep", whole, windowed, "--scales", "0.004", "--record",
+                            (dir.path() / "shorter.AT2").string(), "--no-figure", "--out",
+                            (dir.path() / "sweep_cut").string()},
+                           dir.path());
+  ASSERT_EQ(cut.code, 0) << cut.err;
+  const std::string cut_md = read_text(dir.path() / "sweep_cut" / "collapse_scales.md");
+  EXPECT_NE(cut_md.find("Windows cut by a --record's end (each such run applied less of the shaking than the case's "
+                        "window asks for; the collapse scales hold for that part):\n"
+                        "- windowed with shorter.AT2: the record ends 0.15 s in, so the window from 0.05 s ran 0.1 "
+                        "record seconds of the case's 0.2 s\n"),
+            std::string::npos)
+      << cut_md;
+  EXPECT_EQ(cut_md.find("- whole with"), std::string::npos) << cut_md;
+  EXPECT_NE(cut_md.find("| whole | shorter | 0.004 | none up to 0.004 |"), std::string::npos) << cut_md;
 }
 
 // The collapse table counts only runs that completed: an unstable run is
