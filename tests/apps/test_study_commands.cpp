@@ -1138,13 +1138,16 @@ TEST(StudyCommands, TheWindowNoteSaysWhatEachRunApplied) {
   // With --record the window is that record's: a 0.5 s record (NPTS 51,
   // DT 0.01) is cut to 0.4 s although the case's own 0.3 s record is not
   // longer than 0.4 s, which the note on stderr said of the run.
-  {
-    std::ofstream at2(dir.path() / "longer.AT2");
+  // A PEER record of `npts` samples of 0.01 g, 0.01 s apart.
+  auto write_at2 = [&](const std::string& file, int npts) {
+    std::ofstream at2(dir.path() / file);
     at2 << "PEER NGA STRONG MOTION DATABASE RECORD\nSynthetic, 1/1/2000, Nowhere, 0\n"
-           "ACCELERATION TIME SERIES IN UNITS OF G\nNPTS=   51, DT=   .0100 SEC\n";
-    for (int k = 0; k < 51; ++k) at2 << "  .1000000E-01" << (k % 5 == 4 ? "\n" : "");
+           "ACCELERATION TIME SERIES IN UNITS OF G\nNPTS=   "
+        << npts << ", DT=   .0100 SEC\n";
+    for (int k = 0; k < npts; ++k) at2 << "  .1000000E-01" << (k % 5 == 4 ? "\n" : "");
     at2 << "\n";
-  }
+  };
+  write_at2("longer.AT2", 51);
   const auto with_record = run_app({"sweep", whole, "--scales", "1", "--record", (dir.path() / "longer.AT2").string(),
                                     "--window-length", "0.4", "--no-figure", "--out", (dir.path() / "sweep04").string()},
                                    dir.path());
@@ -1160,13 +1163,7 @@ TEST(StudyCommands, TheWindowNoteSaysWhatEachRunApplied) {
   // 0.05 to 0.25) runs 0.1 of its 0.2 s, and the table says so; "whole"
   // runs the new record to its end, its window, and is not listed. The
   // table gives the scale as given (0.004, which two decimals made 0.00).
-  {
-    std::ofstream at2(dir.path() / "shorter.AT2");
-    at2 << "PEER NGA STRONG MOTION DATABASE RECORD\nSynthetic, 1/1/2000, Nowhere, 0\n"
-           "ACCELERATION TIME SERIES IN UNITS OF G\nNPTS=   16, DT=   .0100 SEC\n";
-    for (int k = 0; k < 16; ++k) at2 << "  .1000000E-01" << (k % 5 == 4 ? "\n" : "");
-    at2 << "\n";
-  }
+  write_at2("shorter.AT2", 16);
   const auto cut = run_app({"sweep", whole, windowed, "--scales", "0.004", "--record",
                             (dir.path() / "shorter.AT2").string(), "--no-figure", "--out",
                             (dir.path() / "sweep_cut").string()},
