@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <charconv>
+#include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <iomanip>
@@ -153,9 +155,21 @@ int render_command(int argc, char** argv, int first, const std::atomic<bool>* st
     std::cerr << "framequake: error: " << display_error << "\n";
     return kExitOutputFailed;
   }
+  // Progress on stderr every 5 s of a long render (a render of three full
+  // runs was silent for a minute; workflow probe), and nothing for a short one.
+  RenderOptions options = args.options;
+  const auto started = std::chrono::steady_clock::now();
+  auto last_said = started;
+  options.on_frame = [&](int done, int total) {
+    const auto now = std::chrono::steady_clock::now();
+    if (done == total || now - last_said < std::chrono::seconds(5)) return;
+    last_said = now;
+    std::fprintf(stderr, "framequake render: %d of %d frames (%.0f s)\n", done, total,
+                 std::chrono::duration<double>(now - started).count());
+  };
   RenderReport report;
   try {
-    report = render_runs(runs, args.options);
+    report = render_runs(runs, options);
   } catch (const RenderStopped& e) {
     std::cerr << "framequake: render " << e.what() << "\n";
     return kExitInterrupted;

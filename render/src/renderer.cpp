@@ -615,6 +615,21 @@ RenderReport render_runs(const std::vector<RunData>& runs, const RenderOptions& 
     std::error_code ec;
     fs::create_directories(*options.png_folder, ec);
     if (ec) throw std::runtime_error("cannot create '" + options.png_folder->string() + "': " + ec.message());
+    // An earlier render's frames beyond this one's count would stay beside
+    // the new ones and be taken for them (workflow probe: 5 new frames
+    // among 123 old). Only files named as this writes them are removed.
+    std::vector<fs::path> stale;
+    for (const fs::directory_entry& e : fs::directory_iterator(*options.png_folder, ec)) {
+      const std::string n = e.path().filename().string();
+      if (n.size() == 16 && n.compare(0, 6, "frame_") == 0 && n.compare(12, 4, ".png") == 0 &&
+          std::all_of(n.begin() + 6, n.begin() + 12, [](char c) { return c >= '0' && c <= '9'; }) &&
+          e.is_regular_file())
+        stale.push_back(e.path());
+    }
+    if (ec) throw std::runtime_error("cannot read '" + options.png_folder->string() + "': " + ec.message());
+    for (const fs::path& f : stale)
+      if (!fs::remove(f, ec) && ec)
+        throw std::runtime_error("cannot remove the earlier frame '" + f.string() + "': " + ec.message());
   }
 
   bool warned_no_damage = false;
@@ -680,6 +695,7 @@ RenderReport render_runs(const std::vector<RunData>& runs, const RenderOptions& 
     report.encode_s += seconds_since(t0);
     report.frame_time_s.push_back(t);
     ++report.frames;
+    if (options.on_frame) options.on_frame(report.frames, int(times.size()));
   }
   t0 = Clock::now();
   if (gif) gif->finish();

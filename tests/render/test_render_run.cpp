@@ -188,6 +188,12 @@ TEST(RenderRun, MembersMarkersAndFramesOfARunWithAJointBreak) {
   ASSERT_GT(t_break, t_yield + 0.02);
   ASSERT_LT(t_break, 0.2);
 
+  // An earlier render's frame beyond this one's count, and a file of the
+  // user's, in the frames' folder: the first is removed (it would be taken
+  // for a frame of this render), the second kept.
+  fs::create_directories(run / "animation_frames");
+  std::ofstream(png(run / "animation_frames", 99)) << "old frame";
+  std::ofstream(run / "animation_frames" / "notes.txt") << "mine";
   std::string out, err;
   ASSERT_EQ(run_app({"render", run.string(), "--png", "--size", "400x300"}, dir.path(), &out, &err), 0) << out << err;
   EXPECT_NE(out.find("rendered 26 frames"), std::string::npos) << out;
@@ -196,6 +202,8 @@ TEST(RenderRun, MembersMarkersAndFramesOfARunWithAJointBreak) {
   ASSERT_TRUE(fs::exists(gif));
   ASSERT_TRUE(fs::exists(png(frames, times.size() - 1)));
   EXPECT_FALSE(fs::exists(png(frames, times.size()))) << "one PNG per output frame";
+  EXPECT_FALSE(fs::exists(png(frames, 99))) << "an earlier render's frame";
+  EXPECT_TRUE(fs::exists(frames / "notes.txt"));
 
   // The animation: as many frames as the run has output frames (Pillow's count).
   if (fq_test::pil_available()) {

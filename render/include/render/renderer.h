@@ -16,6 +16,7 @@
 #include <atomic>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -57,6 +58,9 @@ struct RenderOptions {
   // RenderStopped and the unfinished animation file is removed (Ctrl-C,
   // SIGTERM). PNG frames already written stay.
   const std::atomic<bool>* stop_requested = nullptr;
+  // Called after each frame with the frames done and their total (a
+  // progress display); may be empty.
+  std::function<void(int done, int total)> on_frame;
 };
 
 // render_runs was stopped through RenderOptions::stop_requested.
