@@ -1697,6 +1697,8 @@ void check_run_start(const CaseDef& def, const Scene& scene, const CaseRunOption
 
 }  // namespace
 
+std::string summary_value(const std::filesystem::path& folder, const std::string& key);  // below
+
 void check_case_runnable(const CaseDef& case_def, const CaseRunOptions& options) {
   const EffectiveCase e = effective_case(case_def, options);
   const Scene scene = build_scene(*e.def);
@@ -1714,6 +1716,20 @@ CaseRunReport run_case(const CaseDef& case_def, const CaseRunOptions& options) {
   OutputDef output = def.output;
   if (options.output_folder) output.folder = *options.output_folder;
   if (output.folder.empty()) output.folder = default_output_folder(def.name);
+  if (options.on_note) {
+    // A run into a folder that holds a stopped run resume could continue
+    // replaces it as any earlier run, but that one was not finished: said,
+    // so that it is not lost unawares (workflow probe).
+    // Stopped (Ctrl-C) it has a summary saying so; killed, none.
+    std::error_code ec;
+    const std::string status = summary_value(output.folder, "status");
+    if (std::filesystem::exists(output.folder / kCheckpointFileName, ec) && (status == "stopped" || status.empty()))
+      options.on_note("the output folder " + output.folder.string() + " held an unfinished run (" +
+                      (status.empty() ? std::string("killed, no summary")
+                                      : "stopped at t = " + summary_value(output.folder, "simulated_time_s") + " s") +
+                      ") that `framequake resume " + output.folder.string() +
+                      "` could have continued from its checkpoint; this run replaces it");
+  }
 
   std::optional<RunMeta> meta;
   if (options.checkpoint_every_s) {

@@ -97,6 +97,24 @@ TEST(CheckpointCli, KilledRunResumedGivesTheUninterruptedOutput) {
   EXPECT_GT(rate * wall, 0.0);
 }
 
+// A new run into the folder of a killed run that resume could continue
+// replaces it, as a run replaces any earlier one, and says so.
+TEST(CheckpointCli, ARunReplacingAResumableRunSaysSo) {
+  Fixture f;
+  const fs::path out = f.dir.path() / "out";
+  ASSERT_EQ(f.run_and_kill(out), 128 + SIGKILL);
+  const auto again = run_app({"run", f.case_file.string(), "--out", out.string(), "--quiet"}, f.dir.path());
+  ASSERT_EQ(again.code, 0) << again.err;
+  EXPECT_NE(again.err.find("note: the output folder " + out.string() + " held an unfinished run (killed, no summary) "
+                           "that `framequake resume " + out.string() +
+                           "` could have continued from its checkpoint; this run replaces it"),
+            std::string::npos)
+      << again.err;
+  // Its own folder, finished: nothing to say the next time.
+  const auto third = run_app({"run", f.case_file.string(), "--out", out.string(), "--quiet"}, f.dir.path());
+  EXPECT_EQ(third.err.find("held an unfinished run"), std::string::npos) << third.err;
+}
+
 // A run killed while writing a history row leaves history.csv with rows
 // past its checkpoint and a last row cut short. Resume reads the storey
 // drifts of the rows before the checkpoint, and read them before cutting the
