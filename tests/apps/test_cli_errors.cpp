@@ -772,6 +772,16 @@ TEST(CliErrors, BadOmpNumThreadsIsRefusedAndTooManyWarned) {
       << many.app.err;
   EXPECT_EQ(one.app.code, 0) << one.app.err;
   EXPECT_EQ(one.app.err.find("OMP_NUM_THREADS"), std::string::npos) << one.app.err;
+  // --threads the same (it was silent at any count; docs probe).
+  TempDir dir;
+  std::ofstream(dir.path() / "case.yaml") << kBaseCase;
+  std::ofstream(dir.path() / "rec.AT2") << kBaseRecord;
+  const auto option = run_app({"run", (dir.path() / "case.yaml").string(), "--out", (dir.path() / "out").string(),
+                               "--quiet", "--threads", too_many},
+                              dir.path());
+  EXPECT_EQ(option.code, 0) << option.err;
+  EXPECT_NE(option.err.find("warning: --threads " + too_many + " is far more than the"), std::string::npos)
+      << option.err;
 }
 
 // ---- usage -------------------------------------------------------------------
