@@ -142,6 +142,8 @@ const char* kResumeHelp =
     "continue at the same interval.\n"
     "\n"
     "Options:\n"
+    "  --case FILE    the case file's place now, if it was moved (with its records)\n"
+    "                 since the run began; it must be unchanged\n"
     "  --quiet        no progress display\n"
     "  --threads N    OpenMP threads (results do not depend on it)\n"
     "  --help         this text\n"
@@ -316,6 +318,7 @@ int command_run(int argc, char** argv) {
 // (case file, --out, --force) are not offered where they mean nothing.
 int command_resume(int argc, char** argv) {
   std::string folder;
+  std::optional<std::filesystem::path> case_file;  // --case: where the case file is now
   bool quiet = false;
   for (int i = 2; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -324,6 +327,10 @@ int command_resume(int argc, char** argv) {
       return kExitOk;
     } else if (arg == "--quiet") {
       quiet = true;
+    } else if (arg == "--case") {
+      if (i + 1 >= argc) usage_error("--case needs a value", kResumeHelp);
+      if (case_file) usage_error("--case is given twice; give it once", kResumeHelp);
+      case_file = argv[++i];
     } else if (arg == "--threads") {
       if (i + 1 >= argc) usage_error("--threads needs a value", kResumeHelp);
       [[maybe_unused]] const int n = fq_app::whole_number_option("--threads", argv[++i], 1, 1024, kResumeHelp);
@@ -353,7 +360,7 @@ int command_resume(int argc, char** argv) {
   }
   fq::CaseRunReport report;
   try {
-    report = fq::resume_case(folder, options);
+    report = fq::resume_case(folder, options, case_file);
   } catch (const fq::CheckpointError& e) {
     std::cerr << "framequake: error: " << e.what() << "\n";
     return kExitBadInput;

@@ -1811,7 +1811,8 @@ std::string summary_value(const std::filesystem::path& folder, const std::string
   return text.substr(begin, end - begin);
 }
 
-CaseRunReport resume_case(const std::filesystem::path& folder, const CaseRunOptions& options) {
+CaseRunReport resume_case(const std::filesystem::path& folder, const CaseRunOptions& options,
+                          const std::optional<std::filesystem::path>& moved_case_file) {
   const std::filesystem::path file = folder / kCheckpointFileName;
   {
     // A case file or a mistyped name given for the folder: said as such
@@ -1849,6 +1850,18 @@ CaseRunReport resume_case(const std::filesystem::path& folder, const CaseRunOpti
     meta = read_run_meta(in);
   } catch (const StateFormatError& e) {
     throw CheckpointError(damaged + e.what());
+  }
+  // The case where it was when the run began, or where it is now
+  // (resume --case): a project folder moved with its records keeps their
+  // bytes, which is what the checkpoint checks (workflow probe: a moved
+  // project could not be resumed at all).
+  if (moved_case_file) {
+    meta.case_file = std::filesystem::absolute(*moved_case_file);
+  } else if (std::error_code missing; !std::filesystem::exists(meta.case_file, missing)) {
+    throw CheckpointError("the case file the run in '" + folder.string() + "' was started from, '" +
+                          meta.case_file.string() +
+                          "', is not there any more; if it was moved (with its records), give its new place with "
+                          "--case FILE");
   }
   CaseDef def = load_case_file(meta.case_file);
   std::uint64_t hash = 0;

@@ -398,7 +398,11 @@ CaseRunReport run_case(const CaseDef& def, const CaseRunOptions& options);
 // the run started). Throws CheckpointError (file missing, damaged,
 // truncated, foreign, other version, other case; nothing written),
 // InputError (the case file no longer loads) or OutputError.
-CaseRunReport resume_case(const std::filesystem::path& folder, const CaseRunOptions& options);
+// `moved_case_file`: the case file's place now, when it was moved since the
+// run began (its bytes and its records' must be unchanged); the checkpoints
+// written from here on name it.
+CaseRunReport resume_case(const std::filesystem::path& folder, const CaseRunOptions& options,
+                          const std::optional<std::filesystem::path>& moved_case_file = std::nullopt);
 
 // Human-readable description: bodies, total mass, time step and its stable
 // limit, duration, ground motion, output plan; `integrator` replaces the
