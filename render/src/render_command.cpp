@@ -126,6 +126,12 @@ Args parse(int argc, char** argv, int first, const std::function<std::string(con
       std::filesystem::path dir = a.options.animation.parent_path();
       a.options.png_folder = dir / (a.options.animation.stem().string() + "_frames");
     }
+    // A file where the frames' folder should be is the user's to move,
+    // refused as bad usage before anything is drawn (it failed later,
+    // exit 3; workflow probe).
+    std::error_code ec;
+    if (std::filesystem::exists(*a.options.png_folder, ec) && !std::filesystem::is_directory(*a.options.png_folder, ec))
+      throw UsageError{"the PNG frames' folder '" + a.options.png_folder->string() + "' exists and is not a folder"};
   }
   return a;
 }

@@ -371,6 +371,13 @@ TEST(RenderRun, BadUsageEndsWithAClearMessageAndWritesNothing) {
                     &err),
             2);
   EXPECT_NE(err.find("(folder of the animation file) is a file, not a folder"), std::string::npos) << err;
+  // So is a file where the PNG frames' folder should be, before anything
+  // is drawn (it failed at the first frame, exit 3; workflow probe).
+  EXPECT_EQ(run_app({"render", run.string(), "--png-dir", (dir.path() / "afile").string()}, dir.path(), &out, &err), 2);
+  EXPECT_NE(err.find("the PNG frames' folder '" + (dir.path() / "afile").string() + "' exists and is not a folder"),
+            std::string::npos)
+      << err;
+  EXPECT_FALSE(fs::exists(run / "animation.gif"));
   // A folder that is not there yet is made, as run, compare and sweep make
   // theirs (it was refused; workflow probe).
   EXPECT_EQ(run_app({"render", run.string(), "--to", (dir.path() / "new" / "deeper" / "r.gif").string()}, dir.path(),
