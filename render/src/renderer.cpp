@@ -531,7 +531,11 @@ RenderReport render_runs(const std::vector<RunData>& runs, const RenderOptions& 
     const double text_scale = std::clamp(options.panel_width_px / 800.0, 0.5, 1.0);
     const auto font = [&](int size_pt) { return std::max(7, int(std::lround(size_pt * text_scale))); };
     p->time_text = make_text(p->scene, time_label(times.front()), 0.02, 0.97, font(20), {0, 0, 0});
-    make_text(p->scene, p->run->label, 0.98, 0.97, font(20), {0, 0, 0}, true);
+    // The time stamp takes about 200 px at the full size, a glyph about
+    // 12 px: the folder's name gets the rest of the row.
+    const std::size_t label_chars =
+        std::size_t(std::max(8.0, (0.96 * options.panel_width_px - 200.0 * text_scale) / (12.0 * text_scale)));
+    make_text(p->scene, shortened_label(p->run->label, label_chars), 0.98, 0.97, font(20), {0, 0, 0}, true);
 
     // Acceleration trace, common scale over the panels.
     const std::array<std::uint8_t, 3> light{220, 220, 220};
@@ -704,6 +708,18 @@ RenderReport render_runs(const std::vector<RunData>& runs, const RenderOptions& 
   report.wall_s = seconds_since(t_start);
   report.cpu_s = double(std::clock() - cpu_start) / CLOCKS_PER_SEC;
   return report;
+}
+
+std::string shortened_label(const std::string& label, std::size_t max_chars) {
+  if (label.size() <= max_chars || max_chars < 5) return label;
+  const std::size_t keep = max_chars - 3;
+  std::size_t head = (keep + 1) / 2, tail_from = label.size() - (keep - head);
+  // Bytes, not characters: no cut inside a UTF-8 character (a folder
+  // named in Japanese), whose continuation bytes are 10xxxxxx.
+  const auto continuation = [&](std::size_t i) { return (static_cast<unsigned char>(label[i]) & 0xC0) == 0x80; };
+  while (head > 0 && continuation(head)) --head;
+  while (tail_from < label.size() && continuation(tail_from)) ++tail_from;
+  return label.substr(0, head) + "..." + label.substr(tail_from);
 }
 
 }  // namespace fq::render

@@ -340,6 +340,26 @@ TEST(RenderRun, CompareShowsRunsSideBySideInStep) {
   EXPECT_LE(frames_where_only_left_shows_break, 1);
 }
 
+// A long run folder's name is cut in its middle to the room the panel's
+// top row leaves beside the time stamp, never inside a UTF-8 character.
+TEST(RenderLabel, ALongFolderNameIsCutInItsMiddle) {
+  using fq::render::shortened_label;
+  EXPECT_EQ(shortened_label("frame_B", 40), "frame_B");
+  const std::string long_name = std::string(60, 'a') + "_retrofit_" + std::string(60, 'z');
+  const std::string cut = shortened_label(long_name, 40);
+  EXPECT_EQ(cut.size(), 40u);
+  EXPECT_EQ(cut, std::string(19, 'a') + "..." + std::string(18, 'z'));
+  // "\u5efa" (3 bytes) repeated: the cut falls between characters.
+  std::string kanji;
+  for (int k = 0; k < 30; ++k) kanji += "\xe5\xbb\xba";
+  const std::string k_cut = shortened_label(kanji, 20);
+  EXPECT_LE(k_cut.size(), 20u);
+  const std::size_t dots = k_cut.find("...");
+  ASSERT_NE(dots, std::string::npos);
+  EXPECT_EQ(dots % 3, 0u) << "head cut inside a character";
+  EXPECT_EQ((k_cut.size() - dots - 3) % 3, 0u) << "tail cut inside a character";
+}
+
 TEST(RenderRun, BadUsageEndsWithAClearMessageAndWritesNothing) {
   fq_test::TempDir dir;
   std::string out, err;

@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <string>
 #include <optional>
 #include <vector>
 
@@ -62,6 +63,12 @@ struct RenderOptions {
   // progress display); may be empty.
   std::function<void(int done, int total)> on_frame;
 };
+
+// `label` cut in its middle to at most `max_chars` characters ("abc...xyz"),
+// so that a long run folder's name, drawn at a panel's top right, leaves
+// the time stamp at its top left readable (workflow probe: a 128-character
+// case name ran across it). Unchanged when it fits.
+std::string shortened_label(const std::string& label, std::size_t max_chars);
 
 // render_runs was stopped through RenderOptions::stop_requested.
 class RenderStopped : public std::runtime_error {
