@@ -37,6 +37,7 @@ try:
 
     matplotlib.use("Agg")  # files only, no display
     import matplotlib.pyplot as plt
+    import matplotlib.ticker
 except ImportError as e:
     print("fq_plot.py: error: matplotlib is missing for %s (%s)" % (sys.executable, e), file=sys.stderr)
     sys.exit(EXIT_NO_MATPLOTLIB)
@@ -346,8 +347,16 @@ def draw_sweep(folder):
             limits[pair].append(row["case"])
     if not series:
         fail("no completed runs in sweep.csv")
-    cases = sorted(set(case for case, _ in series))
+    # Cases in the order the sweep ran them (its table's), so that a case
+    # keeps the colour it has in the compare figure of the same cases
+    # (sorted names gave it another; workflow probe).
+    cases = list(dict.fromkeys(case for case, _ in series))
     records = sorted(set(record for _, record in series))
+    # A log axis cannot show 0: a drift of exactly 0 is drawn at half the
+    # smallest positive one (1e-5 rad had lifted 1.2e-6 and 3.1e-6 onto one
+    # flat line; workflow probe).
+    positive = [p[1] for points in series.values() for p in points if p[1] > 0]
+    floor = 0.5 * min(positive) if positive else 1e-5
     fig, ax = plt.subplots(figsize=(8.5, 4.8))
     for key, points in sorted(series.items()):
         points.sort()
@@ -358,13 +367,17 @@ def draw_sweep(folder):
         style = RECORD_STYLES[r % len(RECORD_STYLES)]
         marker = RECORD_MARKERS[(r + r // len(RECORD_STYLES)) % len(RECORD_MARKERS)]
         x = [p[0] / 9.80665 for p in points]
-        y = [max(p[1], 1e-5) for p in points]
+        y = [p[1] if p[1] > 0 else floor for p in points]
         ax.plot(x, y, color=colour, ls=style, lw=1.2, marker=marker, ms=6, mfc="none", mec=colour,
                 label="%s, %s" % key)
         ax.scatter([xi for xi, p in zip(x, points) if p[2]], [yi for yi, p in zip(y, points) if p[2]],
                    color=colour, marker=marker, s=36, zorder=3)
     ax.set_yscale("log")
     limit_lines(ax, limits)
+    # Within a decade or two matplotlib labels one power of ten or none:
+    # the 2 and 5 between them get labels too.
+    ax.yaxis.set_minor_formatter(matplotlib.ticker.LogFormatterSciNotation(labelOnlyBase=False,
+                                                                           minor_thresholds=(2, 0.4)))
     ax.set_xlabel("peak ground acceleration (g)")
     ax.set_ylabel("peak storey drift ratio, largest storey (rad)")
     ax.set_title("Amplitude sweep: filled marker = a storey collapsed, hollow = none collapsed", fontsize=11)

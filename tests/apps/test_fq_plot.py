@@ -275,6 +275,29 @@ class SweepFigure(FigureTest):
         self.assertEqual(len(filled), 1)
         self.assertAlmostEqual(float(filled[0].get_offsets()[0][1]), 0.04)
 
+    def test_tiny_drifts_stay_apart_and_cases_keep_the_order_they_ran_in(self):
+        """Drifts far below 1e-5 rad are drawn where they are (a floor of
+        1e-5 put 1.2e-6 and 3.1e-6 on one flat line; workflow probe), a drift
+        of 0 at half the smallest positive one; and the cases take their
+        colours in the order of the table (as the compare figure does), not
+        sorted by name."""
+        rows = []
+        for case, drifts in (("zeta", (0.0, 1.2e-6, 3.1e-6)), ("alpha", (0.02, 0.03, 0.04))):
+            for k, drift in enumerate(drifts):
+                out = write_run(self.folder, "%s_x%d" % (case, k), [1, 0, 0], [[(0.0, 0.0)]])
+                rows.append({"case": case, "record": "kobe", "scale": k + 1, "pga_mps2": 2.0 * (k + 1),
+                             "status": "completed", "collapsed": "0", "storey1_peak_drift_ratio_rad": drift,
+                             "storey1_verdict": "standing", "output": out})
+        with open(os.path.join(self.folder, "sweep.csv"), "w", newline="") as f:
+            w = csv.DictWriter(f, fieldnames=list(rows[0]))
+            w.writeheader()
+            w.writerows(rows)
+        fig, _ = fq_plot.draw_sweep(self.folder)
+        drawn = {line.get_label(): line for line in fig.axes[0].get_lines() if not line.get_label().startswith("_")}
+        self.assertEqual([float(y) for y in drawn["zeta, kobe"].get_ydata()], [0.6e-6, 1.2e-6, 3.1e-6])
+        self.assertEqual(drawn["zeta, kobe"].get_color(), fq_plot.COLOURS[0])
+        self.assertEqual(drawn["alpha, kobe"].get_color(), fq_plot.COLOURS[1])
+
 
 
 def write_limits(folder, rows):
