@@ -115,6 +115,7 @@ void run_contact_benchmark(benchmark::State& state, int scene) {
   state.counters["rebuilds_per_step"] = rebuild_rate;
   state.counters["contacts"] = contacts;
   state.counters["state_hash"] = double(hash);
+  fq::bench::label_state_hash(state, hash);
   const std::string name = std::string(scene == 0 ? "pile" : "columns") + ", " + std::to_string(bodies) + " bodies";
   fq::bench::thread_hashes().record(name, threads, hash);
 }

@@ -144,6 +144,7 @@ void run_frame(benchmark::State& state, const std::string& frame, bool with_outp
     }
     state.counters["state_hash"] = double(hash & ((std::uint64_t(1) << 48) - 1));
     fq::bench::thread_hashes().record("frame " + frame, threads, hash);
+    fq::bench::label_state_hash(state, hash);
   }
 }
 

@@ -191,6 +191,7 @@ void BM_JointLattice(benchmark::State& state) {
   state.counters["busy_ns_per_step"] = busy_ns_step;
   state.counters["profiled_steps"] = profiled;
   state.counters["state_hash"] = double(hash & ((std::uint64_t(1) << 48) - 1));
+  fq::bench::label_state_hash(state, hash);
   fq::bench::thread_hashes().record("joint lattice, " + std::to_string(bodies) + " bodies", threads, hash);
 }
 

@@ -127,6 +127,24 @@ TEST(CompareRounds, ADifferentStateHashInAnyRunIsReported) {
   EXPECT_FALSE(twice.same());
 }
 
+// The hash in the benchmarks' label is compared in full: two states whose
+// counter prints alike (85.5037T, six digits of 48 bits) but whose whole
+// hashes differ are reported (validation probe: the counter alone let
+// them pass).
+TEST(CompareRounds, TheWholeHashInTheLabelIsCompared) {
+  std::string text = kThreeRounds;
+  for (std::size_t at = text.find("state_hash=85.5037T "); at != std::string::npos;
+       at = text.find("state_hash=85.5037T ", at + 1))
+    text.insert(at + 20, "state_hash_hex=00004dc4a1b2c3d4 ");
+  const auto same = compare_builds(sitting_of(text), "old", "new", {"us_per_step"});
+  ASSERT_EQ(same.hashes.size(), 1u);
+  EXPECT_TRUE(same.hashes[0].same());
+  EXPECT_EQ(*same.hashes[0].old_hashes.begin(), "00004dc4a1b2c3d4");
+  text.replace(text.rfind("state_hash_hex=00004dc4a1b2c3d4"), 31, "state_hash_hex=00004dc4a1b2c3d5");
+  const auto differ = compare_builds(sitting_of(text), "old", "new", {"us_per_step"});
+  EXPECT_FALSE(differ.hashes[0].same());
+}
+
 TEST(CompareRounds, BenchmarksOfOneBuildOnlyAreListed) {
   std::string text = kThreeRounds;
   text +=
