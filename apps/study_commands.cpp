@@ -293,13 +293,23 @@ std::string fixed(double x, int digits) {
   return s.str();
 }
 
-// A sweep's scale as given, in its shortest form that reads back as itself
-// (as in its runs' folder names): two decimals printed 0.004 as 0.00 and
-// 0.3333333 and 0.33333333 alike (workflow probe).
+// A sweep's scale in its shortest form that reads back as itself (its
+// runs' folder names: "_x0.5").
 std::string scale_text(double scale) {
   char digits[32];
   const auto end = std::to_chars(digits, digits + sizeof digits, scale).ptr;
   return std::string(digits, end);
+}
+
+// A scale in the collapse table: two decimals where they read back as the
+// scale ("0.50", as the table always printed the usual scales), else as
+// given: two decimals alone printed 0.004 as 0.00, and 0.3333333 and
+// 0.33333333 alike (workflow probe).
+std::string table_scale_text(double scale) {
+  const std::string two = fixed(scale, 2);
+  double back = 0.0;
+  const auto [end, ec] = std::from_chars(two.data(), two.data() + two.size(), back);
+  return ec == std::errc() && end == two.data() + two.size() && back == scale ? two : scale_text(scale);
 }
 
 std::string scientific(double x) {
@@ -1268,11 +1278,11 @@ int command_sweep(int argc, char** argv, const std::atomic<bool>* stop_requested
       cs << fq::csv_text(name) << "," << fq::csv_text(record) << "," << csv_number(stood) << "," << csv_number(fell)
          << "," << csv_number(pga) << "," << which << "," << stood_above_collapse_csv(b) << "\n";
       md << "| " << name << " | " << record << " | "
-         << (std::isnan(largest_completed) ? std::string("-") : std::isnan(stood) ? std::string("none") : scale_text(stood))
+         << (std::isnan(largest_completed) ? std::string("-") : std::isnan(stood) ? std::string("none") : table_scale_text(stood))
          << " | "
-         << (!std::isnan(fell)                ? scale_text(fell) + (b.stood_above_collapse.empty() ? "" : " (not monotonic)")
+         << (!std::isnan(fell)                ? table_scale_text(fell) + (b.stood_above_collapse.empty() ? "" : " (not monotonic)")
              : std::isnan(largest_completed) ? std::string("no run completed")
-                                             : "none up to " + scale_text(largest_completed))
+                                             : "none up to " + table_scale_text(largest_completed))
          << " | " << (std::isnan(pga) ? std::string("-") : fixed(pga, 2) + " (" + fixed(pga / fq::kStandardGravity_mps2, 3) + " g)")
          << " | " << (which.empty() ? "-" : which) << " |\n";
       if (const std::string note = non_monotonic_note(name, record, b); !note.empty()) not_monotonic += "\n" + note;

@@ -1178,6 +1178,14 @@ TEST(StudyCommands, TheWindowNoteSaysWhatEachRunApplied) {
       << cut_md;
   EXPECT_EQ(cut_md.find("- whole with"), std::string::npos) << cut_md;
   EXPECT_NE(cut_md.find("| whole | shorter | 0.004 | none up to 0.004 |"), std::string::npos) << cut_md;
+  // A usual scale keeps the table's two decimals (the recorded studies'
+  // tables read so).
+  const auto usual = run_app({"sweep", whole, "--scales", "0.5", "--record", (dir.path() / "shorter.AT2").string(),
+                              "--no-figure", "--out", (dir.path() / "sweep_usual").string()},
+                             dir.path());
+  ASSERT_EQ(usual.code, 0) << usual.err;
+  EXPECT_NE(read_text(dir.path() / "sweep_usual" / "collapse_scales.md").find("| whole | shorter | 0.50 | none up to 0.50 |"),
+            std::string::npos);
 }
 
 // The collapse table counts only runs that completed: an unstable run is
