@@ -609,15 +609,7 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
   report.first_joint_failure_time_s = first_joint_failure_time_s(sim.events());
   report.first_joint_failure = first_joint_failure_label(sim.events(), scene.joint_labels);
   report.first_joint_failure_name = first_joint_failure_label(sim.events(), scene.joint_names);
-  for (const Event& e : sim.events().all()) {
-    if (e.kind != EventKind::SpringDeleted && e.kind != EventKind::JointBroken) continue;
-    // The first failure's time: did its joint break then (its last spring
-    // deleted, or a joint-level criterion)?
-    for (const Event& b : sim.events().all())
-      if (b.kind == EventKind::JointBroken && b.joint_id == e.joint_id && b.time_s == e.time_s)
-        report.first_joint_failure_broke = true;
-    break;
-  }
+  report.first_joint_failure_broke = first_joint_failure_broke(sim.events());
   report.energy_balance_error_relative = sim.ledger().balance_error_relative();
   // What the run felt, not the whole window.
   report.peak_ground_acceleration_mps2 = sim.ground_motion().peak_horizontal_mps2(ground_motion_felt_until_s(sim));

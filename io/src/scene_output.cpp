@@ -174,6 +174,18 @@ std::string first_joint_failure_label(const EventLog& events, const std::vector<
   return "";
 }
 
+bool first_joint_failure_broke(const EventLog& events) {
+  for (const Event& e : events.all()) {
+    if (e.kind != EventKind::SpringDeleted && e.kind != EventKind::JointBroken) continue;
+    // Its joint broke at that time (its last spring deleted, or a
+    // joint-level criterion), or lost a spring and held on.
+    for (const Event& b : events.all())
+      if (b.kind == EventKind::JointBroken && b.joint_id == e.joint_id && b.time_s == e.time_s) return true;
+    return false;
+  }
+  return false;
+}
+
 double first_joint_failure_time_s(const EventLog& events) {
   for (const Event& e : events.all())
     if (e.kind == EventKind::SpringDeleted || e.kind == EventKind::JointBroken) return e.time_s;

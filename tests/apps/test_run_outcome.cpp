@@ -14,6 +14,7 @@
 #include <string>
 
 #include "app_process.h"
+#include "hanger_case.h"
 
 namespace {
 
@@ -94,43 +95,11 @@ TEST(RunOutcome, AToppledPostIsCollapsedAndAnUprightOneStandsOnTheTerminalAsInTh
   }
 }
 
-// A 0.1 kg hanger (10 x 10 x 100 mm at 10 000 kg/m^3) on one joint point
-// whose normal spring is trilinear with an ultimate force of 1.5 N, no
-// gravity, the ground accelerating upward at 10 t m/s^2: the spring
-// carries m a_g = 0.1 x 10 t = t N (statics, the hanger following the
-// ground), so it reaches its ultimate force and is deleted at t = 1.5 s.
-// With fracture criterion any_spring_deleted the joint breaks then; with
-// `never` it loses that spring and holds on its shear springs. The
-// terminal says which.
-std::string hanger_case(const std::string& criterion) {
-  return "framequake_case: 1\n"
-         "name: hanger\n"
-         "time: {dt_s: 1.0e-5, duration_s: 1.6, gravity_mps2: [0, 0, 0]}\n"
-         "materials: [{name: heavy, density_kg_per_m3: 10000}]\n"
-         "sections: [{name: sq, width_m: 0.010, depth_m: 0.010}]\n"
-         "nodes: [{id: top, xyz_m: [0, 0, 0.2]}, {id: bot, xyz_m: [0, 0, 0.1]}]\n"
-         "members: [{id: hanger, kind: other, nodes: [top, bot], section: sq, material: heavy}]\n"
-         "joint_types:\n"
-         "  - name: tri\n"
-         "    layout: single_point\n"
-         "    normal: {law: trilinear, reference_length_m: 0.010, yield_strain_tension: 0.01, "
-         "yield_force_tension_N: 1.0, ultimate_strain_tension: 0.05, ultimate_force_tension_N: 1.5, "
-         "yield_strain_compression: 0.01, yield_force_compression_N: 1.0, ultimate_strain_compression: 0.05, "
-         "ultimate_force_compression_N: 1.5, damping_ratio: 0.02}\n"
-         "    shear: {law: linear, stiffness_N_per_m: 1.0e5, damping_ratio: 0.02}\n"
-         "    fracture: {criterion: " + criterion + "}\n"
-         "joints: {support_type: tri}\n"
-         "supports: [{node: top}]\n"
-         "ground_motion: {components: [{file: ramp.txt, format: two_column, unit: m/s2, axis: z}]}\n"
-         "output: {frame_interval_s: 0.8, history_interval_s: 0.01}\n";
-}
-
+// The hanger of hanger_case.h: its spring is deleted at t = 1.5 s; the
+// terminal says whether the joint broke then or held.
 TEST(RunOutcome, FirstFailureSaysWhetherTheJointBrokeOrLostASpringAndHeld) {
   TempDir dir;
-  {
-    std::ofstream ramp(dir.path() / "ramp.txt");
-    for (int i = 0; i <= 200; ++i) ramp << 0.01 * i << " " << 0.1 * i << "\n";  // a_g = 10 t m/s^2, 0-2 s
-  }
+  fq_test::write_hanger_ramp(dir.path());
   struct Case {
     std::string criterion, says;
     int broken;
@@ -138,7 +107,7 @@ TEST(RunOutcome, FirstFailureSaysWhetherTheJointBrokeOrLostASpringAndHeld) {
   for (const Case& c : {Case{"any_spring_deleted", " broke at t = ", 1}, Case{"never", " lost a spring and held at t = ", 0}}) {
     SCOPED_TRACE(c.criterion);
     const fs::path file = dir.path() / (c.criterion + ".yaml"), out = dir.path() / c.criterion;
-    std::ofstream(file) << hanger_case(c.criterion);
+    std::ofstream(file) << fq_test::hanger_case("hanger", c.criterion);
     const fq_test::AppResult r = run_app({"run", file.string(), "--out", out.string(), "--quiet"}, dir.path());
     ASSERT_EQ(r.code, 0) << r.err;
     std::ostringstream expected;

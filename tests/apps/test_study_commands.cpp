@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "app_process.h"
+#include "hanger_case.h"
 #include "forced_cube_case.h"
 
 namespace {
@@ -1252,35 +1253,15 @@ TEST(StudyCommands, CompareDoesNotListAnUnstableRunAsCollapsed) {
 // lost a spring and held. Two 0.1 kg hangers, each on a single-point joint
 // whose trilinear normal spring reaches its ultimate force of 1.5 N at
 // t = 1.5 s as the ground accelerates upward at 10 t m/s^2 (statics:
-// F = m a_g = 0.1 x 10 t N; test_run_outcome.cpp has the same hanger): one
+// F = m a_g = 0.1 x 10 t N; hanger_case.h): one
 // breaks with its spring (fracture any_spring_deleted), one holds on its
 // shear springs (never).
 TEST(StudyCommands, CompareSaysWhetherTheFirstJointToFailBrokeOrHeld) {
   TempDir dir;
-  {
-    std::ofstream ramp(dir.path() / "ramp.txt");
-    for (int i = 0; i <= 200; ++i) ramp << 0.01 * i << " " << 0.1 * i << "\n";
-  }
+  fq_test::write_hanger_ramp(dir.path());
   std::vector<std::string> files;
   for (const std::string criterion : {"any_spring_deleted", "never"}) {
-    std::ofstream(dir.path() / (criterion + ".yaml"))
-        << "framequake_case: 1\nname: hanger_" << criterion
-        << "\ntime: {dt_s: 1.0e-5, duration_s: 1.6, gravity_mps2: [0, 0, 0]}\n"
-           "materials: [{name: heavy, density_kg_per_m3: 10000}]\n"
-           "sections: [{name: sq, width_m: 0.010, depth_m: 0.010}]\n"
-           "nodes: [{id: top, xyz_m: [0, 0, 0.2]}, {id: bot, xyz_m: [0, 0, 0.1]}]\n"
-           "members: [{id: hanger, kind: other, nodes: [top, bot], section: sq, material: heavy}]\n"
-           "joint_types:\n  - name: tri\n    layout: single_point\n"
-           "    normal: {law: trilinear, reference_length_m: 0.010, yield_strain_tension: 0.01, "
-           "yield_force_tension_N: 1.0, ultimate_strain_tension: 0.05, ultimate_force_tension_N: 1.5, "
-           "yield_strain_compression: 0.01, yield_force_compression_N: 1.0, ultimate_strain_compression: 0.05, "
-           "ultimate_force_compression_N: 1.5, damping_ratio: 0.02}\n"
-           "    shear: {law: linear, stiffness_N_per_m: 1.0e5, damping_ratio: 0.02}\n"
-           "    fracture: {criterion: "
-        << criterion
-        << "}\njoints: {support_type: tri}\nsupports: [{node: top}]\n"
-           "ground_motion: {components: [{file: ramp.txt, format: two_column, unit: m/s2, axis: z}]}\n"
-           "output: {frame_interval_s: 0.8, history_interval_s: 0.01}\n";
+    std::ofstream(dir.path() / (criterion + ".yaml")) << fq_test::hanger_case("hanger_" + criterion, criterion);
     files.push_back((dir.path() / (criterion + ".yaml")).string());
   }
   const fs::path out = dir.path() / "cmp";
