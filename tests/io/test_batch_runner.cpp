@@ -20,10 +20,12 @@ namespace fs = std::filesystem;
 
 TEST(BatchRunner, ProgressLinesNameTheRunningCasesWhileTheyGo) {
   test::TempDir dir;
-  // The falling-block demo lengthened to 10 s of simulated time: about a
-  // second of wall time, so a 0.1 s interval gives several lines.
+  // The falling-block demo lengthened to 2 s of simulated time: about a
+  // fifth of a second of wall time in the plain build (ten under the
+  // sanitizers), so a 0.02 s interval gives several lines. (At 10 s it
+  // took 52 s of the sanitizer stage of CI.)
   CaseDef def = load_case_file(fs::path(FQ_SOURCE_DIR) / "cases" / "demo_falling_block.yaml");
-  def.time.duration_s = 10.0;
+  def.time.duration_s = 2.0;
   def.output.frame_interval_s = 1.0;
   BatchJob job;
   job.def = def;
@@ -31,7 +33,7 @@ TEST(BatchRunner, ProgressLinesNameTheRunningCasesWhileTheyGo) {
   job.label = "block";
   BatchOptions options;
   options.parallel_runs = 1;
-  options.progress_interval_s = 0.1;
+  options.progress_interval_s = 0.02;
   std::mutex mutex;
   std::vector<std::string> lines;
   options.on_progress = [&](const std::string& line) {
