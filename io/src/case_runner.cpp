@@ -161,6 +161,7 @@ StableTimeStep estimate_stable_time_step(const Simulation& sim, const std::vecto
 struct RunMeta {
   std::filesystem::path case_file;  // absolute
   std::uint64_t case_hash = 0;
+  std::vector<CaseFileFingerprint> files;  // what case_hash covers, file by file
   double checkpoint_every_s = 0.0;
   bool allow_unstable_time_step = false;
   std::string case_name;
@@ -170,6 +171,12 @@ void write_run_meta(StateWriter& out, const RunMeta& m, const Simulation& sim) {
   out.section("run");
   out.str(m.case_file.string());
   out.u64(m.case_hash);
+  out.u64(m.files.size());
+  for (const CaseFileFingerprint& f : m.files) {
+    out.str(f.what);
+    out.str(f.file.string());
+    out.u64(f.hash);
+  }
   out.f64(m.checkpoint_every_s);
   out.boolean(m.allow_unstable_time_step);
   out.str(m.case_name);
@@ -182,6 +189,16 @@ RunMeta read_run_meta(StateReader& in) {
   in.section("run");
   m.case_file = in.str("case file");
   m.case_hash = in.u64("case fingerprint");
+  const std::uint64_t n_files = in.u64("count of case files");
+  // A case file and one record per component (at most three).
+  if (n_files > 16) in.fail("implausible count of case files (" + std::to_string(n_files) + ")");
+  for (std::uint64_t k = 0; k < n_files; ++k) {
+    CaseFileFingerprint f;
+    f.what = in.str("case file kind");
+    f.file = in.str("case file path");
+    f.hash = in.u64("case file fingerprint");
+    m.files.push_back(std::move(f));
+  }
   m.checkpoint_every_s = in.f64("checkpoint interval");
   m.allow_unstable_time_step = in.boolean("force flag");
   m.case_name = in.str("case name");
@@ -1745,6 +1762,7 @@ CaseRunReport run_case(const CaseDef& case_def, const CaseRunOptions& options) {
     meta->case_file = std::filesystem::absolute(def.source_file);
     try {
       meta->case_hash = case_fingerprint(def);
+      meta->files = case_file_fingerprints(def);
     } catch (const CheckpointError& e) {
       throw InputError(def.source_file.string(), 0, "", e.what());
     }
@@ -1862,11 +1880,20 @@ CaseRunReport resume_case(const std::filesystem::path& folder, const CaseRunOpti
   } catch (const CheckpointError& e) {
     throw CheckpointError("checkpoint file '" + file.string() + "': " + e.what());
   }
-  if (hash != meta.case_hash)
+  if (hash != meta.case_hash) {
+    // Which file changed, where the checkpoint's own list can tell (a
+    // user who edited a record did not know what "the case" meant).
+    std::string which;
+    try {
+      which = changed_case_files(meta.files, case_file_fingerprints(def));
+    } catch (const CheckpointError&) {
+      // Unreadable now: case_fingerprint above read the same files.
+    }
+    if (which.empty()) which = "that file or one of its ground-motion records has changed";
     throw CheckpointError("checkpoint file '" + file.string() + "' was written for case file '" +
-                          meta.case_file.string() +
-                          "' as it was then; that file or one of its ground-motion records has changed since, so the "
-                          "run cannot be resumed (start it again with framequake run)");
+                          meta.case_file.string() + "' as it was then; since then " + which +
+                          ", so the run cannot be resumed (start it again with framequake run)");
+  }
   def.output.folder = folder;
   // Checkpoints are written by central-difference runs only (run_case
   // refuses --checkpoint-every otherwise), whatever the case file names: a

@@ -1,5 +1,6 @@
 #include "io/checkpoint.h"
 
+#include <algorithm>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -101,20 +102,69 @@ std::string read_checkpoint_file(const fs::path& file) {
   return payload;
 }
 
-std::uint64_t case_fingerprint(const CaseDef& def) {
-  std::uint64_t h = kFnvBasis;
-  auto add_file = [&h](const fs::path& p, const char* what) {
+namespace {
+
+// Calls add(path, what, bytes) for the case file, then for each
+// ground-motion record in the case's order: the files a checkpoint's
+// fingerprints cover.
+template <class Add>
+void for_each_case_file(const CaseDef& def, Add add) {
+  auto read = [&add](const fs::path& p, const char* what) {
     std::string bytes;
     if (!read_whole_file(p, bytes))
       throw CheckpointError(std::string("cannot read ") + what + " '" + p.string() + "' to check it against the checkpoint");
-    const std::uint64_t n = bytes.size();
-    h = fnv1a(h, reinterpret_cast<const char*>(&n), sizeof n);
-    h = fnv1a(h, bytes.data(), bytes.size());
+    add(p, what, bytes);
   };
-  if (!def.source_file.empty()) add_file(def.source_file, "case file");
+  if (!def.source_file.empty()) read(def.source_file, "case file");
   if (def.ground_motion)
-    for (const GroundMotionComponentDef& c : def.ground_motion->components) add_file(c.resolved_file, "ground-motion record");
+    for (const GroundMotionComponentDef& c : def.ground_motion->components) read(c.resolved_file, "ground-motion record");
+}
+
+// FNV-1a 64 of a file's length and bytes, continuing from h.
+std::uint64_t add_file_to_hash(std::uint64_t h, const std::string& bytes) {
+  const std::uint64_t n = bytes.size();
+  h = fnv1a(h, reinterpret_cast<const char*>(&n), sizeof n);
+  return fnv1a(h, bytes.data(), bytes.size());
+}
+
+}  // namespace
+
+std::uint64_t case_fingerprint(const CaseDef& def) {
+  std::uint64_t h = kFnvBasis;
+  for_each_case_file(def, [&h](const fs::path&, const char*, const std::string& bytes) { h = add_file_to_hash(h, bytes); });
   return h;
+}
+
+std::vector<CaseFileFingerprint> case_file_fingerprints(const CaseDef& def) {
+  std::vector<CaseFileFingerprint> files;
+  for_each_case_file(def, [&files](const fs::path& p, const char* what, const std::string& bytes) {
+    files.push_back({what, p, add_file_to_hash(kFnvBasis, bytes)});
+  });
+  return files;
+}
+
+std::string changed_case_files(const std::vector<CaseFileFingerprint>& then,
+                               const std::vector<CaseFileFingerprint>& now) {
+  // Matched by position (the case file, then the records in the case's
+  // order), not by path: a project moved with its files (resume --case)
+  // has other paths and the same bytes.
+  std::string all;
+  auto append = [&all](const std::string& item) { all += (all.empty() ? "" : "; ") + item; };
+  const std::size_t n = std::max(then.size(), now.size());
+  for (std::size_t k = 0; k < n; ++k) {
+    if (k >= then.size()) {
+      append("the case now reads the " + now[k].what + " '" + now[k].file.string() + "' as well");
+    } else if (k >= now.size()) {
+      append("the case no longer reads the " + then[k].what + " '" + then[k].file.string() + "'");
+    } else if (then[k].hash != now[k].hash) {
+      if (then[k].file == now[k].file)
+        append("the " + now[k].what + " '" + now[k].file.string() + "' has changed");
+      else
+        append("the " + now[k].what + " '" + now[k].file.string() + "' differs from the one the run began with ('" +
+               then[k].file.string() + "')");
+    }
+  }
+  return all;
 }
 
 }  // namespace fq

@@ -242,11 +242,28 @@ TEST(CheckpointCli, BadCheckpointOrChangedCaseIsRefusedWithExitCode2) {
   write_text(ckpt, "time_s,kinetic_J\n0,0\n");
   expect_refused("not a framequake checkpoint");
 
+  // A changed case file or record is named, and the other file is not
+  // said to have changed (the refusal said "that file or one of its
+  // ground-motion records" until the checkpoint kept each file's own
+  // fingerprint).
   write_text(ckpt, good);
   const std::string case_text = read_text(f.case_file);
   write_text(f.case_file, case_text + "# edited after the checkpoint\n");
-  expect_refused("changed");
+  expect_refused(("the case file '" + f.case_file.string() + "' has changed").c_str());
+  {
+    const auto r = run_app({"resume", out.string(), "--quiet"}, f.dir.path());
+    EXPECT_EQ(r.err.find("record"), std::string::npos) << r.err;
+  }
   write_text(f.case_file, case_text);
+  const fs::path record = f.dir.path() / "shake.txt";
+  const std::string record_text = read_text(record);
+  write_text(record, record_text + "\n");
+  expect_refused(("the ground-motion record '" + record.string() + "' has changed").c_str());
+  {
+    const auto r = run_app({"resume", out.string(), "--quiet"}, f.dir.path());
+    EXPECT_EQ(r.err.find("the case file '"), std::string::npos) << r.err;
+  }
+  write_text(record, record_text);
 
   fs::remove(ckpt);
   expect_refused("does not exist");

@@ -289,5 +289,27 @@ TEST(Checkpoint, FileFramingDetectsDamage) {
   }
 }
 
+// changed_case_files names each file whose fingerprint differs, by its
+// place in the case (case file, then records), and what one list has and
+// the other not; a moved project (other paths, same bytes) has nothing to
+// name. The lists are made here, so the expected words follow from them.
+TEST(Checkpoint, ChangedCaseFilesNamesEachFileThatDiffers) {
+  const std::vector<CaseFileFingerprint> then = {{"case file", "/p/a.yaml", 1}, {"ground-motion record", "/p/x.AT2", 2}};
+  EXPECT_EQ(changed_case_files(then, then), "");
+  EXPECT_EQ(changed_case_files(then, {{"case file", "/q/a.yaml", 1}, {"ground-motion record", "/q/x.AT2", 2}}), "")
+      << "moved with the same bytes";
+  EXPECT_EQ(changed_case_files(then, {{"case file", "/p/a.yaml", 1}, {"ground-motion record", "/p/x.AT2", 3}}),
+            "the ground-motion record '/p/x.AT2' has changed");
+  EXPECT_EQ(changed_case_files(then, {{"case file", "/p/a.yaml", 5}, {"ground-motion record", "/p/y.AT2", 4}}),
+            "the case file '/p/a.yaml' has changed; the ground-motion record '/p/y.AT2' differs from the one the run "
+            "began with ('/p/x.AT2')");
+  EXPECT_EQ(changed_case_files(then, {{"case file", "/p/a.yaml", 5},
+                                      {"ground-motion record", "/p/x.AT2", 2},
+                                      {"ground-motion record", "/p/z.AT2", 6}}),
+            "the case file '/p/a.yaml' has changed; the case now reads the ground-motion record '/p/z.AT2' as well");
+  EXPECT_EQ(changed_case_files(then, {{"case file", "/p/a.yaml", 5}}),
+            "the case file '/p/a.yaml' has changed; the case no longer reads the ground-motion record '/p/x.AT2'");
+}
+
 }  // namespace
 }  // namespace fq

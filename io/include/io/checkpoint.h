@@ -11,6 +11,8 @@
 //   end - 8    u64      FNV-1a 64 of the payload (damage check)
 // Payload, written with dem_core/state_io.h, sections in this order:
 //   "run"      case file (absolute path), case fingerprint (case_fingerprint),
+//              the files it covers, each with its own fingerprint
+//              (case_file_fingerprints: count, then what, path, hash),
 //              checkpoint interval (s), --force flag, case name, step, time (s)
 //   "output"   what the output folder held at the checkpoint (RunOutput::save_state:
 //              frames listed in case.pvd, byte lengths and row counts of
@@ -29,6 +31,7 @@
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "io/case_def.h"
 
@@ -44,7 +47,9 @@ namespace fq {
 // Version 6: each storey's record adds its peak top slip (the floor's
 // movement off its column tops), and its base slip and floor drift are
 // taken from the floor's own points.
-inline constexpr std::uint32_t kCheckpointFormatVersion = 6;
+// Version 7: the run section adds each case file's and record's own
+// fingerprint, so that a refused resume names the file that changed.
+inline constexpr std::uint32_t kCheckpointFormatVersion = 7;
 inline constexpr const char* kCheckpointFileName = "checkpoint.bin";
 
 // A checkpoint file that cannot be used: missing, damaged, truncated,
@@ -67,5 +72,27 @@ std::string read_checkpoint_file(const std::filesystem::path& file);
 // record it reads: a resumed run refuses a case that changed in any byte.
 // Throws CheckpointError when one of the files cannot be read.
 std::uint64_t case_fingerprint(const CaseDef& def);
+
+// One file a case reads, with the FNV-1a 64 of its length and bytes.
+struct CaseFileFingerprint {
+  std::string what;             // "case file" or "ground-motion record"
+  std::filesystem::path file;   // as the case resolved it
+  std::uint64_t hash = 0;
+};
+
+// The case file, then each ground-motion record in the case's order, each
+// with its own fingerprint: what a checkpoint keeps so that a resume
+// refused for a changed case can say which file changed. Throws
+// CheckpointError when one of the files cannot be read.
+std::vector<CaseFileFingerprint> case_file_fingerprints(const CaseDef& def);
+
+// In words, how `now` differs from `then`, file by file in their order
+// (the case file, then the records): "the case file 'a.yaml' has
+// changed", "the ground-motion record 'c.AT2' differs from the one the run
+// began with ('b.AT2')", "the case now reads the ground-motion record
+// 'c.AT2' as well", "the case no longer reads ...", joined by "; ". Empty
+// when every file has its fingerprint of then.
+std::string changed_case_files(const std::vector<CaseFileFingerprint>& then,
+                               const std::vector<CaseFileFingerprint>& now);
 
 }  // namespace fq
