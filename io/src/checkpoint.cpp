@@ -138,7 +138,13 @@ std::uint64_t case_fingerprint(const CaseDef& def) {
 std::vector<CaseFileFingerprint> case_file_fingerprints(const CaseDef& def) {
   std::vector<CaseFileFingerprint> files;
   for_each_case_file(def, [&files](const fs::path& p, const char* what, const std::string& bytes) {
-    files.push_back({what, p, add_file_to_hash(kFnvBasis, bytes)});
+    // Absolute: a run given a relative case path resolves its records
+    // relative to the working folder, a resume reloads the case by its
+    // absolute path, and the same file must compare as the same.
+    std::error_code ec;
+    fs::path file = fs::absolute(p, ec);
+    if (ec) file = p;
+    files.push_back({what, file.lexically_normal(), add_file_to_hash(kFnvBasis, bytes)});
   });
   return files;
 }

@@ -51,8 +51,12 @@ struct Fixture {
   }
   // Starts a checkpointed run into `out` and kills it (SIGKILL) as soon as
   // its first checkpoint is on disk. Returns the exit code (137 = killed).
-  int run_and_kill(const fs::path& out) {
-    AppProcess p({"run", case_file.string(), "--out", out.string(), "--quiet", "--checkpoint-every", "0.02"}, dir.path());
+  // `case_arg`: the case as the command line gives it (default: its
+  // absolute path; the child runs in this test's working folder).
+  int run_and_kill(const fs::path& out, const std::string& case_arg = "") {
+    AppProcess p({"run", case_arg.empty() ? case_file.string() : case_arg, "--out", out.string(), "--quiet",
+                  "--checkpoint-every", "0.02"},
+                 dir.path());
     const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(60);
     while (!fs::exists(out / "checkpoint.bin") && std::chrono::steady_clock::now() < give_up)
       std::this_thread::sleep_for(std::chrono::milliseconds(1));
@@ -288,6 +292,27 @@ TEST(CheckpointCli, BadCheckpointOrChangedCaseIsRefusedWithExitCode2) {
   const auto e = run_app({"resume", early.string(), "--quiet"}, f.dir.path());
   EXPECT_EQ(e.code, 2) << e.err;
   EXPECT_NE(e.err.find("was stopped before its first step, so it left no checkpoint"), std::string::npos) << e.err;
+}
+
+// A run given its case by a relative path resolves the record relative to
+// the working folder; resume reloads the case by its absolute path. A
+// changed record is still named as the same file that changed, not as
+// another file (a probe's resume said the record "differs from the one the
+// run began with ('shake.txt')" for the very same file).
+TEST(CheckpointCli, AChangedRecordOfACaseGivenByARelativePathIsNamedAsChanged) {
+  Fixture f;
+  const fs::path out = f.dir.path() / "out";
+  const fs::path relative_case = fs::relative(f.case_file, fs::current_path());
+  ASSERT_TRUE(relative_case.is_relative()) << relative_case;
+  ASSERT_EQ(f.run_and_kill(out, relative_case.string()), 128 + SIGKILL);
+  const fs::path record = f.dir.path() / "shake.txt";
+  write_text(record, read_text(record) + "\n");
+  const auto r = run_app({"resume", out.string(), "--quiet"}, f.dir.path());
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("since then the ground-motion record '" + record.lexically_normal().string() + "' has changed"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(r.err.find("differs"), std::string::npos) << r.err;
 }
 
 // A run begun by the framequake before events.csv's node and joint_name

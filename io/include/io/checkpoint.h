@@ -76,7 +76,7 @@ std::uint64_t case_fingerprint(const CaseDef& def);
 // One file a case reads, with the FNV-1a 64 of its length and bytes.
 struct CaseFileFingerprint {
   std::string what;             // "case file" or "ground-motion record"
-  std::filesystem::path file;   // as the case resolved it
+  std::filesystem::path file;   // absolute
   std::uint64_t hash = 0;
 };
 
