@@ -160,8 +160,7 @@ StableTimeStep estimate_stable_time_step(const Simulation& sim, const std::vecto
 // (section "run" of io/checkpoint.h).
 struct RunMeta {
   std::filesystem::path case_file;  // absolute
-  std::uint64_t case_hash = 0;
-  std::vector<CaseFileFingerprint> files;  // what case_hash covers, file by file
+  std::vector<CaseFileFingerprint> files;  // the case file and its records, each with its fingerprint
   double checkpoint_every_s = 0.0;
   bool allow_unstable_time_step = false;
   std::string case_name;
@@ -170,7 +169,6 @@ struct RunMeta {
 void write_run_meta(StateWriter& out, const RunMeta& m, const Simulation& sim) {
   out.section("run");
   out.str(m.case_file.string());
-  out.u64(m.case_hash);
   out.u64(m.files.size());
   for (const CaseFileFingerprint& f : m.files) {
     out.str(f.what);
@@ -188,7 +186,6 @@ RunMeta read_run_meta(StateReader& in) {
   RunMeta m;
   in.section("run");
   m.case_file = in.str("case file");
-  m.case_hash = in.u64("case fingerprint");
   const std::uint64_t n_files = in.u64("count of case files");
   // A case file and one record per component (at most three).
   if (n_files > 16) in.fail("implausible count of case files (" + std::to_string(n_files) + ")");
@@ -1761,7 +1758,6 @@ CaseRunReport run_case(const CaseDef& case_def, const CaseRunOptions& options) {
     meta.emplace();
     meta->case_file = std::filesystem::absolute(def.source_file);
     try {
-      meta->case_hash = case_fingerprint(def);
       meta->files = case_file_fingerprints(def);
     } catch (const CheckpointError& e) {
       throw InputError(def.source_file.string(), 0, "", e.what());
@@ -1874,22 +1870,15 @@ CaseRunReport resume_case(const std::filesystem::path& folder, const CaseRunOpti
                           "--case FILE");
   }
   CaseDef def = load_case_file(meta.case_file);
-  std::uint64_t hash = 0;
+  std::vector<CaseFileFingerprint> now;
   try {
-    hash = case_fingerprint(def);
+    now = case_file_fingerprints(def);
   } catch (const CheckpointError& e) {
     throw CheckpointError("checkpoint file '" + file.string() + "': " + e.what());
   }
-  if (hash != meta.case_hash) {
-    // Which file changed, where the checkpoint's own list can tell (a
-    // user who edited a record did not know what "the case" meant).
-    std::string which;
-    try {
-      which = changed_case_files(meta.files, case_file_fingerprints(def));
-    } catch (const CheckpointError&) {
-      // Unreadable now: case_fingerprint above read the same files.
-    }
-    if (which.empty()) which = "that file or one of its ground-motion records has changed";
+  // Named file by file (a user who edited a record did not know what "the
+  // case" meant).
+  if (const std::string which = changed_case_files(meta.files, now); !which.empty()) {
     throw CheckpointError("checkpoint file '" + file.string() + "' was written for case file '" +
                           meta.case_file.string() + "' as it was then; since then " + which +
                           ", so the run cannot be resumed (start it again with framequake run)");

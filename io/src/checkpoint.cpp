@@ -102,50 +102,25 @@ std::string read_checkpoint_file(const fs::path& file) {
   return payload;
 }
 
-namespace {
-
-// Calls add(path, what, bytes) for the case file, then for each
-// ground-motion record in the case's order: the files a checkpoint's
-// fingerprints cover.
-template <class Add>
-void for_each_case_file(const CaseDef& def, Add add) {
-  auto read = [&add](const fs::path& p, const char* what) {
+std::vector<CaseFileFingerprint> case_file_fingerprints(const CaseDef& def) {
+  std::vector<CaseFileFingerprint> files;
+  auto add = [&files](const fs::path& p, const char* what) {
     std::string bytes;
     if (!read_whole_file(p, bytes))
       throw CheckpointError(std::string("cannot read ") + what + " '" + p.string() + "' to check it against the checkpoint");
-    add(p, what, bytes);
-  };
-  if (!def.source_file.empty()) read(def.source_file, "case file");
-  if (def.ground_motion)
-    for (const GroundMotionComponentDef& c : def.ground_motion->components) read(c.resolved_file, "ground-motion record");
-}
-
-// FNV-1a 64 of a file's length and bytes, continuing from h.
-std::uint64_t add_file_to_hash(std::uint64_t h, const std::string& bytes) {
-  const std::uint64_t n = bytes.size();
-  h = fnv1a(h, reinterpret_cast<const char*>(&n), sizeof n);
-  return fnv1a(h, bytes.data(), bytes.size());
-}
-
-}  // namespace
-
-std::uint64_t case_fingerprint(const CaseDef& def) {
-  std::uint64_t h = kFnvBasis;
-  for_each_case_file(def, [&h](const fs::path&, const char*, const std::string& bytes) { h = add_file_to_hash(h, bytes); });
-  return h;
-}
-
-std::vector<CaseFileFingerprint> case_file_fingerprints(const CaseDef& def) {
-  std::vector<CaseFileFingerprint> files;
-  for_each_case_file(def, [&files](const fs::path& p, const char* what, const std::string& bytes) {
+    const std::uint64_t n = bytes.size();
+    const std::uint64_t hash = fnv1a(fnv1a(kFnvBasis, reinterpret_cast<const char*>(&n), sizeof n), bytes.data(), bytes.size());
     // Absolute: a run given a relative case path resolves its records
     // relative to the working folder, a resume reloads the case by its
     // absolute path, and the same file must compare as the same.
     std::error_code ec;
     fs::path file = fs::absolute(p, ec);
     if (ec) file = p;
-    files.push_back({what, file.lexically_normal(), add_file_to_hash(kFnvBasis, bytes)});
-  });
+    files.push_back({what, file.lexically_normal(), hash});
+  };
+  if (!def.source_file.empty()) add(def.source_file, "case file");
+  if (def.ground_motion)
+    for (const GroundMotionComponentDef& c : def.ground_motion->components) add(c.resolved_file, "ground-motion record");
   return files;
 }
 

@@ -160,36 +160,43 @@ void add_contact_summary(RunOutput& output, const ContactSystem& contacts, const
   output.add_summary_field("contact_press_peak", f.str());
 }
 
-std::int32_t first_joint_failure_id(const EventLog& events) {
+namespace {
+
+// The first failure event: a spring deleted or a joint broken; null when
+// no joint failed.
+const Event* first_joint_failure(const EventLog& events) {
   for (const Event& e : events.all())
-    if (e.kind == EventKind::SpringDeleted || e.kind == EventKind::JointBroken) return e.joint_id;
-  return -1;
+    if (e.kind == EventKind::SpringDeleted || e.kind == EventKind::JointBroken) return &e;
+  return nullptr;
+}
+
+}  // namespace
+
+std::int32_t first_joint_failure_id(const EventLog& events) {
+  const Event* e = first_joint_failure(events);
+  return e ? e->joint_id : -1;
 }
 
 std::string first_joint_failure_label(const EventLog& events, const std::vector<std::string>& labels) {
-  for (const Event& e : events.all())
-    if (e.kind == EventKind::SpringDeleted || e.kind == EventKind::JointBroken)
-      return e.joint_id >= 0 && std::size_t(e.joint_id) < labels.size() ? labels[std::size_t(e.joint_id)]
-                                                                         : "joint " + std::to_string(e.joint_id);
-  return "";
+  const Event* e = first_joint_failure(events);
+  if (!e) return "";
+  return e->joint_id >= 0 && std::size_t(e->joint_id) < labels.size() ? labels[std::size_t(e->joint_id)]
+                                                                       : "joint " + std::to_string(e->joint_id);
 }
 
 bool first_joint_failure_broke(const EventLog& events) {
-  for (const Event& e : events.all()) {
-    if (e.kind != EventKind::SpringDeleted && e.kind != EventKind::JointBroken) continue;
-    // Its joint broke at that time (its last spring deleted, or a
-    // joint-level criterion), or lost a spring and held on.
-    for (const Event& b : events.all())
-      if (b.kind == EventKind::JointBroken && b.joint_id == e.joint_id && b.time_s == e.time_s) return true;
-    return false;
-  }
+  const Event* e = first_joint_failure(events);
+  if (!e) return false;
+  // Its joint broke at that time (its last spring deleted, or a
+  // joint-level criterion), or lost a spring and held on.
+  for (const Event& b : events.all())
+    if (b.kind == EventKind::JointBroken && b.joint_id == e->joint_id && b.time_s == e->time_s) return true;
   return false;
 }
 
 double first_joint_failure_time_s(const EventLog& events) {
-  for (const Event& e : events.all())
-    if (e.kind == EventKind::SpringDeleted || e.kind == EventKind::JointBroken) return e.time_s;
-  return std::numeric_limits<double>::quiet_NaN();
+  const Event* e = first_joint_failure(events);
+  return e ? e->time_s : std::numeric_limits<double>::quiet_NaN();
 }
 
 void attach_storey_output(RunOutput& output, StoreyDriftMonitor& monitor) {

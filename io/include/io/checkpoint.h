@@ -10,9 +10,9 @@
 //   offset 24  payload  (below)
 //   end - 8    u64      FNV-1a 64 of the payload (damage check)
 // Payload, written with dem_core/state_io.h, sections in this order:
-//   "run"      case file (absolute path), case fingerprint (case_fingerprint),
-//              the files it covers, each with its own fingerprint
-//              (case_file_fingerprints: count, then what, path, hash),
+//   "run"      case file (absolute path), the files the case reads, each
+//              with its fingerprint (case_file_fingerprints: count, then
+//              what, path, hash),
 //              checkpoint interval (s), --force flag, case name, step, time (s)
 //   "output"   what the output folder held at the checkpoint (RunOutput::save_state:
 //              frames listed in case.pvd, byte lengths and row counts of
@@ -47,8 +47,9 @@ namespace fq {
 // Version 6: each storey's record adds its peak top slip (the floor's
 // movement off its column tops), and its base slip and floor drift are
 // taken from the floor's own points.
-// Version 7: the run section adds each case file's and record's own
-// fingerprint, so that a refused resume names the file that changed.
+// Version 7: the run section keeps each case file's and record's own
+// fingerprint instead of one over all of them, so that a refused resume
+// names the file that changed.
 inline constexpr std::uint32_t kCheckpointFormatVersion = 7;
 inline constexpr const char* kCheckpointFileName = "checkpoint.bin";
 
@@ -68,11 +69,6 @@ void write_checkpoint_file(const std::filesystem::path& file, const std::string&
 // returns the payload. Throws CheckpointError naming the file otherwise.
 std::string read_checkpoint_file(const std::filesystem::path& file);
 
-// FNV-1a 64 over the bytes of the case file and of every ground-motion
-// record it reads: a resumed run refuses a case that changed in any byte.
-// Throws CheckpointError when one of the files cannot be read.
-std::uint64_t case_fingerprint(const CaseDef& def);
-
 // One file a case reads, with the FNV-1a 64 of its length and bytes.
 struct CaseFileFingerprint {
   std::string what;             // "case file" or "ground-motion record"
@@ -81,9 +77,9 @@ struct CaseFileFingerprint {
 };
 
 // The case file, then each ground-motion record in the case's order, each
-// with its own fingerprint: what a checkpoint keeps so that a resume
-// refused for a changed case can say which file changed. Throws
-// CheckpointError when one of the files cannot be read.
+// with its own fingerprint: a resumed run refuses a case that changed in
+// any byte of any of them, and says which. Throws CheckpointError when
+// one of the files cannot be read.
 std::vector<CaseFileFingerprint> case_file_fingerprints(const CaseDef& def);
 
 // In words, how `now` differs from `then`, file by file in their order
