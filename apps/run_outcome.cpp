@@ -5,6 +5,7 @@
 #include <iomanip>
 #include <sstream>
 
+#include "drift_fraction.h"
 #include "io/storey_drift.h"
 
 namespace fq_app {
@@ -34,8 +35,9 @@ void print_run_outcome(const fq::CaseRunReport& r, std::ostream& out) {
         << number(s.drift.peak_ratio_rad) << " rad";
     // 1/n, the form building codes state drift limits in; meaningless for
     // a storey that has fallen over.
-    if (s.drift.peak_ratio_rad > 0.0 && s.drift.peak_ratio_rad <= r.assessment.collapse_drift_ratio_rad)
-      out << " (1/" << std::lround(1.0 / s.drift.peak_ratio_rad) << ")";
+    if (const std::string one_in_n = drift_one_in_n(s.drift.peak_ratio_rad);
+        !one_in_n.empty() && s.drift.peak_ratio_rad <= r.assessment.collapse_drift_ratio_rad)
+      out << " (" << one_in_n << ")";
     if (r.result.status != fq::RunStatus::Unstable) out << " at t = " << number(s.drift.peak_time_s) << " s";
     out << ", " << verdict_text(r, s);
     if (r.result.status != fq::RunStatus::Unstable && s.drift.collapse_time_s >= 0.0)
