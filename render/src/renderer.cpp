@@ -57,6 +57,13 @@ namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
 constexpr int kMemberKindGround = 4;  // fq::MemberKind::Ground (dem_core/body_store.h)
+
+// The PNG image of animation frame `index` (RenderOptions::png_folder).
+std::string png_frame_name(std::size_t index) {
+  char name[32];
+  std::snprintf(name, sizeof name, "frame_%06zu.png", index);
+  return name;
+}
 constexpr double kPi = 3.14159265358979323846;
 // Camera: looking at the structure from the front-left (-y side, so frames
 // built in the x-z plane shake across the picture), slightly from above.
@@ -641,9 +648,19 @@ RenderReport render_runs(const std::vector<RunData>& runs, const RenderOptions& 
   vtkNew<vtkUnsignedCharArray> pixels;
   for (std::size_t fi = 0; fi < times.size(); ++fi) {
     // Unwinding removes the animation's .part file (GifWriter, FfmpegPipe).
-    if (options.stop_requested && options.stop_requested->load())
-      throw RenderStopped("stopped on request (Ctrl-C, SIGTERM or SIGHUP) after " + std::to_string(fi) + " of " +
-                          std::to_string(times.size()) + " frames; no animation was written");
+    if (options.stop_requested && options.stop_requested->load()) {
+      // The PNG images already written stay, and are said to (a probe's
+      // stopped render left 13 of them unmentioned).
+      std::string what = "stopped on request (Ctrl-C, SIGTERM or SIGHUP) after " + std::to_string(fi) + " of " +
+                         std::to_string(times.size()) + " frames";
+      if (!options.animation.empty()) what += "; no animation was written";
+      if (options.png_folder)
+        what += fi == 0 ? std::string("; no PNG image was written")
+                        : "; the PNG images of the first " + std::to_string(fi) + " frames stay in '" +
+                              options.png_folder->string() + "' (frame_000000.png to " +
+                              png_frame_name(fi - 1) + ")";
+      throw RenderStopped(what);
+    }
     const double t = times[fi];
     t0 = Clock::now();
     for (auto& p : panels) {
@@ -687,9 +704,7 @@ RenderReport render_runs(const std::vector<RunData>& runs, const RenderOptions& 
       vtkNew<vtkImageData> image;
       image->SetDimensions(W, H, 1);
       image->GetPointData()->SetScalars(pixels);
-      char name[32];
-      std::snprintf(name, sizeof name, "frame_%06zu.png", fi);
-      const fs::path file = *options.png_folder / name;
+      const fs::path file = *options.png_folder / png_frame_name(fi);
       vtkNew<vtkPNGWriter> png;
       png->SetInputData(image);
       png->SetFileName(file.c_str());

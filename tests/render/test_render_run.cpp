@@ -433,6 +433,27 @@ TEST(RenderRun, CtrlCStopsARenderAndLeavesNoUnfinishedAnimation) {
   EXPECT_NE(app.err().find("no animation was written"), std::string::npos) << app.err();
   EXPECT_FALSE(fs::exists(gif));
   EXPECT_FALSE(fs::exists(fs::path(gif).concat(".part")));
+  // With --png the images written before the stop stay, and the message
+  // says how many and where (a probe's 13 were left unmentioned).
+  const fs::path with_png = dir.path() / "with_png.gif";
+  fq_test::AppProcess png_app({"render", run.string(), "--to", with_png.string(), "--size", "160x120", "--png"},
+                              dir.path());
+  std::this_thread::sleep_for(std::chrono::milliseconds(1000));
+  png_app.signal(SIGINT);
+  ASSERT_EQ(png_app.wait(), 130) << png_app.err();
+  const fs::path images = dir.path() / "with_png_frames";
+  std::size_t count = 0;
+  if (fs::is_directory(images))
+    for (const fs::directory_entry& e : fs::directory_iterator(images)) count += e.path().extension() == ".png";
+  std::string said;
+  if (count == 0) {
+    said = "no PNG image was written";
+  } else {
+    said = "the PNG images of the first " + std::to_string(count) + " frames stay in '";
+    said += images.string();
+  }
+  EXPECT_NE(png_app.err().find(said), std::string::npos) << png_app.err();
+  EXPECT_FALSE(fs::exists(with_png));
 }
 
 TEST(RenderRun, Mp4ThroughFfmpegHasOneFramePerOutputFrame) {
