@@ -46,12 +46,16 @@ std::string sample_interval_problem(double dt_s) {
   return why.str();
 }
 
-std::string acceleration_problem(double a_mps2) {
-  if (std::abs(a_mps2) <= kMaxAbsAcceleration_g * kStandardGravity_mps2) return "";
+// `value` as written, in a unit of `unit_mps2` m/s^2. Compared in g, so that
+// a huge value written in g (1e308) is quoted as itself, not as the inf its
+// conversion to m/s^2 overflows to (probe).
+std::string acceleration_problem(double value, double unit_mps2) {
+  const double value_g = value * (unit_mps2 / kStandardGravity_mps2);
+  if (std::abs(value_g) <= kMaxAbsAcceleration_g) return "";
   std::ostringstream why;
   why << std::setprecision(4) << "expected at most " << kMaxAbsAcceleration_g
-      << " g in magnitude (the largest ground acceleration ever recorded is about 4 g), got "
-      << a_mps2 / kStandardGravity_mps2 << " g: a wrong unit (cm/s^2 read as g?) or a typing error";
+      << " g in magnitude (the largest ground acceleration ever recorded is about 4 g), got " << value_g
+      << " g: a wrong unit (cm/s^2 read as g?) or a typing error";
   return why.str();
 }
 
@@ -433,6 +437,27 @@ At2Size parse_npts_dt(const std::string& file, std::string_view line) {
                          std::string("expected ").append(key).append("= once on header line 4, got it twice in ")
                              .append(shown));
     }
+    // A value of digits with a comma and more digits after it ("DT= 0,0100",
+    // "NPTS= 5,372") is a decimal comma or a thousands separator, which the
+    // comma between the keys cut short: quoted whole, not as its first part
+    // (a probe's "DT= 0,0100" was refused as "got '0'").
+    for (const auto& [key, found, tok, after, expected, hint] :
+         {std::tuple{"DT", dt_keyword, dt_tok, dt_after, "a time step in s with a decimal point",
+                     " (a decimal comma? write the time step with a point, as .0100)"},
+          std::tuple{"NPTS", npts_keyword, npts_tok, npts_after, "the number of samples",
+                     " (a thousands separator? write the count in digits only, as 5372)"}}) {
+      if (!found || tok.empty() || after + 1 >= line.size() || line[after] != ',') continue;
+      const char next = line[after + 1];
+      if (!(next >= '0' && next <= '9') || !std::all_of(tok.begin(), tok.end(), [](char c) {
+            return (c >= '0' && c <= '9') || c == '.' || c == '+' || c == '-';
+          }))
+        continue;
+      std::size_t end = after + 1;
+      while (end < line.size() && line[end] >= '0' && line[end] <= '9') ++end;
+      throw InputError(file, kLine, key,
+                       std::string("expected ").append(expected).append(", got ").append(
+                           quoted(line.substr(after - tok.size(), end - (after - tok.size())))).append(hint));
+    }
     if (!npts_keyword || npts_tok.empty())
       throw InputError(file, kLine, "NPTS",
                        std::string("expected 'NPTS= <number of samples>' with 'DT= <time step> SEC' on header line "
@@ -676,11 +701,11 @@ AccelerationRecord read_peer_at2(const std::filesystem::path& file) {
       }
       last_value = tok;
       last_value_line = line_no;
-      rec.acceleration_mps2.push_back(v * kStandardGravity_mps2);
-      if (const std::string why = acceleration_problem(rec.acceleration_mps2.back()); !why.empty())
+      if (const std::string why = acceleration_problem(v, kStandardGravity_mps2); !why.empty())
         throw InputError(name, line_no, "value",
                          "value " + std::to_string(count) + " of NPTS=" + std::to_string(npts) + ", " + quoted(tok) +
                              ": " + why);
+      rec.acceleration_mps2.push_back(v * kStandardGravity_mps2);
     }
   }
   if (count != npts) {
@@ -775,9 +800,9 @@ AccelerationRecord read_two_column(const std::filesystem::path& file, Accelerati
       }
     }
     time_s.push_back(t);
-    accel_mps2.push_back(a * to_mps2);
-    if (const std::string why = acceleration_problem(accel_mps2.back()); !why.empty())
+    if (const std::string why = acceleration_problem(a, to_mps2); !why.empty())
       throw InputError(name, line_no, "acceleration", quoted(fields[1]) + " " + unit_name + ": " + why);
+    accel_mps2.push_back(a * to_mps2);
     prev_line = line_no;
   }
   if (time_s.size() < 2)
@@ -790,6 +815,7 @@ AccelerationRecord read_two_column(const std::filesystem::path& file, Accelerati
 
   AccelerationRecord rec;
   rec.source = name;
+  rec.file_start_time_s = t0;
   std::string notes = "two-column text, acceleration in " + unit_name;
   if (t0 != 0.0)
     notes += "; times shifted by " + fmt(-t0) + " s so the first sample (t = " + fmt(t0) +

@@ -1007,6 +1007,15 @@ void parse_ground_motion(const Reader& r, const Field& f, CaseDef& def) {
         if (const std::string why = scaled_record_problem(c.record, c.amplitude_scale); !why.empty())
           r.fail(r.get(n, "amplitude_scale", path).value_or(file), why);
         const double record_end_s = c.record.duration_s();
+        // Record time counts from the first sample; a file whose times start
+        // elsewhere is told in its own times too (a probe's file ending at
+        // 1.5 s read "ends at 1 s").
+        const double file_start_s = c.record.file_start_time_s;
+        const std::string in_file =
+            file_start_s == 0.0 ? std::string()
+                                : "; record time counts from the record's first sample, t = " + fmt(file_start_s) +
+                                      " s in the file, so its end is at t = " + fmt(file_start_s + record_end_s) +
+                                      " s in the file";
         // Within half a sample of the end counts as at the end: the window
         // would hold no sample interval (a start written as the record's
         // last time, N*DT, lands just before or after the end).
@@ -1015,18 +1024,20 @@ void parse_ground_motion(const Reader& r, const Field& f, CaseDef& def) {
         if (gm.window_start_s > record_end_s + 0.5 * c.record.dt_s)
           r.fail(start_field ? *start_field : file, "the window starts at " + fmt(gm.window_start_s) +
                                                         " s, after the end of record " + c.resolved_file.string() +
-                                                        " (which ends at " + fmt(record_end_s) + " s)");
+                                                        " (which ends at " + fmt(record_end_s) + " s" + in_file + ")");
         if (gm.window_start_s >= record_end_s - 0.5 * c.record.dt_s)
           r.fail(start_field ? *start_field : file, "the window starts at " + fmt(gm.window_start_s) +
                                                         " s, at or within half a sample (" +
                                                         fmt(0.5 * c.record.dt_s) + " s) of the end of record " +
-                                                        c.resolved_file.string() + " (" + fmt(record_end_s) + " s)");
+                                                        c.resolved_file.string() + " (" + fmt(record_end_s) + " s" +
+                                                        in_file + ")");
         // Half a sample of slack: a window written as N*DT must not be
         // refused over the rounding of DT.
         if (length_field && gm.window_start_s + gm.window_length_s > record_end_s + 0.5 * c.record.dt_s)
           r.fail(*length_field, "the window (" + fmt(gm.window_start_s) + " s + " + fmt(gm.window_length_s) +
                                     " s) runs past the end of record " + c.resolved_file.string() + " (" +
-                                    fmt(record_end_s) + " s); leave window_length_s out to use the record to its end");
+                                    fmt(record_end_s) + " s" + in_file +
+                                    "); leave window_length_s out to use the record to its end");
         gm.components.push_back(std::move(c));
       });
   def.ground_motion = std::move(gm);

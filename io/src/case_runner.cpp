@@ -298,6 +298,26 @@ std::string ground_motion_end_note(const Simulation& sim) {
   return note.str();
 }
 
+// A record whose file's times do not start at 0 is shifted so that record
+// time 0 is its first sample, and window_start_s counts from there: said,
+// with the file time the window starts at (a probe's window_start_s of 10 s
+// on a file starting at 5 s played file time 15 s, and nothing said so).
+std::string record_time_shift_text(const GroundMotionComponent& c) {
+  if (c.record.file_start_time_s == 0.0) return "";
+  std::ostringstream text;
+  text << std::setprecision(10) << "the times in " << c.record.source << " start at " << c.record.file_start_time_s
+       << " s; record time counts from that first sample, so window_start_s = " << c.window_start_s
+       << " s is t = " << c.record.file_start_time_s + c.window_start_s << " s in the file";
+  return text.str();
+}
+
+std::vector<std::string> record_time_shift_notes(const Simulation& sim) {
+  std::vector<std::string> notes;
+  for (const GroundMotionComponent& c : sim.ground_motion().components())
+    if (std::string note = record_time_shift_text(c); !note.empty()) notes.push_back(std::move(note));
+  return notes;
+}
+
 class OutputSizeCheck final : public StepObserver {
  public:
   using Say = std::function<void(const std::string&)>;
@@ -1062,6 +1082,26 @@ std::string no_columns_warning(const CaseDef& def) {
   return w.str();
 }
 
+// A frame with no support, no ground and no fixed block is held by nothing:
+// under gravity it falls from the start, and its storeys' drifts and
+// verdicts describe a falling frame (a probe's unsupported portal fell
+// 4.9 m in 1 s and read "standing", with no warning). Blocks alone are
+// left to fall unwarned (free-fall and impact set-ups).
+std::string nothing_holds_the_frame_warning(const CaseDef& def, const Scene& scene) {
+  if (def.members.empty() || def.ground || !def.supports.empty()) return {};
+  if (!(def.time.gravity_mps2.norm() > 0.0)) return {};
+  const BodyStore& bodies = scene.simulation->bodies();
+  for (std::size_t i = 0; i < bodies.size(); ++i)
+    if (bodies.is_fixed[i]) return {};
+  std::ostringstream w;
+  w << def.source_file.string() << ": nothing holds the frame up (no supports, no ground and no fixed block), so "
+    << "under gravity (" << def.time.gravity_mps2.norm()
+    << " m/s^2) it falls freely from the start and its storey drifts and verdicts describe a falling frame; give "
+       "supports (supports: [{node: ..., type: ...}]) or a ground with contact.ground (cases/README.md, supports, "
+       "ground)";
+  return w.str();
+}
+
 std::string ground_without_contact_warning(const CaseDef& def, const Scene& scene) {
   // A ground body exists with a ground section or any support (cases/README.md, ground).
   if (!def.ground && def.supports.empty()) return {};
@@ -1136,7 +1176,8 @@ std::vector<std::string> case_warnings(const CaseDef& def, const Scene& scene) {
                         brace_free_ends_warning(def, scene), brace_on_supported_node_warning(def, scene),
                         unused_joint_rules_warning(def),
                         horizontal_columns_warning(def), turned_column_sections_warning(def, scene),
-                        no_columns_warning(def), ground_without_contact_warning(def, scene)})
+                        no_columns_warning(def), ground_without_contact_warning(def, scene),
+                        nothing_holds_the_frame_warning(def, scene)})
     if (!w.empty()) out.push_back(std::move(w));
   for (std::string& w : ground_motion_direction_warnings(scene.simulation->ground_motion())) out.push_back(std::move(w));
   if (std::string w = ground_motion_sampling_warning(*scene.simulation); !w.empty()) out.push_back(std::move(w));
@@ -1722,21 +1763,6 @@ CaseRunReport run_case(const CaseDef& case_def, const CaseRunOptions& options) {
   OutputDef output = def.output;
   if (options.output_folder) output.folder = *options.output_folder;
   if (output.folder.empty()) output.folder = default_output_folder(def.name);
-  if (options.on_note) {
-    // A run into a folder that holds a stopped run resume could continue
-    // replaces it as any earlier run, but that one was not finished: said,
-    // so that it is not lost unawares (workflow probe).
-    // Stopped (Ctrl-C) it has a summary saying so; killed, none.
-    std::error_code ec;
-    const std::string status = summary_value(output.folder, "status");
-    if (std::filesystem::exists(output.folder / kCheckpointFileName, ec) && (status == "stopped" || status.empty()))
-      options.on_note("the output folder " + output.folder.string() + " held an unfinished run (" +
-                      (status.empty() ? std::string("killed, no summary")
-                                      : "stopped at t = " + summary_value(output.folder, "simulated_time_s") + " s") +
-                      ") that `framequake resume " + output.folder.string() +
-                      "` could have continued from its checkpoint; this run replaces it");
-  }
-
   std::optional<RunMeta> meta;
   if (options.checkpoint_every_s) {
     if (!(*options.checkpoint_every_s > 0.0) || !std::isfinite(*options.checkpoint_every_s))
@@ -1778,12 +1804,29 @@ CaseRunReport run_case(const CaseDef& case_def, const CaseRunOptions& options) {
           ground_motion_end_note(sim), hub_choice_note(def)})
       if (!note.empty()) options.on_note(note);
     for (const std::string& note : planar_link_system_notes(def, scene)) options.on_note(note);
+    for (const std::string& note : record_time_shift_notes(sim)) options.on_note(note);
   }
 
+  // A run into a folder that holds a stopped run resume could continue
+  // replaces it as any earlier run, but that one was not finished: said,
+  // so that it is not lost unawares (workflow probe). Stopped (Ctrl-C) it
+  // has a summary saying so; killed, none. Told once the folder is locked:
+  // before, a run still writing the folder (no summary yet) read as killed.
+  const auto note_unfinished_run = [&]() {
+    if (!options.on_note) return;
+    std::error_code ec;
+    const std::string status = summary_value(output.folder, "status");
+    if (std::filesystem::exists(output.folder / kCheckpointFileName, ec) && (status == "stopped" || status.empty()))
+      options.on_note("the output folder " + output.folder.string() + " held an unfinished run (" +
+                      (status.empty() ? std::string("killed, no summary")
+                                      : "stopped at t = " + summary_value(output.folder, "simulated_time_s") + " s") +
+                      ") that `framequake resume " + output.folder.string() +
+                      "` could have continued from its checkpoint; this run replaces it");
+  };
   std::unique_ptr<RunOutput> writer;
   StoreyDriftMonitor storeys(scene.storeys, def.assessment, sim.settings().dt_s, residual_drift_window_s(def));
   try {
-    writer = std::make_unique<RunOutput>(output, def.name);
+    writer = std::make_unique<RunOutput>(output, def.name, note_unfinished_run);
     attach_provider_output(*writer, scene);
     if (!scene.storeys.empty()) attach_storey_output(*writer, storeys);
     writer->attach(sim);
@@ -2079,7 +2122,8 @@ void describe_case(const CaseDef& case_def, std::ostream& out, std::optional<Int
       // + 0.0 prints a negative zero component of `-z` as 0.
       out << "            " << c.record.source << "  along (" << (c.direction.array() + 0.0).transpose() << ") x "
           << c.amplitude_scale << ", time scale " << c.time_scale << ", window from " << c.window_start_s
-          << " s\n";
+          << " s" << (c.record.file_start_time_s != 0.0 ? " (" + record_time_shift_text(c) + ")" : std::string())
+          << "\n";
   }
   OutputDef o = def.output;
   if (o.folder.empty()) o.folder = default_output_folder(def.name);

@@ -270,7 +270,7 @@ struct RunOutput::Impl {
   std::optional<Resume> resume;
 };
 
-RunOutput::RunOutput(const OutputDef& def, std::string case_name) {
+RunOutput::RunOutput(const OutputDef& def, std::string case_name, const std::function<void()>& on_folder_locked) {
   if (def.folder.empty()) throw std::invalid_argument("output folder path is empty");
   if (!(def.frame_interval_s > 0.0) || !std::isfinite(def.frame_interval_s))
     throw std::invalid_argument("frame_interval_s must be a positive number of seconds");
@@ -288,6 +288,7 @@ RunOutput::RunOutput(const OutputDef& def, std::string case_name) {
   if (!fs::is_directory(def.folder, ec))
     throw std::runtime_error("output folder '" + def.folder.string() + "' exists and is not a folder");
   FolderLock lock(def.folder);
+  if (on_folder_locked) on_folder_locked();
   prepare_folder(def.folder);
   impl_ = std::make_unique<Impl>(def, std::move(case_name));
   impl_->lock = std::move(lock);

@@ -146,6 +146,25 @@ TEST(CheckpointCli, ARunReplacingAResumableRunSaysSo) {
   EXPECT_EQ(third.err.find("held an unfinished run"), std::string::npos) << third.err;
 }
 
+// A run into a folder that another run still holds (its lock; a
+// checkpointed run has a checkpoint and no summary while it runs) is
+// refused, and says nothing of replacing a killed run: the note was told
+// before the lock was tried (review probe), so a live run read as killed.
+TEST(CheckpointCli, ARunIntoAFolderInUseDoesNotCallItsRunKilled) {
+  Fixture f;
+  const fs::path out = f.dir.path() / "out";
+  ASSERT_EQ(f.run_and_kill(out), 128 + SIGKILL);
+  const int fd = ::open(out.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  ASSERT_GE(fd, 0);
+  ASSERT_EQ(::flock(fd, LOCK_EX | LOCK_NB), 0);
+  const auto r = run_app({"run", f.case_file.string(), "--out", out.string(), "--quiet"}, f.dir.path());
+  ::close(fd);
+  EXPECT_EQ(r.code, 3) << r.err;
+  EXPECT_NE(r.err.find("is in use by another framequake process"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("held an unfinished run"), std::string::npos) << r.err;
+  EXPECT_TRUE(fs::exists(out / "checkpoint.bin"));
+}
+
 // A run killed while writing a history row leaves history.csv with rows
 // past its checkpoint and a last row cut short. Resume reads the storey
 // drifts of the rows before the checkpoint, and read them before cutting the

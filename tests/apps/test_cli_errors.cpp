@@ -16,6 +16,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -158,6 +159,16 @@ const Row kRecordRows[] = {
     {"record_header_cut_short", "", "PEER NGA STRONG MOTION DATABASE RECORD\nevent\n", "rec.AT2", 3, "header",
      "expected 4 header lines"},
     {"record_empty", "", "", "rec.AT2", 0, "file", "the file is empty"},
+    // A decimal comma or a thousands separator is quoted whole (it was
+    // quoted as its part before the comma, "got '0'").
+    {"record_dt_decimal_comma", "DT=   .0100 SEC", "DT=   0,0100 SEC", "rec.AT2", 4, "DT",
+     "expected a time step in s with a decimal point, got '0,0100' (a decimal comma?"},
+    // A value far beyond 20 g is quoted in g as written (1e308 g overflowed
+    // to inf in m/s^2 and read "got inf g").
+    {"record_huge_value", ".2000000E-02", "1e308", "rec.AT2", 5, "value", "expected at most 20 g in magnitude "
+     "(the largest ground acceleration ever recorded is about 4 g), got 1e+308 g"},
+    {"record_npts_thousands_separator", "NPTS=    6,", "NPTS= 5,372,", "rec.AT2", 4, "NPTS",
+     "expected the number of samples, got '5,372' (a thousands separator?"},
 };
 
 // Binary garbage: no line to expect (any byte may end up on any line), but
@@ -448,6 +459,65 @@ TEST(CliInfo, ARunLongerThanItsGroundMotionIsToldWhenTheMotionEnds) {
                            dir.path());
   ASSERT_EQ(run.code, 0) << run.err;
   EXPECT_NE(run.err.find("framequake: note: the ground motion ends at t = 0.05 s"), std::string::npos) << run.err;
+}
+
+// Record time counts from a record's first sample: a two-column file whose
+// times start at 5 s is shifted by -5 s, so window_start_s = 0.02 s plays
+// its line at t = 5.02 s (cases/README.md, ground_motion). What history.csv
+// shows at t = 0 is that line's value (the file's values differ line by
+// line); info and run say where the window starts in the file's own times
+// (a probe's window on such a file played another time than it expected,
+// and nothing said so). A file starting at 0 gets no such note.
+TEST(CliInfo, AWindowOnARecordStartingAfterZeroIsPlacedInTheFilesOwnTimes) {
+  TempDir dir;
+  std::string text = kBaseCase;
+  const std::string gm = "ground_motion:\n  components:\n    - {file: rec.AT2, format: peer_at2, axis: x}\n";
+  ASSERT_NE(text.find(gm), std::string::npos);
+  text.replace(text.find(gm), gm.size(),
+               "ground_motion:\n  window_start_s: 0.02\n  components:\n"
+               "    - {file: late.txt, format: two_column, unit: m/s2, axis: x}\n");
+  std::ofstream(dir.path() / "late.yaml") << text;
+  std::ofstream(dir.path() / "late.txt") << "5.00 0.10\n5.01 0.20\n5.02 0.30\n5.03 0.40\n5.04 0.50\n5.05 0.60\n";
+  const std::string said = "the times in " + (dir.path() / "late.txt").string() +
+                           " start at 5 s; record time counts from that first sample, so window_start_s = 0.02 s is "
+                           "t = 5.02 s in the file";
+  const auto info = run_app({"info", (dir.path() / "late.yaml").string()}, dir.path());
+  ASSERT_EQ(info.code, 0) << info.err;
+  EXPECT_NE(info.out.find("window from 0.02 s (" + said + ")"), std::string::npos) << info.out;
+  const fs::path out = dir.path() / "out";
+  const auto run = run_app({"run", (dir.path() / "late.yaml").string(), "--out", out.string(), "--quiet"}, dir.path());
+  ASSERT_EQ(run.code, 0) << run.err;
+  EXPECT_NE(run.err.find("framequake: note: " + said), std::string::npos) << run.err;
+  // The first history row (t = 0): the ground acceleration of the line at 5.02 s.
+  std::ifstream history(out / "history.csv");
+  std::string header, first;
+  ASSERT_TRUE(std::getline(history, header) && std::getline(history, first));
+  std::vector<std::string> names, values;
+  for (std::stringstream h(header); std::getline(h, names.emplace_back(), ',');) {
+  }
+  for (std::stringstream v(first); std::getline(v, values.emplace_back(), ',');) {
+  }
+  const auto column = std::find(names.begin(), names.end(), "ground_accel_x_mps2");
+  ASSERT_NE(column, names.end()) << header;
+  const std::size_t k = std::size_t(column - names.begin());
+  ASSERT_LT(k, values.size());
+  EXPECT_NEAR(std::stod(values[k]), 0.30, 1e-9) << first;
+  // A window past the record's end is refused in the file's own times too.
+  std::string past = text;
+  past.replace(past.find("window_start_s: 0.02"), 20, "window_start_s: 0.06");
+  std::ofstream(dir.path() / "past.yaml") << past;
+  const auto refused = run_app({"info", (dir.path() / "past.yaml").string()}, dir.path());
+  EXPECT_EQ(refused.code, 2) << refused.err;
+  EXPECT_NE(refused.err.find("(which ends at 0.05 s; record time counts from the record's first sample, t = 5 s in "
+                             "the file, so its end is at t = 5.05 s in the file)"),
+            std::string::npos)
+      << refused.err;
+  // The base record's times start at 0: nothing to say.
+  std::ofstream(dir.path() / "base.yaml") << kBaseCase;
+  std::ofstream(dir.path() / "rec.AT2") << kBaseRecord;
+  const auto base = run_app({"info", (dir.path() / "base.yaml").string()}, dir.path());
+  ASSERT_EQ(base.code, 0) << base.err;
+  EXPECT_EQ(base.out.find("record time counts from"), std::string::npos) << base.out;
 }
 
 TEST(CliErrors, MalformedCaseFiles) {

@@ -109,6 +109,22 @@ bool mentions(const std::vector<std::string>& warnings, const std::string& part)
   return false;
 }
 
+// The value of `column` in the last row of a run's history.csv (NaN when
+// the column or a row is missing).
+double last_history_value(const std::filesystem::path& run_folder, const std::string& column) {
+  std::ifstream history(run_folder / "history.csv");
+  std::string header, row, last;
+  std::getline(history, header);
+  while (std::getline(history, row)) last = row;
+  const std::size_t at = header.find(column);
+  if (at == std::string::npos || last.empty()) return std::nan("");
+  const auto index = std::count(header.begin(), header.begin() + std::ptrdiff_t(at), ',');
+  std::stringstream cells(last);
+  std::string cell;
+  for (std::ptrdiff_t k = 0; k <= index; ++k) std::getline(cells, cell, ',');
+  return std::stod(cell);
+}
+
 TEST(RunWarnings, ContactsPressedPastTheirLimitAreNamedWithDepthAndBodies) {
   // The cube (0.45 kg, half-thickness 50 mm) set down touching the ground
   // on four corner springs sinks at least to its static depth m g / (4 k)
@@ -726,17 +742,7 @@ TEST(RunWarnings, AGroundWithoutContactIsToldItHoldsNothing) {
   EXPECT_NE(info.str().find("warning     " + w), std::string::npos) << info.str();
   // It fell: the largest displacement at the end is the free fall's
   // (max_displacement_m of the last row of history.csv).
-  std::ifstream history(dir.path() / "cube" / "history.csv");
-  std::string header, row, last;
-  std::getline(history, header);
-  while (std::getline(history, row)) last = row;
-  const std::string column = "max_displacement_m";
-  ASSERT_NE(header.find(column), std::string::npos) << header;
-  const auto index = std::count(header.begin(), header.begin() + std::ptrdiff_t(header.find(column)), ',');
-  std::stringstream cells(last);
-  std::string cell;
-  for (std::ptrdiff_t k = 0; k <= index; ++k) std::getline(cells, cell, ',');
-  EXPECT_NEAR(std::stod(cell), 0.5 * 9.80665 * 0.2 * 0.2, 1e-6) << last;
+  EXPECT_NEAR(last_history_value(dir.path() / "cube", "max_displacement_m"), 0.5 * 9.80665 * 0.2 * 0.2, 1e-6);
 
   const CaseDef rests = load_case_file(dir.write("rests.yaml", cube_case(1e-5)));
   EXPECT_EQ(ground_without_contact_warning(rests, build_scene(rests)), "");
@@ -762,6 +768,54 @@ TEST(RunWarnings, AGroundWithoutContactIsToldItHoldsNothing) {
     if (e.path().extension() != ".yaml") continue;
     const CaseDef shipped = load_case_file(e.path());
     EXPECT_EQ(ground_without_contact_warning(shipped, build_scene(shipped)), "") << e.path();
+  }
+}
+
+// A frame held by nothing (the portal demo without its supports, no
+// ground section, no fixed block) falls freely under gravity from the
+// start: run and info warn before it starts. Free fall is the check that
+// it does: the largest displacement after 0.1 s is g t^2 / 2 = 0.049 m.
+// Without gravity, with its supports, and for the shipped cases: no warning.
+TEST(RunWarnings, AFrameNothingHoldsUpIsToldItFalls) {
+  test::TempDir dir;
+  const std::filesystem::path cases = std::filesystem::path(FQ_SOURCE_DIR) / "cases";
+  std::string portal = file_text(cases / "demo_portal_frame.yaml");
+  const std::string record = "file: ground_motions/";
+  portal.replace(portal.find(record), record.size(), "file: " + (cases / "ground_motions").string() + "/");
+  const std::string supports = "supports:\n  - {node: base_w}\n  - {node: base_e}\n";
+  ASSERT_NE(portal.find(supports), std::string::npos);
+  const CaseDef held = load_case_file(dir.write("held.yaml", portal));
+  EXPECT_EQ(nothing_holds_the_frame_warning(held, build_scene(held)), "");
+  std::string loose_text = portal;
+  loose_text.replace(loose_text.find(supports), supports.size(), "");
+  // The ground motion out, so that the fall is gravity's alone.
+  loose_text = loose_text.substr(0, loose_text.find("ground_motion:"));
+  const std::string time = "time:\n";
+  ASSERT_NE(loose_text.find(time), std::string::npos);
+  loose_text.replace(loose_text.find(time), time.size(), "time:\n  duration_s: 0.1\n");
+  const CaseDef loose = load_case_file(dir.write("loose.yaml", loose_text));
+  const std::string w = nothing_holds_the_frame_warning(loose, build_scene(loose));
+  EXPECT_NE(w.find("loose.yaml: nothing holds the frame up (no supports, no ground and no fixed block), so under "
+                   "gravity (9.80665 m/s^2) it falls freely from the start"),
+            std::string::npos)
+      << w;
+  std::ostringstream info;
+  describe_case(loose, info);
+  EXPECT_NE(info.str().find("nothing holds the frame up"), std::string::npos) << info.str();
+  CaseRunOptions options;
+  options.output_folder = dir.path() / "loose";
+  const CaseRunReport report = run_case(loose, options);
+  EXPECT_TRUE(mentions(report.warnings, "nothing holds the frame up")) << report.warnings.size();
+  EXPECT_NEAR(last_history_value(dir.path() / "loose", "max_displacement_m"), 0.5 * 9.80665 * 0.1 * 0.1, 1e-6);
+  // Weightless, it does not fall.
+  std::string weightless = loose_text;
+  weightless.replace(weightless.find(time), time.size(), "time:\n  gravity_mps2: [0, 0, 0]\n");
+  const CaseDef floating = load_case_file(dir.write("weightless.yaml", weightless));
+  EXPECT_EQ(nothing_holds_the_frame_warning(floating, build_scene(floating)), "");
+  for (const auto& e : std::filesystem::directory_iterator(cases)) {
+    if (e.path().extension() != ".yaml") continue;
+    const CaseDef shipped = load_case_file(e.path());
+    EXPECT_EQ(nothing_holds_the_frame_warning(shipped, build_scene(shipped)), "") << e.path();
   }
 }
 

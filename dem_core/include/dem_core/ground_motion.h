@@ -31,6 +31,10 @@ struct AccelerationRecord {
   // digitised record whose samples are where the trace bends; resampling
   // it onto a grid would cut the peaks that fall between grid points).
   std::vector<double> sample_time_s;
+  // Time of the first sample in the file (s): record time 0 is that sample,
+  // so window_start_s counts from it (a two-column file whose times start
+  // at 5 s is shifted by -5 s; io/accelerogram.h). 0 for the other formats.
+  double file_start_time_s = 0.0;
   double time_of(std::size_t k) const { return sample_time_s.empty() ? double(k) * dt_s : sample_time_s[k]; }
   double duration_s() const { return acceleration_mps2.empty() ? 0.0 : time_of(acceleration_mps2.size() - 1); }
   // Value at record time t_s (linear interpolation between samples); 0

@@ -299,6 +299,13 @@ std::string no_columns_warning(const CaseDef& def);
 // 1 s). Names the first such body. Empty otherwise.
 std::string ground_without_contact_warning(const CaseDef& def, const Scene& scene);
 
+// The warning for a frame (members) under gravity with no support, no ground
+// section and no fixed block: nothing holds it up, it falls freely from the
+// start, and its storey verdicts describe a falling frame (a probe's
+// unsupported portal fell 4.9 m in 1 s and read "standing", unwarned).
+// Empty otherwise, and for blocks alone (free-fall and impact set-ups).
+std::string nothing_holds_the_frame_warning(const CaseDef& def, const Scene& scene);
+
 // The warning for members that no joint holds, in a case that has joints (a
 // beam drawn 10 mm above the columns it should sit on): they stand only on
 // their contacts, or fall through where there are none. Blocks are meant to

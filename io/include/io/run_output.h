@@ -25,6 +25,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -84,8 +85,13 @@ class RunOutput {
   // events.csv, frames/frame_*.vtu and temporaries; nothing else). If it
   // exists and holds anything else, throws std::runtime_error naming the
   // folder and leaves it untouched. Throws std::invalid_argument on a
-  // non-positive interval or an empty folder path.
-  RunOutput(const OutputDef& def, std::string case_name);
+  // non-positive interval or an empty folder path. `on_folder_locked`, when
+  // given, is called once this process holds the folder's lock and before
+  // anything in it is removed: what the folder held can be told then
+  // without a run still writing it (a note read before the lock told a
+  // user that a live run's folder held a killed one, review probe).
+  RunOutput(const OutputDef& def, std::string case_name,
+            const std::function<void()>& on_folder_locked = {});
   ~RunOutput();
   RunOutput(RunOutput&&) noexcept;
   RunOutput& operator=(RunOutput&&) noexcept;
