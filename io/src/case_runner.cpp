@@ -1082,19 +1082,24 @@ std::string no_columns_warning(const CaseDef& def) {
   return w.str();
 }
 
-// A frame with no support, no ground and no fixed block is held by nothing:
+// A frame with no support, no ground (neither a ground section nor a
+// contact with the ground) and no fixed block is held by nothing:
 // under gravity it falls from the start, and its storeys' drifts and
 // verdicts describe a falling frame (a probe's unsupported portal fell
 // 4.9 m in 1 s and read "standing", with no warning). Blocks alone are
 // left to fall unwarned (free-fall and impact set-ups).
 std::string nothing_holds_the_frame_warning(const CaseDef& def, const Scene& scene) {
-  if (def.members.empty() || def.ground || !def.supports.empty()) return {};
+  // contact.ground alone makes a ground surface (at z = 0 without a ground
+  // section) that the frame stands on (docs audit: such a frame was told
+  // it falls).
+  if (def.members.empty() || def.ground || !def.supports.empty() || (def.contact && def.contact->ground)) return {};
   if (!(def.time.gravity_mps2.norm() > 0.0)) return {};
   const BodyStore& bodies = scene.simulation->bodies();
   for (std::size_t i = 0; i < bodies.size(); ++i)
     if (bodies.is_fixed[i]) return {};
   std::ostringstream w;
-  w << def.source_file.string() << ": nothing holds the frame up (no supports, no ground and no fixed block), so "
+  w << def.source_file.string()
+    << ": nothing holds the frame up (no supports, no ground section, no contact.ground and no fixed block), so "
     << "under gravity (" << def.time.gravity_mps2.norm()
     << " m/s^2) it falls freely from the start and its storey drifts and verdicts describe a falling frame; give "
        "supports (supports: [{node: ..., type: ...}]) or a ground with contact.ground (cases/README.md, supports, "

@@ -300,7 +300,7 @@ std::string no_columns_warning(const CaseDef& def);
 std::string ground_without_contact_warning(const CaseDef& def, const Scene& scene);
 
 // The warning for a frame (members) under gravity with no support, no ground
-// section and no fixed block: nothing holds it up, it falls freely from the
+// section, no contact.ground and no fixed block: nothing holds it up, it falls freely from the
 // start, and its storey verdicts describe a falling frame (a probe's
 // unsupported portal fell 4.9 m in 1 s and read "standing", unwarned).
 // Empty otherwise, and for blocks alone (free-fall and impact set-ups).
