@@ -332,8 +332,11 @@ def draw_sweep(folder):
     series = {}
     limits = {}  # (damage, collapse) -> cases that use them
     for row in rows:
-        # An unstable run is not assessed: its drifts are the blow-up's.
-        if row.get("status") in ("failed", "unstable", None, ""):
+        # The runs the collapse table counts: completed ones. An unstable run
+        # is not assessed (its drifts are the blow-up's), and a stopped one
+        # drew as an ordinary point of its scale with the drift it had when
+        # stopped, joined to the others' line (studies probe).
+        if row.get("status") != "completed":
             continue
         key = (row["case"], row["record"])
         # The largest storey's, not the first's only: a braced first storey

@@ -47,6 +47,14 @@ def write_run(folder, name, direction, histories, damage=1 / 30, collapse=0.1, p
     return out
 
 
+def write_sweep(folder, rows):
+    """sweep.csv of the rows (dicts of one set of keys), as the sweep writes it."""
+    with open(os.path.join(folder, "sweep.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+
+
 def write_comparison(folder, rows, storeys):
     header = ["case", "status"]
     for k in range(1, storeys + 1):
@@ -228,10 +236,7 @@ class SweepFigure(FigureTest):
                 rows.append({"case": case, "record": "kobe", "scale": scale, "pga_mps2": 4 * scale,
                              "status": "completed", "collapsed": "0", "storey1_peak_drift_ratio_rad": 0.01 * scale,
                              "storey1_verdict": "standing", "output": out})
-        with open(os.path.join(self.folder, "sweep.csv"), "w", newline="") as f:
-            w = csv.DictWriter(f, fieldnames=list(rows[0]))
-            w.writeheader()
-            w.writerows(rows)
+        write_sweep(self.folder, rows)
         fig, texts = fq_plot.draw_sweep(self.folder)
         self.assertEqual(texts["Limits"], "damage 0.02 rad, collapse 0.05 rad: strict; "
                                           "damage 0.0333333 rad, collapse 0.1 rad: a, b")
@@ -261,10 +266,7 @@ class SweepFigure(FigureTest):
                          "status": "completed", "collapsed": "1" if k == 3 else "0",
                          "storey1_peak_drift_ratio_rad": 0.01 * (k + 1), "storey1_verdict": "standing",
                          "output": out})
-        with open(os.path.join(self.folder, "sweep.csv"), "w", newline="") as f:
-            w = csv.DictWriter(f, fieldnames=list(rows[0]))
-            w.writeheader()
-            w.writerows(rows)
+        write_sweep(self.folder, rows)
         fig, _ = fq_plot.draw_sweep(self.folder)
         ax = fig.axes[0]
         drawn = [line for line in ax.get_lines() if not line.get_label().startswith("_")]
@@ -288,15 +290,29 @@ class SweepFigure(FigureTest):
                 rows.append({"case": case, "record": "kobe", "scale": k + 1, "pga_mps2": 2.0 * (k + 1),
                              "status": "completed", "collapsed": "0", "storey1_peak_drift_ratio_rad": drift,
                              "storey1_verdict": "standing", "output": out})
-        with open(os.path.join(self.folder, "sweep.csv"), "w", newline="") as f:
-            w = csv.DictWriter(f, fieldnames=list(rows[0]))
-            w.writeheader()
-            w.writerows(rows)
+        write_sweep(self.folder, rows)
         fig, _ = fq_plot.draw_sweep(self.folder)
         drawn = {line.get_label(): line for line in fig.axes[0].get_lines() if not line.get_label().startswith("_")}
         self.assertEqual([float(y) for y in drawn["zeta, kobe"].get_ydata()], [0.6e-6, 1.2e-6, 3.1e-6])
         self.assertEqual(drawn["zeta, kobe"].get_color(), fq_plot.COLOURS[0])
         self.assertEqual(drawn["alpha, kobe"].get_color(), fq_plot.COLOURS[1])
+
+    def test_only_completed_runs_are_drawn(self):
+        """The runs the collapse table counts: a run stopped at scale 1 (its
+        drift when stopped, 0.0008 rad) drew as an ordinary point joined to
+        the completed ones (studies probe); stopped, unstable, failed and
+        output_failed runs are all left out."""
+        rows = []
+        statuses = ("completed", "completed", "stopped", "unstable", "failed", "output_failed")
+        for k, status in enumerate(statuses):
+            out = write_run(self.folder, "a_x%d" % k, [1, 0, 0], [[(0.0, 0.0)]])
+            rows.append({"case": "a", "record": "kobe", "scale": k + 1, "pga_mps2": 2.0 * (k + 1),
+                         "status": status, "collapsed": "0", "storey1_peak_drift_ratio_rad": 0.01 * (k + 1),
+                         "storey1_verdict": "standing", "output": out})
+        write_sweep(self.folder, rows)
+        fig, _ = fq_plot.draw_sweep(self.folder)
+        drawn = {line.get_label(): line for line in fig.axes[0].get_lines() if not line.get_label().startswith("_")}
+        self.assertEqual([float(y) for y in drawn["a, kobe"].get_ydata()], [0.01, 0.02])
 
 
 
