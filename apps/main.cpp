@@ -202,9 +202,9 @@ RunArgs parse_run_args(int argc, char** argv, int first, const char* help, bool 
       if (std::find(seen.begin(), seen.end(), name) != seen.end())
         usage_error(std::string(name) + " is given twice; give it once", help);
       seen.push_back(name);
-      if (i + 1 >= argc) usage_error(std::string(name) + " needs a value", help);
-      if (argv[i + 1][0] == '\0') usage_error(std::string(name) + " needs a value, got an empty one", help);
-      return argv[++i];
+      std::string value = fq_app::option_value(name, argc, argv, i, help);
+      ++i;
+      return value;
     };
     if (arg == "--help" || arg == "-h") {
       std::cout << help;
@@ -328,12 +328,13 @@ int command_resume(int argc, char** argv) {
     } else if (arg == "--quiet") {
       quiet = true;
     } else if (arg == "--case") {
-      if (i + 1 >= argc) usage_error("--case needs a value", kResumeHelp);
       if (case_file) usage_error("--case is given twice; give it once", kResumeHelp);
-      case_file = argv[++i];
+      case_file = fq_app::option_value("--case", argc, argv, i, kResumeHelp);
+      ++i;
     } else if (arg == "--threads") {
-      if (i + 1 >= argc) usage_error("--threads needs a value", kResumeHelp);
-      [[maybe_unused]] const int n = fq_app::whole_number_option("--threads", argv[++i], 1, 1024, kResumeHelp);
+      [[maybe_unused]] const int n = fq_app::whole_number_option(
+          "--threads", fq_app::option_value("--threads", argc, argv, i, kResumeHelp), 1, 1024, kResumeHelp);
+      ++i;
       warn_if_too_many_threads(n, "--threads " + std::to_string(n));
 #if defined(_OPENMP)
       omp_set_num_threads(n);
@@ -445,7 +446,10 @@ static int dispatch(int argc, char** argv) {
           usage_error(std::string("option ") + flag + " takes no value, got '" + arg + "'",
                       command_help(argv[1]));
       words.push_back(arg.substr(0, eq));
-      words.push_back(arg.substr(eq + 1));
+      // "--out=--name" is a value by its form: passed as ./--name, which
+      // names the same path and is not taken for an option below.
+      const std::string value = arg.substr(eq + 1);
+      words.push_back(fq_app::looks_like_option(value) ? "./" + value : value);
     } else {
       words.push_back(arg);
     }

@@ -29,6 +29,13 @@ std::string number(double x) {
 
 }  // namespace
 
+std::string first_failure_outcome(const fq::CaseRunReport& r, const std::function<std::string(double)>& seconds) {
+  const double failed_s = r.first_joint_failure_time_s, broke_s = r.first_joint_failure_break_time_s;
+  if (r.first_joint_failure_broke) return " broke at t = " + seconds(failed_s) + " s";
+  if (std::isnan(broke_s)) return " lost a spring and held at t = " + seconds(failed_s) + " s";
+  return " lost a spring at t = " + seconds(failed_s) + " s and broke at t = " + seconds(broke_s) + " s";
+}
+
 void print_run_outcome(const fq::CaseRunReport& r, std::ostream& out) {
   for (const fq::StoreyOutcome& s : r.storeys) {
     out << "framequake: storey " << s.number << " (" << number(s.height_m) << " m): peak drift ratio "
@@ -53,8 +60,7 @@ void print_run_outcome(const fq::CaseRunReport& r, std::ostream& out) {
     if (r.first_joint_failure.empty())
       out << "none\n";
     else
-      out << r.first_joint_failure << (r.first_joint_failure_broke ? " broke" : " lost a spring and held")
-          << " at t = " << number(r.first_joint_failure_time_s) << " s\n";
+      out << r.first_joint_failure << first_failure_outcome(r, number) << "\n";
   }
   out << "framequake: energy balance error " << number(r.energy_balance_error_relative)
       << " of the energy scale (summary.json \"energy\")\n";

@@ -4,6 +4,7 @@
 // summary.json. The studies (study_commands.cpp) share the verdict wording.
 #pragma once
 
+#include <functional>
 #include <ostream>
 #include <string>
 
@@ -18,6 +19,11 @@ namespace fq_app {
 // the arithmetic's, not the structure's (a probe's unstable portal read
 // "collapsed, 0.7583").
 std::string verdict_text(const fq::CaseRunReport& r, const fq::StoreyOutcome& s);
+
+// What became of the first joint to fail, after its label: " broke at t =
+// A s", " lost a spring at t = A s and broke at t = B s", or " lost a spring
+// and held at t = A s" (it never broke), each time written by `seconds`.
+std::string first_failure_outcome(const fq::CaseRunReport& r, const std::function<std::string(double)>& seconds);
 
 // One line per storey, one for the joints (when the case has any) and one
 // for the energy balance, each starting "framequake: ".

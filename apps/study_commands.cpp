@@ -144,9 +144,9 @@ StudyArgs parse_study_args(int argc, char** argv, const char* help, bool sweep) 
           usage_error(std::string(name) + " is given twice; give it once", help);
         seen.push_back(name);
       }
-      if (i + 1 >= argc) usage_error(std::string(name) + " needs a value", help);
-      if (argv[i + 1][0] == '\0') usage_error(std::string(name) + " needs a value, got an empty one", help);
-      return argv[++i];
+      std::string given = option_value(name, argc, argv, i, help);
+      ++i;
+      return given;
     };
     if (arg == "--help" || arg == "-h") {
       std::cout << help;
@@ -1038,8 +1038,7 @@ int command_compare(int argc, char** argv, const std::atomic<bool>* stop_request
       if (r.first_joint_failure.empty()) continue;
       firsts += "\n- " + jobs[i].label + ": " + r.first_joint_failure;
       if (!r.first_joint_failure_name.empty()) firsts += ", joint " + r.first_joint_failure_name;
-      firsts += std::string(r.first_joint_failure_broke ? " broke" : " lost a spring and held") + " at t = " +
-                fixed(r.first_joint_failure_time_s, 3) + " s";
+      firsts += first_failure_outcome(r, [](double t_s) { return fixed(t_s, 3); });
       // A blow-up tears joints apart: not a weak point (error probe).
       if (r.result.status == fq::RunStatus::Unstable)
         firsts += " (the run became unstable: this may be the blow-up's doing)";
@@ -1062,8 +1061,12 @@ int command_compare(int argc, char** argv, const std::atomic<bool>* stop_request
     // damaged over its whole window).
     md << window_length_note(args, window_uses, "the verdicts");
   }
+  // Under a heading of their own, as sweep's (a line after the warnings
+  // read as one of them; studies probe).
+  std::string not_finished;
   for (std::size_t i = 0; i < jobs.size(); ++i)
-    if (!outcomes[i].ok) md << "\n" << jobs[i].label << ": " << outcomes[i].error << "\n";
+    if (!outcomes[i].ok) not_finished += "\n- " + jobs[i].label + ": " + outcomes[i].error;
+  if (!not_finished.empty()) md << "\nRuns that did not finish:" << not_finished << "\n";
 
   if (!write_text(args.out / "comparison.csv", csv.str()) || !write_text(args.out / "comparison.md", md.str()))
     return kExitOutputFailed;
@@ -1086,7 +1089,17 @@ int command_sweep(int argc, char** argv, const std::atomic<bool>* stop_requested
   try {
     std::vector<fq::CaseDef> defs = load_cases(args.cases);
     std::vector<fq::AccelerationRecord> records;
-    for (const std::string& r : args.records) records.push_back(fq::read_peer_at2(r));
+    for (const std::string& r : args.records) {
+      try {
+        records.push_back(fq::read_peer_at2(r));
+      } catch (const fq::InputError& e) {
+        // A two-column file read as a PEER record fails on its header, which
+        // did not say that --record reads PEER files only (studies probe).
+        throw fq::InputError(e.file(), e.line(), e.field(),
+                             e.message() + " (--record reads PEER .AT2 records; a record in another format goes "
+                                           "in the case file, ground_motion.components)");
+      }
+    }
     // Runs are named by the record's file name: two records of one name
     // would write into one folder.
     for (std::size_t i = 0; i < args.records.size(); ++i)
@@ -1141,7 +1154,7 @@ int command_sweep(int argc, char** argv, const std::atomic<bool>* stop_requested
             std::ostringstream cut;
             cut << "\n- " << def.name << " with " << fs::path(args.records[r]).filename().string() << ": the record ends "
                 << c.record.duration_s() << " s in, so the window from " << gm.window_start_s << " s ran "
-                << gm.window_length_s << " record seconds of the case's " << case_window_s << " s";
+                << gm.window_length_s << " record seconds of the " << case_window_s << " s asked for";
             record_cuts += cut.str();
           }
           // A case that runs for its window (no duration_s) would run for

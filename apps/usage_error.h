@@ -13,4 +13,15 @@ namespace fq_app {
 // that was probably meant (io/name_hint.h, nearest_option).
 [[noreturn]] void unknown_option(const std::string& option, const char* usage);
 
+// True for a word written as an option name: "--" then a letter, then
+// letters, digits and hyphens ("--no-figure"). An option that takes a value
+// and is followed by such a word was given none: "--out --no-figure" wrote
+// a study into a folder named "--no-figure" (studies probe).
+bool looks_like_option(const std::string& word);
+
+// The value after option `name` at argv[i + 1]: refused (usage_error) when
+// there is none, when it is empty, or when it looks like an option; a
+// folder or file whose name starts with "--" is given as ./--name.
+std::string option_value(const char* name, int argc, char** argv, int i, const char* usage);
+
 }  // namespace fq_app

@@ -644,6 +644,7 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
   report.first_joint_failure = first_joint_failure_label(sim.events(), scene.joint_labels);
   report.first_joint_failure_name = first_joint_failure_label(sim.events(), scene.joint_names);
   report.first_joint_failure_broke = first_joint_failure_broke(sim.events());
+  report.first_joint_failure_break_time_s = first_joint_failure_break_time_s(sim.events());
   report.energy_balance_error_relative = sim.ledger().balance_error_relative();
   // What the run felt, not the whole window.
   report.peak_ground_acceleration_mps2 = sim.ground_motion().peak_horizontal_mps2(ground_motion_felt_until_s(sim));

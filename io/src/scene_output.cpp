@@ -184,14 +184,19 @@ std::string first_joint_failure_label(const EventLog& events, const std::vector<
                                                                        : "joint " + std::to_string(e->joint_id);
 }
 
-bool first_joint_failure_broke(const EventLog& events) {
+double first_joint_failure_break_time_s(const EventLog& events) {
   const Event* e = first_joint_failure(events);
-  if (!e) return false;
+  if (e)
+    for (const Event& b : events.all())
+      if (b.kind == EventKind::JointBroken && b.joint_id == e->joint_id && b.time_s >= e->time_s) return b.time_s;
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+bool first_joint_failure_broke(const EventLog& events) {
   // Its joint broke at that time (its last spring deleted, or a
-  // joint-level criterion), or lost a spring and held on.
-  for (const Event& b : events.all())
-    if (b.kind == EventKind::JointBroken && b.joint_id == e->joint_id && b.time_s == e->time_s) return true;
-  return false;
+  // joint-level criterion), or lost a spring and held on then.
+  const Event* e = first_joint_failure(events);
+  return e && first_joint_failure_break_time_s(events) == e->time_s;
 }
 
 double first_joint_failure_time_s(const EventLog& events) {

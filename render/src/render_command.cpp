@@ -1,6 +1,7 @@
 #include "render/render_command.h"
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <chrono>
 #include <cstdio>
@@ -37,7 +38,7 @@ const char* const kRenderHelp =
     "                   <FILE stem>_frames/frame_NNNNNN.png\n"
     "  --png-dir DIR    write the PNG frames into DIR instead (implies --png)\n"
     "  --fps N          frames per second of the animation (default 10)\n"
-    "  --every N        use every N-th output frame (default 1: all)\n"
+    "  --every N        use every N-th output frame, and the last (default 1: all)\n"
     "  --size WxH       pixels of each run's panel (default 800x600)\n"
     "  --help           this text\n"
     "\n"
@@ -76,6 +77,16 @@ int parse_int(const std::string& option, const std::string& v, int lo, int hi) {
   return int(n);
 }
 
+// A word written as an option name ("--png"): the rule of the other
+// commands (apps/usage_error.h, looks_like_option; render does not link the
+// command line's own code). "--to --png" rendered into a file named "--png".
+bool looks_like_option(const std::string& word) {
+  if (word.size() < 3 || word.compare(0, 2, "--") != 0 || !std::isalpha(static_cast<unsigned char>(word[2])))
+    return false;
+  return std::all_of(word.begin() + 3, word.end(),
+                     [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '-'; });
+}
+
 Args parse(int argc, char** argv, int first, const std::function<std::string(const std::string&)>& unknown_option) {
   Args a;
   for (int i = first; i < argc; ++i) {
@@ -83,6 +94,9 @@ Args parse(int argc, char** argv, int first, const std::function<std::string(con
     auto value = [&](const char* name) -> std::string {
       if (i + 1 >= argc) throw UsageError{std::string(name) + " needs a value"};
       if (argv[i + 1][0] == '\0') throw UsageError{std::string(name) + " needs a value, got an empty one"};
+      if (looks_like_option(argv[i + 1]))
+        throw UsageError{std::string(name) + " needs a value, got the option '" + argv[i + 1] +
+                         "' (a file or folder whose name starts with '--' is written ./" + argv[i + 1] + ")"};
       return argv[++i];
     };
     if (arg == "--help" || arg == "-h") {

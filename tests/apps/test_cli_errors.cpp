@@ -745,6 +745,16 @@ TEST(CliInfo, JointsOptionListsTheJoints) {
   EXPECT_NE(run.err.find("unknown option '--joints'"), std::string::npos) << run.err;
 }
 
+// The test's working folder moved to `p` while it lives: the program
+// inherits it, so relative names given to it resolve there.
+struct WorkIn {
+  fs::path before = fs::current_path();
+  explicit WorkIn(const fs::path& p) { fs::current_path(p); }
+  ~WorkIn() { fs::current_path(before); }
+  WorkIn(const WorkIn&) = delete;
+  WorkIn& operator=(const WorkIn&) = delete;
+};
+
 // Every option also takes the form --option=value (a value may contain
 // '='); the run then goes where --out= says.
 TEST(CliUsage, OptionEqualsValueIsTheOptionFollowedByTheValue) {
@@ -777,6 +787,14 @@ TEST(CliUsage, OptionEqualsValueIsTheOptionFollowedByTheValue) {
   const auto info = run_app({"info", (dir.path() / "case.yaml").string(), "--joints=yes"}, dir.path());
   EXPECT_EQ(info.code, 2) << info.err;
   EXPECT_NE(info.err.find("option --joints takes no value, got '--joints=yes'"), std::string::npos) << info.err;
+  // A value that looks like an option is a value in this form: the run goes
+  // into the folder "--odd" (as ./--odd; "--out --odd" is refused instead).
+  {
+    const WorkIn work_in(dir.path());
+    const auto odd = run_app({"run", "case.yaml", "--out=--odd", "--quiet", "--force"}, dir.path());
+    EXPECT_EQ(odd.code, 0) << odd.err;
+  }
+  EXPECT_TRUE(fs::is_regular_file(dir.path() / "--odd" / "summary.json"));
 }
 
 // "--" ends the options: a case file whose name starts with '-' is given
@@ -785,13 +803,8 @@ TEST(CliUsage, OptionEqualsValueIsTheOptionFollowedByTheValue) {
 TEST(CliUsage, DoubleDashEndsTheOptions) {
   TempDir dir;
   std::ofstream(dir.path() / "-cube.yaml", std::ios::binary) << fq_test::kForcedCubeCase;
-  // The name relative to the working folder, as a user types it (the
-  // program inherits the test's working folder).
-  struct WorkIn {
-    fs::path before = fs::current_path();
-    explicit WorkIn(const fs::path& p) { fs::current_path(p); }
-    ~WorkIn() { fs::current_path(before); }
-  } work_in(dir.path());
+  // The name relative to the working folder, as a user types it.
+  const WorkIn work_in(dir.path());
   const auto info = run_app({"info", "--", "-cube.yaml"}, dir.path());
   EXPECT_EQ(info.code, 0) << info.err;
   EXPECT_NE(info.out.find("-cube.yaml"), std::string::npos) << info.out;
@@ -949,6 +962,17 @@ TEST(CliUsage, UsageErrorsExitTwoWithUsageOnStderr) {
       {{"compare", c, "--jobs", "+2"}, "--jobs expects a whole number from 1 to 256, got '+2'"},
       {{"resume", dir.path().string(), "--threads", "0x2"}, "--threads expects a whole number from 1 to 1024, got '0x2'"},
       {{"render", dir.path().string(), "--fps", " 5"}, "--fps expects a whole number from 1 to 100, got ' 5'"},
+      // An option where a value belongs: the value is missing (studies
+      // probe: "compare --out --no-figure" wrote into a folder named
+      // "--no-figure"; "sweep --record --scales 1" read --scales as a record).
+      {{"compare", c, "--out", "--no-figure"}, "--out needs a value, got the option '--no-figure' (a file or folder "
+                                               "whose name starts with '--' is written ./--no-figure)"},
+      {{"sweep", c, "--record", "--scales", "1"}, "--record needs a value, got the option '--scales'"},
+      {{"run", c, "--out", "--quiet"}, "--out needs a value, got the option '--quiet'"},
+      {{"run", c, "--integrator", "--force"}, "--integrator needs a value, got the option '--force'"},
+      {{"resume", dir.path().string(), "--case", "--quiet"}, "--case needs a value, got the option '--quiet'"},
+      {{"resume", dir.path().string(), "--threads", "--quiet"}, "--threads needs a value, got the option '--quiet'"},
+      {{"render", dir.path().string(), "--to", "--png"}, "--to needs a value, got the option '--png'"},
   };
   for (const UsageRow& row : rows) {
     std::string shown;

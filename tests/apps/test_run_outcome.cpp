@@ -121,4 +121,57 @@ TEST(RunOutcome, FirstFailureSaysWhetherTheJointBrokeOrLostASpringAndHeld) {
   }
 }
 
+// A joint that loses a spring and breaks later says both (studies probe:
+// it read "lost a spring and held" after it had broken). The breaking
+// cantilever demo with fracture criterion all_normal_springs_deleted: the
+// arm joint's top springs are deleted first and its last normal spring
+// later, when the joint breaks. The reference times are events.csv's (the
+// first spring_deleted row and that joint's joint_broken row); the terminal
+// and comparison.md must give those, the latter after the former.
+TEST(RunOutcome, AJointThatLostASpringAndBrokeLaterSaysBoth) {
+  TempDir dir;
+  const fs::path source(FQ_SOURCE_DIR);
+  std::string text = read_text(source / "cases/demo_breaking_cantilever.yaml");
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{"criterion: any_spring_deleted",
+                                                                    "criterion: all_normal_springs_deleted"},
+                                 {"duration_s: 0.25", "duration_s: 0.4"},
+                                 {"file: ground_motions/", "file: " + (source / "cases/ground_motions").string() + "/"}}) {
+    if (text.find(from) != std::string::npos) text.replace(text.find(from), from.size(), to);
+  }
+  ASSERT_NE(text.find("all_normal_springs_deleted"), std::string::npos);
+  const fs::path file = dir.path() / "cantilever.yaml", out = dir.path() / "out";
+  std::ofstream(file) << text;
+  const fq_test::AppResult r = run_app({"run", file.string(), "--out", out.string(), "--quiet"}, dir.path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::stringstream events(read_text(out / "events.csv"));
+  std::string line, joint;
+  double deleted_s = NAN, broke_s = NAN;
+  while (std::getline(events, line)) {
+    const std::string t = line.substr(0, line.find(','));
+    const std::string name = line.substr(line.rfind(',') + 1);
+    if (std::isnan(deleted_s) && line.find(",spring_deleted,") != std::string::npos) {
+      deleted_s = std::stod(t);
+      joint = name;
+    }
+    if (!joint.empty() && name == joint && line.find(",joint_broken,") != std::string::npos) broke_s = std::stod(t);
+  }
+  ASSERT_FALSE(std::isnan(deleted_s)) << "a spring must be deleted";
+  ASSERT_FALSE(std::isnan(broke_s)) << "its joint must break within the run";
+  ASSERT_GT(broke_s, deleted_s) << "the joint must break after its first spring went";
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(r.out, m, std::regex("first failure: .* lost a spring at t = ([0-9.e+-]+) s and broke at "
+                                                     "t = ([0-9.e+-]+) s")))
+      << r.out;
+  EXPECT_NEAR(std::stod(m[1]), deleted_s, 1e-9) << r.out;
+  EXPECT_NEAR(std::stod(m[2]), broke_s, 1e-9) << r.out;
+  const fs::path cmp = dir.path() / "cmp";
+  const fq_test::AppResult c = run_app({"compare", file.string(), "--out", cmp.string(), "--no-figure"}, dir.path());
+  ASSERT_EQ(c.code, 0) << c.err;
+  const std::string md = read_text(cmp / "comparison.md");
+  ASSERT_TRUE(std::regex_search(md, m, std::regex("lost a spring at t = ([0-9.]+) s and broke at t = ([0-9.]+) s")))
+      << md;
+  EXPECT_NEAR(std::stod(m[1]), deleted_s, 0.0005) << md;  // three decimals
+  EXPECT_NEAR(std::stod(m[2]), broke_s, 0.0005) << md;
+}
+
 }  // namespace

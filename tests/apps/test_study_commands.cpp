@@ -947,7 +947,11 @@ TEST(StudyCommands, AStoppedRunsVerdictIsOnlySoFar) {
   for (std::string line; std::getline(lines, line); ++rows) EXPECT_EQ(fields(line), fields(header)) << line;
   EXPECT_EQ(rows, 2);
   EXPECT_NE(csv.find("demo_falling_block,not run"), std::string::npos) << csv;
-  EXPECT_NE(md.find("demo_falling_block: not run: stopped on request (Ctrl-C, SIGTERM or SIGHUP)"), std::string::npos) << md;
+  // Under a heading of its own (a line after the warnings read as one).
+  EXPECT_NE(md.find("\nRuns that did not finish:\n- demo_falling_block: not run: stopped on request (Ctrl-C, SIGTERM or "
+                    "SIGHUP)"),
+            std::string::npos)
+      << md;
   // On stderr too, as not run, not as a failure (CLI probe).
   EXPECT_NE(app.err().find("demo_falling_block: not run: stopped on request"), std::string::npos) << app.err();
   EXPECT_EQ(app.err().find("FAILED"), std::string::npos) << app.err();
@@ -1174,7 +1178,7 @@ TEST(StudyCommands, TheWindowNoteSaysWhatEachRunApplied) {
   EXPECT_NE(cut_md.find("Windows cut by a --record's end (each such run applied less of the shaking than the case's "
                         "window asks for; the collapse scales hold for that part):\n"
                         "- windowed with shorter.AT2: the record ends 0.15 s in, so the window from 0.05 s ran 0.1 "
-                        "record seconds of the case's 0.2 s\n"),
+                        "record seconds of the 0.2 s asked for\n"),
             std::string::npos)
       << cut_md;
   EXPECT_EQ(cut_md.find("- whole with"), std::string::npos) << cut_md;
@@ -1377,6 +1381,11 @@ TEST(StudyCommands, BadInputIsRefusedBeforeAnythingIsWritten) {
        "its ground motion"},
       {{"sweep", portal, "--scales", "1,x", "--out", out.string()}, "--scales expects a positive number, got 'x'"},
       {{"sweep", portal, "--record", (dir.path() / "no.AT2").string(), "--out", out.string()}, "no.AT2"},
+      // A two-column file is not read as a PEER record, and the message says
+      // where such a record goes (it named only the header line that failed).
+      {{"sweep", portal, "--record", (dir.path() / "ramp.txt").string(), "--out", out.string()},
+       "(--record reads PEER .AT2 records; a record in another format goes in the case file, "
+       "ground_motion.components)"},
       {{"sweep", portal, "--jobs", "0", "--out", out.string()}, "--jobs expects a whole number"},
       {{"compare", portal, cube, "--out", out.string()}, "cube.yaml:3: field 'time.dt_s': dt_s = 0.001 s exceeds"},
       {{"sweep", portal, coarse_portal, "--scales", "1", "--out", out.string()}, "coarse.yaml:43: field 'time.dt_s'"},

@@ -18,11 +18,14 @@ class InputError : public std::runtime_error {
       : std::runtime_error(format(file, line, field, message)),
         file_(std::move(file)),
         line_(line),
-        field_(std::move(field)) {}
+        field_(std::move(field)),
+        message_(message) {}
 
   const std::string& file() const { return file_; }
   int line() const { return line_; }
   const std::string& field() const { return field_; }
+  // What was expected, without the file, line and field (what() has them).
+  const std::string& message() const { return message_; }
 
  private:
   static std::string format(const std::string& file, int line, const std::string& field, const std::string& message) {
@@ -51,6 +54,7 @@ class InputError : public std::runtime_error {
   std::string file_;
   int line_;
   std::string field_;
+  std::string message_;
 };
 
 }  // namespace fq

@@ -87,7 +87,7 @@ struct RenderReport {
 
 // Renders the runs (at least one) into options.animation and/or PNG frames.
 // Animation frame times: the output frame times of all runs merged (times
-// closer than 1e-9 s are one), every options.every-th kept; each run shows its
+// closer than 1e-9 s are one), every options.every-th kept, and the last; each run shows its
 // last frame at or before that time (its first before it starts).
 // Throws RenderInputError for unusable runs or options, std::runtime_error
 // when an output file cannot be written (nothing half written is left).
