@@ -791,6 +791,12 @@ void parse_joints(const Reader& r, const Field& f, CaseDef& def) {
             const Field m = Reader::item(members, i);
             const std::string id = r.to_name(m, "a member id");
             const int k = member_ids.find(id);
+            // The ground is no member: a support's joint type is the
+            // support's own (info --joints names such a joint
+            // 'node:ground-member', so a user tried it here; house probe).
+            if (k < 0 && id == "ground")
+              r.fail(m, "'ground' is not a member: the joint of a supported member and the ground takes its type "
+                        "from the support (supports[i].joint_type, else joints.support_type)");
             if (k < 0) r.fail(m, "unknown member '" + id + "'");
             const auto it = def.members.begin() + k;
             if (it->node_a != o.node && it->node_b != o.node)

@@ -255,6 +255,13 @@ TEST(CaseJoints, UserErrorsNameFileLineAndField) {
        "joint_types[0].gap_m", "link_system"},
       {"a rule given twice", replace("joints: {default_type: stiff}", "joints: {default_type: stiff, rules: [{kinds: [beam, column], type: stiff}, {kinds: [column, beam], type: stiff}]}"),
        22, "joints.rules[1].kinds", "already given at line 22"},
+      // The ground is no member: a support's type is set on the support
+      // (info --joints names such a joint 'bw:ground-cw'; house probe).
+      {"an override naming the ground",
+       replace("joints: {default_type: stiff}", "joints: {default_type: stiff, overrides: [{node: bw, members: [ground, cw], type: stiff}]}"),
+       22, "joints.overrides[0].members[0]",
+       "'ground' is not a member: the joint of a supported member and the ground takes its type from the support "
+       "(supports[i].joint_type, else joints.support_type)"},
       {"an override given twice",
        replace("joints: {default_type: stiff}", "joints: {default_type: stiff, overrides: [{node: tw, members: [cw, b], type: stiff}, {node: tw, members: [b, cw], type: stiff}]}"),
        22, "joints.overrides[1].members", "already given at line 22"},
