@@ -576,7 +576,10 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
     if (scene.contacts)
       if (const std::string w = contact_press_warning(scene.contacts->press_peak(), sim.bodies()); !w.empty()) warn(w);
     for (std::size_t i = 0; i < storeys.storeys().size(); ++i)
-      for (const std::string& w : {storeys.twist_warning(i), storeys.slip_warning(i)})
+      for (const std::string& w : {storeys.twist_warning(i), storeys.slip_warning(i),
+                                   scene.joints ? loose_columns_warning(storeys.storeys()[i], storeys.verdict(i),
+                                                                        *scene.joints)
+                                                : std::string()})
         if (!w.empty()) warn(w);
     if (completed)
       for (std::size_t i = 0; i < storeys.storeys().size(); ++i)
@@ -1080,6 +1083,39 @@ std::string no_columns_warning(const CaseDef& def) {
   w << def.source_file.string() << ": no member is of kind column, so the case has no storeys and the run gives no "
     << "storey drift and no verdict (storeys are the bands between the floors its columns reach: cases/README.md, "
        "assessment); give the posts that carry the floors kind: column";
+  return w.str();
+}
+
+// A storey whose columns have lost every joint stands, if at all, on loose
+// posts: its drift-based verdict (standing or damaged) says nothing of a
+// frame any more (a house probe's storey read "damaged" at 0.071 rad with
+// all 18 of its column joints broken). Said, with the count.
+std::string loose_columns_warning(const Storey& storey, StoreyVerdict verdict, const JointSystem& joints) {
+  if (verdict == StoreyVerdict::Collapsed || storey.columns.empty()) return {};
+  std::size_t joint_count = 0;
+  for (const StoreyColumn& c : storey.columns) {
+    bool has_joint = false;
+    for (std::size_t j = 0; j < joints.joint_count(); ++j) {
+      const BodyId a = joints.joint_body_a(j), b = joints.joint_body_b(j);
+      if (a != c.bottom_body && b != c.bottom_body && a != c.top_body && b != c.top_body) continue;
+      if (joints.joint_status(j) != JointStatus::Broken) return {};
+      has_joint = true;
+      ++joint_count;
+    }
+    if (!has_joint) return {};  // a column no joint ever held: not a frame's storey
+  }
+  const bool one = storey.columns.size() == 1;
+  std::ostringstream w;
+  w << "storey " << storey.number << ": every joint of its ";
+  if (one)
+    w << "column";
+  else
+    w << storey.columns.size() << " columns";
+  w << " is broken (" << joint_count << (joint_count == 1 ? " joint" : " joints") << "), so "
+    << (one ? "it stands, if at all, as a loose post on its contacts" : "they stand, if at all, as loose posts on "
+                                                                          "their contacts")
+    << "; its verdict (" << storey_verdict_name(verdict) << ") follows " << (one ? "the post's" : "their")
+    << " drift, not that of a frame (events.csv lists the breaks; cases/README.md, assessment)";
   return w.str();
 }
 

@@ -826,6 +826,64 @@ TEST(RunWarnings, AFrameNothingHoldsUpIsToldItFalls) {
   }
 }
 
+// A storey whose columns have lost every joint stands on loose posts, and
+// its drift verdict says nothing of a frame any more (a house probe's storey
+// read "damaged" with all 18 of its column joints broken). A squat post
+// (100 mm cube of wood, 4.4 N) on a support whose shear springs fail at
+// 0.15 N, under a ground acceleration ramped to 0.6 g: more than friction
+// (mu = 0.3) carries, so the support breaks and the post slides on the
+// ground; it cannot topple below g b / h = 1 g (statics), so it stands, and
+// the run says the verdict is a loose post's. With strong shear springs
+// nothing breaks and nothing is said.
+TEST(RunWarnings, AStoreyOnLoosePostsIsToldItsVerdictIsThePostsDrift) {
+  test::TempDir dir;
+  {
+    std::ofstream ramp(dir.path() / "ramp.txt");
+    for (int i = 0; i <= 500; ++i) ramp << 0.001 * i << " " << 0.6 * 9.80665 * std::min(1.0, 0.01 * i) << "\n";
+  }
+  const auto post = [](double ultimate_shear_N) {
+    std::ostringstream law;
+    law << "law: trilinear, reference_length_m: 0.010, yield_strain_tension: 0.001, yield_force_tension_N: "
+        << ultimate_shear_N / 1.5 << ", ultimate_strain_tension: 0.002, ultimate_force_tension_N: " << ultimate_shear_N
+        << ", yield_strain_compression: 0.001, yield_force_compression_N: " << ultimate_shear_N / 1.5
+        << ", ultimate_strain_compression: 0.002, ultimate_force_compression_N: " << ultimate_shear_N
+        << ", damping_ratio: 0.05";
+    return "framequake_case: 1\n"
+           "name: post\n"
+           "time: {dt_s: 1.0e-5, duration_s: 0.3}\n"
+           "materials: [{name: wood, density_kg_per_m3: 450}]\n"
+           "sections: [{name: sq100, width_m: 0.1, depth_m: 0.1}]\n"
+           "nodes: [{id: foot, xyz_m: [0, 0, 0]}, {id: head, xyz_m: [0, 0, 0.1]}]\n"
+           "members: [{id: post, kind: column, nodes: [foot, head], section: sq100, material: wood}]\n"
+           "joint_types:\n"
+           "  - name: weak\n"
+           "    layout: four_corner\n"
+           "    normal: {law: linear, stiffness_N_per_m: 1.0e5, damping_ratio: 0.05}\n"
+           "    shear: {" + law.str() + "}\n"
+           "    fracture: {criterion: any_spring_deleted}\n"
+           "joints: {support_type: weak}\n"
+           "supports: [{node: foot}]\n"
+           "ground: {level_m: 0.0}\n"
+           "contact: {ground: {normal_stiffness_N_per_m: 1.0e6, restitution: 0.3, friction_coefficient: 0.3}}\n"
+           "ground_motion: {components: [{file: ramp.txt, format: two_column, unit: m/s2, axis: x}]}\n"
+           "output: {frame_interval_s: 0.1, history_interval_s: 0.01}\n";
+  };
+  CaseRunOptions options;
+  options.output_folder = dir.path() / "weak";
+  const CaseRunReport loose = run_case(load_case_file(dir.write("weak.yaml", post(0.15))), options);
+  ASSERT_EQ(loose.joints.broken, 1);
+  ASSERT_EQ(loose.storeys.size(), 1u);
+  EXPECT_EQ(loose.storeys[0].verdict, StoreyVerdict::Standing);
+  EXPECT_TRUE(mentions(loose.warnings, "storey 1: every joint of its column is broken (1 joint), so it stands, if at "
+                                       "all, as a loose post on its contacts; its verdict (standing) follows the "
+                                       "post's drift"))
+      << testing::PrintToString(loose.warnings);
+  options.output_folder = dir.path() / "strong";
+  const CaseRunReport held = run_case(load_case_file(dir.write("strong.yaml", post(1.0e4))), options);
+  EXPECT_EQ(held.joints.broken, 0);
+  EXPECT_FALSE(mentions(held.warnings, "loose post")) << testing::PrintToString(held.warnings);
+}
+
 TEST(RunWarnings, AMemberNoJointHoldsIsNamed) {
   test::TempDir dir;
   const CaseDef floating = load_case_file(dir.write("floating.yaml", portal_case(0.31, 0.31)));

@@ -310,6 +310,12 @@ std::string ground_without_contact_warning(const CaseDef& def, const Scene& scen
 // Empty otherwise, and for blocks alone (free-fall and impact set-ups).
 std::string nothing_holds_the_frame_warning(const CaseDef& def, const Scene& scene);
 
+// The warning for a storey (not collapsed) every joint of whose columns has
+// broken: it stands, if at all, on loose posts, and its verdict follows
+// their drift, not a frame's. Empty otherwise, and for a column that no
+// joint ever held.
+std::string loose_columns_warning(const Storey& storey, StoreyVerdict verdict, const JointSystem& joints);
+
 // The warning for members that no joint holds, in a case that has joints (a
 // beam drawn 10 mm above the columns it should sit on): they stand only on
 // their contacts, or fall through where there are none. Blocks are meant to

@@ -176,9 +176,10 @@ class JointSystem final : public ForceProvider {
   const std::vector<SpringRole>& spring_role() const { return spring_role_; }
   SpringStatus spring_status(std::size_t s) const;
   // |delta| / ultimate deformation on the side of delta (0 for laws that never fail),
-  // at the spring's last evaluation: for a deleted spring that of its
-  // deletion (1 or a little more), for a spring of a broken joint that of
-  // the step the joint broke.
+  // at the spring's last evaluation. A deleted spring of a joint that still
+  // holds is still evaluated for its deformation (it carries no force), so
+  // its ratio follows the gap past 1; once the joint breaks, every spring of
+  // it keeps the value of the step the joint broke (docs/paraview.md).
   double spring_strain_ratio(std::size_t s) const;
   JointStatus joint_status(std::size_t j) const;
   BodyId joint_body_a(std::size_t j) const { return joint_body_a_[j]; }
