@@ -31,7 +31,7 @@ std::string number(double x) {
 
 std::string first_failure_outcome(const fq::CaseRunReport& r, const std::function<std::string(double)>& seconds) {
   const double failed_s = r.first_joint_failure_time_s, broke_s = r.first_joint_failure_break_time_s;
-  if (r.first_joint_failure_broke) return " broke at t = " + seconds(failed_s) + " s";
+  if (broke_s == failed_s) return " broke at t = " + seconds(failed_s) + " s";
   if (std::isnan(broke_s)) return " lost a spring and held at t = " + seconds(failed_s) + " s";
   return " lost a spring at t = " + seconds(failed_s) + " s and broke at t = " + seconds(broke_s) + " s";
 }

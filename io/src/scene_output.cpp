@@ -192,13 +192,6 @@ double first_joint_failure_break_time_s(const EventLog& events) {
   return std::numeric_limits<double>::quiet_NaN();
 }
 
-bool first_joint_failure_broke(const EventLog& events) {
-  // Its joint broke at that time (its last spring deleted, or a
-  // joint-level criterion), or lost a spring and held on then.
-  const Event* e = first_joint_failure(events);
-  return e && first_joint_failure_break_time_s(events) == e->time_s;
-}
-
 double first_joint_failure_time_s(const EventLog& events) {
   const Event* e = first_joint_failure(events);
   return e ? e->time_s : std::numeric_limits<double>::quiet_NaN();

@@ -48,11 +48,8 @@ double first_joint_failure_time_s(const EventLog& events);
 // The label of the first joint to fail (a spring deleted or the joint
 // broken), "" when none failed: where a frame is weakest.
 std::string first_joint_failure_label(const EventLog& events, const std::vector<std::string>& labels);
-// Whether the first failure broke its joint (a joint_broken event of that
-// joint at its time); false: it lost a spring and held, or none failed.
-bool first_joint_failure_broke(const EventLog& events);
 // When the first failure's joint broke (its joint_broken event, at or after
-// the failure); NaN when it never broke.
+// the failure; at its time when the failure broke it); NaN when it never broke.
 double first_joint_failure_break_time_s(const EventLog& events);
 
 // History columns storeyK_drift_{x,y}_m and storeyK_drift_ratio_{x,y}_rad

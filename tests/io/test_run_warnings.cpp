@@ -713,6 +713,16 @@ TEST(RunWarnings, AFrameWithoutColumnsIsToldItGetsNoStoreys) {
   }
 }
 
+// The portal demo's case text, its record given by absolute path (so that
+// the text can be written into a temporary folder).
+std::string portal_demo_text() {
+  const std::filesystem::path cases = std::filesystem::path(FQ_SOURCE_DIR) / "cases";
+  std::string portal = file_text(cases / "demo_portal_frame.yaml");
+  const std::string record = "file: ground_motions/";
+  portal.replace(portal.find(record), record.size(), "file: " + (cases / "ground_motions").string() + "/");
+  return portal;
+}
+
 // A ground without contact.ground holds nothing up: the cube of cube_case,
 // 5 cm above it at its centre, falls through it under gravity (free fall:
 // g t^2 / 2 = 0.196 m in the 0.2 s run, so its centre ends below the
@@ -749,9 +759,7 @@ TEST(RunWarnings, AGroundWithoutContactIsToldItHoldsNothing) {
   // The portal demo, every member held through its joints to the supports,
   // given a ground section: nothing falls at the start.
   const std::filesystem::path cases = std::filesystem::path(FQ_SOURCE_DIR) / "cases";
-  std::string portal = file_text(cases / "demo_portal_frame.yaml");
-  const std::string record = "file: ground_motions/";
-  portal.replace(portal.find(record), record.size(), "file: " + (cases / "ground_motions").string() + "/");
+  const std::string portal = portal_demo_text();
   const CaseDef grounded = load_case_file(dir.write("portal.yaml", portal + "ground: {level_m: 0.0}\n"));
   EXPECT_EQ(ground_without_contact_warning(grounded, build_scene(grounded)), "");
   // The same demo with a free block beside it and no ground section: the
@@ -779,9 +787,7 @@ TEST(RunWarnings, AGroundWithoutContactIsToldItHoldsNothing) {
 TEST(RunWarnings, AFrameNothingHoldsUpIsToldItFalls) {
   test::TempDir dir;
   const std::filesystem::path cases = std::filesystem::path(FQ_SOURCE_DIR) / "cases";
-  std::string portal = file_text(cases / "demo_portal_frame.yaml");
-  const std::string record = "file: ground_motions/";
-  portal.replace(portal.find(record), record.size(), "file: " + (cases / "ground_motions").string() + "/");
+  const std::string portal = portal_demo_text();
   const std::string supports = "supports:\n  - {node: base_w}\n  - {node: base_e}\n";
   ASSERT_NE(portal.find(supports), std::string::npos);
   const CaseDef held = load_case_file(dir.write("held.yaml", portal));

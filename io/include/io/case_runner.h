@@ -98,12 +98,9 @@ struct CaseRunReport {
   double first_joint_failure_time_s = std::numeric_limits<double>::quiet_NaN();  // NaN: none
   std::string first_joint_failure;  // its joint's label ("node n2: column c1 - beam b1 (type t)"); "": none
   std::string first_joint_failure_name;  // its joint's name as in events.csv ("n2:c1-b1"); "": none
-  // The first failure broke its joint (a joint_broken event at the same
-  // time); false: the joint lost a spring then and held on.
-  bool first_joint_failure_broke = false;
-  // When that joint broke, at the first failure or later (a joint that lost
-  // a spring and broke after; studies probe: it read 'lost a spring and
-  // held'); NaN when it never broke.
+  // When that joint broke: at the first failure's time (the failure broke
+  // it), later (it lost a spring and broke after; studies probe: it read
+  // 'lost a spring and held'), or NaN when it never broke.
   double first_joint_failure_break_time_s = std::numeric_limits<double>::quiet_NaN();
   double energy_balance_error_relative = 0.0;
   double peak_ground_acceleration_mps2 = 0.0;  // horizontal PGA: peak of |(a_x, a_y)| of a_g (scaled)
