@@ -8,6 +8,7 @@
 #include <numbers>
 #include <random>
 
+#include "box_rotations.h"
 #include "contacts/collide_box_box.h"
 
 namespace {
@@ -100,7 +101,7 @@ TEST(CollideBoxBox, VertexFaceGivesOnePointAtTheCorner) {
   // (-,-,-) is lowest, sqrt(3)/2 below its centre. With z_b = 0.5 +
   // sqrt(3)/2 - d it dips d into a's top face: one point at (0, 0, 0.5 - d/2).
   const double d = 0.004;
-  const Mat3 r = Eigen::Quaterniond::FromTwoVectors(Vec3(1, 1, 1).normalized(), Vec3::UnitZ()).toRotationMatrix();
+  const Mat3 r = fq::test::body_diagonal_onto_z().toRotationMatrix();
   ContactManifold m;
   ASSERT_EQ(fq::collide_box_box(cube(Vec3::Zero()), cube(Vec3(0, 0, 0.5 + std::sqrt(3.0) / 2 - d), r), m), 1);
   EXPECT_NEAR(m.points[0].depth_m, d, 1e-12);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "box_rotations.h"
 #include "contacts/collide_box_ground.h"
 
 namespace {
@@ -31,7 +32,7 @@ TEST(CollideBoxGround, FlatBoxGivesExactlyFourPoints) {
 TEST(CollideBoxGround, CornerAndEdgeAndSunkenBox) {
   ContactManifold m;
   // Body diagonal vertical: one corner, sqrt(3) h below the centre.
-  const fq::Mat3 r = Eigen::Quaterniond::FromTwoVectors(Vec3(1, 1, 1).normalized(), Vec3::UnitZ()).toRotationMatrix();
+  const fq::Mat3 r = fq::test::body_diagonal_onto_z().toRotationMatrix();
   OrientedBox corner{Vec3(0, 0, std::sqrt(3.0) * 0.5 - 0.002), r, Vec3::Constant(0.5)};
   ASSERT_EQ(fq::collide_box_ground(corner, 0.0, m), 1);
   EXPECT_NEAR(m.points[0].depth_m, 0.002, 1e-12);

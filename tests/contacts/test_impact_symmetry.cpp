@@ -6,6 +6,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "box_rotations.h"
 #include "scene_helpers.h"
 
 namespace {
@@ -75,7 +76,7 @@ TEST(ImpactSymmetry, OffCentreEdgeImpactAndItsMirrorImage) {
 TEST(ImpactSymmetry, VertexOnFaceBouncesStraightAndMirrors) {
   // b's body diagonal vertical, corner down onto a's top face: the normal
   // force passes through b's centre, so b leaves straight up without spin.
-  const Quat corner_down = Quat::FromTwoVectors(Vec3(1, 1, 1).normalized(), Vec3::UnitZ());
+  const Quat corner_down = fq::test::body_diagonal_onto_z();
   const Vec3 v0(0.0, 0.0, -0.2);
   const Result r = throw_at(Quat::Identity(), Vec3(0, 0, 0.05 + std::sqrt(3.0) * 0.05 + 1e-4), corner_down, v0);
   EXPECT_GT(r.v.z(), 0.0);

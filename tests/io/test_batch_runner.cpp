@@ -20,12 +20,12 @@ namespace fs = std::filesystem;
 
 TEST(BatchRunner, ProgressLinesNameTheRunningCasesWhileTheyGo) {
   test::TempDir dir;
-  // The falling-block demo lengthened to 2 s of simulated time: about a
-  // fifth of a second of wall time in the plain build (ten under the
-  // sanitizers), so a 0.02 s interval gives several lines. (At 10 s it
-  // took 52 s of the sanitizer stage of CI.)
+  // The falling-block demo run for 0.5 s of simulated time: about 0.05 s
+  // of wall time in the plain build (three under the sanitizers), so a
+  // 0.005 s interval gives several lines. (At 10 s it took 52 s of the
+  // sanitizer stage of CI, at 2 s 12 s.)
   CaseDef def = load_case_file(fs::path(FQ_SOURCE_DIR) / "cases" / "demo_falling_block.yaml");
-  def.time.duration_s = 2.0;
+  def.time.duration_s = 0.5;
   def.output.frame_interval_s = 1.0;
   BatchJob job;
   job.def = def;
@@ -33,7 +33,7 @@ TEST(BatchRunner, ProgressLinesNameTheRunningCasesWhileTheyGo) {
   job.label = "block";
   BatchOptions options;
   options.parallel_runs = 1;
-  options.progress_interval_s = 0.02;
+  options.progress_interval_s = 0.005;
   std::mutex mutex;
   std::vector<std::string> lines;
   options.on_progress = [&](const std::string& line) {
