@@ -59,7 +59,8 @@ const char* kCompareHelp =
     "Runs the cases side by side (one core each) and compares their storeys:\n"
     "  DIR/<case name>/            each run's full output (case.pvd, history.csv, ...)\n"
     "  DIR/comparison.csv, .md     peak drift ratio and verdict per storey, first joint\n"
-    "                              failure, broken joints, energy balance error, wall time\n"
+    "                              failure, broken joints, energy balance error, integrator\n"
+    "                              and time step (csv), wall time\n"
     "  DIR/first_storey_drift.png  drift ratio against time of every storey, one panel each\n"
     "                              (the name is kept from when it showed storey 1 only): the\n"
     "                              magnitude of its x and y parts, which the verdicts are\n"
@@ -88,7 +89,7 @@ const char* kSweepHelp =
     "  DIR/sweep.csv                   one row per run: scale, PGA (peak of the horizontal\n"
     "                                  ground acceleration's magnitude up to the run's end),\n"
     "                                  peak drift ratio and verdict per storey, first\n"
-    "                                  failure, broken joints\n"
+    "                                  failure, broken joints, integrator and time step\n"
     "  DIR/collapse_scales.csv, .md    per case and record: the smallest scale at which a\n"
     "                                  storey collapsed (from the runs that completed), and\n"
     "                                  the scales above it that stood (not monotonic)\n"
@@ -327,23 +328,34 @@ std::string csv_number(double x) {
 }
 
 // The headers of the csv tables, one definition for the writers and for
-// is_earlier_study_file, which recognises the tables by them.
-std::string comparison_csv_header(std::size_t storeys) {
+// is_our_csv_table, which recognises the tables by them. The integrator
+// and time step columns (before the wall time, which they set) came with
+// stop 40; a table of the form before them (`with_time_integration`
+// false) is still ours to replace.
+std::string comparison_csv_header(std::size_t storeys, bool with_time_integration = true) {
   std::ostringstream h;
   h << "case,status";
   for (std::size_t k = 1; k <= storeys; ++k)
     h << ",storey" << k << "_peak_drift_ratio_rad,storey" << k << "_peak_drift_ratio_x_rad,storey" << k
       << "_peak_drift_ratio_y_rad,storey" << k << "_verdict";
-  h << ",first_joint_failure_s,broken_joints,joints,energy_balance_error_relative,wall_s,output";
+  h << ",first_joint_failure_s,broken_joints,joints,energy_balance_error_relative"
+    << (with_time_integration ? ",integrator,dt_s" : "") << ",wall_s,output";
   return h.str();
 }
 
-std::string sweep_csv_header(std::size_t storeys) {
+std::string sweep_csv_header(std::size_t storeys, bool with_time_integration = true) {
   std::ostringstream h;
   h << "case,record,scale,pga_mps2,pga_g,status";
   for (std::size_t k = 1; k <= storeys; ++k) h << ",storey" << k << "_peak_drift_ratio_rad,storey" << k << "_verdict";
-  h << ",collapsed,first_joint_failure_s,broken_joints,joints,energy_balance_error_relative,wall_s,output";
+  h << ",collapsed,first_joint_failure_s,broken_joints,joints,energy_balance_error_relative"
+    << (with_time_integration ? ",integrator,dt_s" : "") << ",wall_s,output";
   return h.str();
+}
+
+// A run's integrator and time step (s) as the tables give them: the
+// case's own, which studies do not override.
+std::string time_integration_csv(const fq::CaseDef& def) {
+  return std::string(fq::integrator_name(def.time.integrator)) + "," + csv_number(def.time.dt_s);
 }
 
 const char* const kCollapseCsvHeader =
@@ -666,6 +678,10 @@ bool is_our_csv_field(const std::string& column, const std::string& value) {
   if (column == "status") return one_of({"completed", "stopped", "unstable", "failed", "not run"});
   if (column.ends_with("_verdict")) return one_of({"", "standing", "damaged", "collapsed", "not_assessed"});
   if (column == "collapsed") return one_of({"", "0", "1"});
+  if (column == "integrator") {
+    const std::vector<std::string> names = fq::integrator_names();
+    return std::find(names.begin(), names.end(), value) != names.end();
+  }
   if (column == "broken_joints" || column == "joints") return digits_only("");
   if (column == "collapsed_storeys_at_that_scale") return digits_only(" ");
   if (column == "stood_above_collapse") return digits_only(" .e+-");
@@ -683,15 +699,23 @@ bool is_our_csv_table(const std::string& name, const std::string& text) {
   const auto rows = parse_csv(text);
   if (!rows || rows->empty()) return false;
   const std::vector<std::string>& header = rows->front();
-  std::string expected;
-  if (name == "comparison.csv" && header.size() >= 8 && (header.size() - 8) % 4 == 0)
-    expected = comparison_csv_header((header.size() - 8) / 4);
-  else if (name == "sweep.csv" && header.size() >= 13 && (header.size() - 13) % 2 == 0)
-    expected = sweep_csv_header((header.size() - 13) / 2);
-  else if (name == "collapse_scales.csv")
-    expected = header.size() == 6 ? kCollapseCsvHeaderWithoutStoodAbove : kCollapseCsvHeader;
-  const auto expected_rows = parse_csv(expected + "\n");
-  if (expected.empty() || !expected_rows || expected_rows->front() != header) return false;
+  // Our headers of this table's width: with the time integration columns
+  // and without (the form before stop 40).
+  std::vector<std::string> candidates;
+  for (const bool with_time_integration : {true, false}) {
+    const std::size_t extra = with_time_integration ? 2 : 0;
+    if (name == "comparison.csv" && header.size() >= 8 + extra && (header.size() - 8 - extra) % 4 == 0)
+      candidates.push_back(comparison_csv_header((header.size() - 8 - extra) / 4, with_time_integration));
+    else if (name == "sweep.csv" && header.size() >= 13 + extra && (header.size() - 13 - extra) % 2 == 0)
+      candidates.push_back(sweep_csv_header((header.size() - 13 - extra) / 2, with_time_integration));
+  }
+  if (name == "collapse_scales.csv")
+    candidates.push_back(header.size() == 6 ? kCollapseCsvHeaderWithoutStoodAbove : kCollapseCsvHeader);
+  const bool header_is_ours = std::any_of(candidates.begin(), candidates.end(), [&](const std::string& expected) {
+    const auto expected_rows = parse_csv(expected + "\n");
+    return expected_rows && expected_rows->front() == header;
+  });
+  if (!header_is_ours) return false;
   for (std::size_t r = 1; r < rows->size(); ++r) {
     const std::vector<std::string>& row = (*rows)[r];
     if (row.size() != header.size()) return false;
@@ -986,12 +1010,14 @@ int command_compare(int argc, char** argv, const std::atomic<bool>* stop_request
     if (o.ok) {
       const fq::CaseRunReport& r = o.report;
       csv << "," << csv_number(r.first_joint_failure_time_s) << "," << r.joints.broken << "," << r.joint_count << ","
-          << csv_number(r.energy_balance_error_relative) << "," << csv_number(r.wall_s) << ","
-          << fq::csv_text(r.output_folder.string()) << "\n";
+          << csv_number(r.energy_balance_error_relative) << "," << time_integration_csv(jobs[i].def) << ","
+          << csv_number(r.wall_s) << "," << fq::csv_text(r.output_folder.string()) << "\n";
       md << " | " << fixed(r.first_joint_failure_time_s, 3) << " | " << r.joints.broken << " / " << r.joint_count
          << " | " << scientific(r.energy_balance_error_relative) << " | " << fixed(r.wall_s, 1) << " |\n";
     } else {
-      csv << ",,,,,,\n";  // first_joint_failure_s .. output: six empty fields
+      // first_joint_failure_s .. energy_balance_error_relative, wall_s and
+      // output empty; the integrator and time step are the case's.
+      csv << ",,,,," << time_integration_csv(jobs[i].def) << ",,\n";
       md << " | - | - | - | - |\n";
     }
   }
@@ -1233,7 +1259,8 @@ int command_sweep(int argc, char** argv, const std::atomic<bool>* stop_requested
     if (!o.ok) {
       csv << ",," << outcome_status(o);
       for (std::size_t k = 0; k < storeys; ++k) csv << ",,";
-      csv << ",,,,,,,\n";
+      // collapsed .. energy_balance_error_relative, wall_s and output empty.
+      csv << ",,,,,," << time_integration_csv(jobs[i].def) << ",,\n";
       continue;
     }
     const fq::CaseRunReport& r = o.report;
@@ -1252,8 +1279,9 @@ int command_sweep(int argc, char** argv, const std::atomic<bool>* stop_requested
     // Empty for an unstable run: not assessed (verdict_text).
     csv << "," << (r.result.status == fq::RunStatus::Unstable ? "" : collapsed ? "1" : "0") << ","
         << csv_number(r.first_joint_failure_time_s) << "," << r.joints.broken
-        << "," << r.joint_count << "," << csv_number(r.energy_balance_error_relative) << "," << csv_number(r.wall_s)
-        << "," << fq::csv_text(r.output_folder.string()) << "\n";
+        << "," << r.joint_count << "," << csv_number(r.energy_balance_error_relative) << ","
+        << time_integration_csv(jobs[i].def) << "," << csv_number(r.wall_s) << "," << fq::csv_text(r.output_folder.string())
+        << "\n";
   }
 
   // Collapse scale per case and record: the smallest scale with a collapsed

@@ -171,6 +171,12 @@ TEST(StudyCommands, CompareWritesEachRunTheTableAndTheFigure) {
   EXPECT_GE(peak, rows_peak * (1.0 - 1e-9));
   EXPECT_LE(peak, rows_peak * (1.0 + 5e-4));
   EXPECT_EQ(rows[1].at("storey1_peak_drift_ratio_rad"), "");  // blocks have no storeys
+  // Each row names how its run was integrated: both demo cases give
+  // dt_s: 1.0e-5 and no time.integrator (central difference, the default).
+  for (const auto& row : rows) {
+    EXPECT_EQ(row.at("integrator"), "central_difference");
+    EXPECT_EQ(std::stod(row.at("dt_s")), 1.0e-5);
+  }
   // --window-length is a quick look also for a case that runs on after its
   // motion: the falling-block demo's duration_s of 1 s stops with the
   // 0.5 s window (time scale 1).
@@ -245,6 +251,8 @@ TEST(StudyCommands, SweepPgaDoesNotDependOnTheRecordsHorizontalDirection) {
     const Table rows = read_csv(out / "sweep.csv");
     ASSERT_EQ(rows.size(), 1u);
     EXPECT_NEAR(std::stod(rows[0].at("pga_mps2")), 8.181, 0.001) << axis;
+    EXPECT_EQ(rows[0].at("integrator"), "central_difference");  // the cube case's default
+    EXPECT_EQ(std::stod(rows[0].at("dt_s")), 1.0e-4);           // its dt_s
   }
 }
 
@@ -503,6 +511,23 @@ TEST(StudyCommands, AUsersOwnFigureOrRowsUnderATablesNameStopTheStudy) {
   ASSERT_EQ(read_csv(ours / "comparison.csv").size(), 1u);
   const auto again = compare(ours, true);
   EXPECT_EQ(again.code, 0) << "our own tables and figure are replaced: " << again.err;
+  // A table of the form before the integrator and dt_s columns (stop 40)
+  // is ours too: the same table with those two columns taken out.
+  {
+    std::string earlier = read_text(ours / "comparison.csv");
+    const auto cut = [&](const std::string& from) {  // from its comma to the next one's
+      const std::size_t at = earlier.find(from);
+      ASSERT_NE(at, std::string::npos) << earlier;
+      earlier.erase(at, earlier.find(',', at + from.size()) - at);
+    };
+    cut(",integrator,dt_s");
+    cut(",central_difference,");
+    ASSERT_EQ(earlier.find("central_difference"), std::string::npos) << earlier;
+    std::ofstream(ours / "comparison.csv", std::ios::binary) << earlier;
+    const auto over_earlier = compare(ours, true);
+    EXPECT_EQ(over_earlier.code, 0) << "an earlier form of our table is replaced: " << over_earlier.err;
+    EXPECT_NE(read_text(ours / "comparison.csv").find(",central_difference,"), std::string::npos);
+  }
 
   // A row the user added to our comparison.csv.
   const std::string table = read_text(ours / "comparison.csv");
@@ -947,6 +972,14 @@ TEST(StudyCommands, AStoppedRunsVerdictIsOnlySoFar) {
   for (std::string line; std::getline(lines, line); ++rows) EXPECT_EQ(fields(line), fields(header)) << line;
   EXPECT_EQ(rows, 2);
   EXPECT_NE(csv.find("demo_falling_block,not run"), std::string::npos) << csv;
+  // A run that never ran still names the case's integrator and step, in
+  // their columns; its wall time and folder are empty.
+  const Table table = read_csv(cmp / "comparison.csv");
+  ASSERT_EQ(table.size(), 2u);
+  EXPECT_EQ(table[1].at("integrator"), "central_difference") << csv;
+  EXPECT_EQ(table[1].at("dt_s"), "1e-05") << csv;
+  EXPECT_EQ(table[1].at("wall_s"), "") << csv;
+  EXPECT_EQ(table[1].at("output"), "") << csv;
   // Under a heading of its own (a line after the warnings read as one).
   EXPECT_NE(md.find("\nRuns that did not finish:\n- demo_falling_block: not run: stopped on request (Ctrl-C, SIGTERM or "
                     "SIGHUP)"),
@@ -955,6 +988,34 @@ TEST(StudyCommands, AStoppedRunsVerdictIsOnlySoFar) {
   // On stderr too, as not run, not as a failure (CLI probe).
   EXPECT_NE(app.err().find("demo_falling_block: not run: stopped on request"), std::string::npos) << app.err();
   EXPECT_EQ(app.err().find("FAILED"), std::string::npos) << app.err();
+
+  // sweep's table likewise: the scale that never ran has a row of the
+  // table's width with the case's integrator and step in their columns.
+  const fs::path swp = dir.path() / "swp";
+  fq_test::AppProcess sweep({"sweep", (dir.path() / "longer.yaml").string(), "--scales", "0.5,1", "--jobs", "1",
+                             "--no-figure", "--out", swp.string()},
+                            dir.path());
+  const auto first_run_writes = [&] {  // the first scale's folder, whatever the record's name in it
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(swp, ec))
+      if (fs::exists(entry.path() / "case.pvd")) return true;
+    return false;
+  };
+  for (int i = 0; i < 60000 && !first_run_writes(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  sweep.signal(SIGINT);
+  ASSERT_EQ(sweep.wait(), 130) << sweep.err();
+  const std::string sweep_csv = read_text(swp / "sweep.csv");
+  std::stringstream sweep_lines(sweep_csv);
+  std::getline(sweep_lines, header);
+  rows = 0;
+  for (std::string line; std::getline(sweep_lines, line); ++rows) EXPECT_EQ(fields(line), fields(header)) << line;
+  EXPECT_EQ(rows, 2);
+  const Table sweep_table = read_csv(swp / "sweep.csv");
+  ASSERT_EQ(sweep_table.size(), 2u);
+  EXPECT_EQ(sweep_table[1].at("status"), "not run") << sweep_csv;
+  EXPECT_EQ(sweep_table[1].at("integrator"), "central_difference") << sweep_csv;
+  EXPECT_EQ(sweep_table[1].at("dt_s"), "1e-05") << sweep_csv;
+  EXPECT_EQ(sweep_table[1].at("wall_s"), "") << sweep_csv;
 }
 
 // The portal demo running on for 100 s past its record, its record by
