@@ -2,13 +2,14 @@
 # Builds everything with AddressSanitizer + UndefinedBehaviorSanitizer and
 # runs the test suite (all but the `validation`, `regression` and `slow`
 # labels) so that any sanitizer report fails the run. The `regression` tests
-# (whole frame cases, hundreds of thousands of steps) and the three `slow`
+# (whole frame cases, hundreds of thousands of steps) and the `slow`
 # programs (ten-box stack for 10 s, cantilever frequency sweep, determinism
-# across thread counts: 40-50 s each under the sanitizers) run code paths the
-# other unit tests already cover under the sanitizers (joints yielding and
-# breaking, contacts after a break, OpenMP loops); at the sanitizers' 3-5x
-# slow-down they would take minutes of the CI budget, so they run only in
-# the plain suite.
+# across thread counts: 40-50 s each under the sanitizers; storeys sliding
+# on soft joints, 240 000 steps each: 15-16 s) run code paths the other unit
+# tests already cover under the sanitizers (joints yielding and breaking,
+# contacts after a break, OpenMP loops, the storey monitor's slips); at the
+# sanitizers' slow-down (20-30x for the jointed runs) they would take
+# minutes of the CI budget, so they run only in the plain suite.
 #
 #   scripts/sanitize.sh            (FQ_JOBS=N to change the parallelism, default 2)
 #
