@@ -183,6 +183,21 @@ TEST(RunWarnings, ContactsPressedPastTheirLimitAreNamedWithDepthAndBodies) {
                                                       0),
             0u)
       << contact_press_warning(peak, bodies);
+  // A pair that started inside each other says so, with its overlap at the
+  // start, whichever order the overlap list names the two in (the house
+  // probe's brace read as pressed 9.1 mm into a roof beam it started
+  // 10 mm inside, in a warning that did not say so); another pair's
+  // overlap changes nothing.
+  const std::string plain = contact_press_warning(peak, bodies);
+  EXPECT_EQ(contact_press_warning(peak, bodies, {InitialOverlap{0, 2, 4e-3}}), plain);
+  const std::string overlapped = contact_press_warning(peak, bodies, {InitialOverlap{1, 0, 10.1e-3}});
+  EXPECT_EQ(overlapped.rfind(plain + ". These two overlapped by 10.1 mm at the start (the warning of bodies "
+                                     "overlapping at the start): ",
+                             0),
+            0u)
+      << overlapped;
+  EXPECT_NE(overlapped.find("trim the members so that they do not start inside each other"), std::string::npos)
+      << overlapped;
 }
 
 TEST(RunWarnings, DashpotsGainEnergyJustAboveTheClosedFormBounceLimitAndNotJustBelow) {

@@ -212,8 +212,11 @@ constexpr double kWarnContactPressRatio = 0.05;
 
 // The warning for contacts pressed past kWarnContactPressRatio (empty when
 // none was): which bodies (by name), how deep and when, against which box's
-// half-thickness, and what to do about it.
-std::string contact_press_warning(const ContactPressPeak& peak, const BodyStore& bodies);
+// half-thickness, and what to do about it; when the two bodies are among
+// `initial_overlaps` (they started inside each other), also by how much,
+// and that such a press can exceed what the boxes moved.
+std::string contact_press_warning(const ContactPressPeak& peak, const BodyStore& bodies,
+                                  const std::vector<InitialOverlap>& initial_overlaps = {});
 
 // The warning for bodies overlapping at the start (ContactSystem::
 // initial_overlaps: pairs not held by a joint that start inside each other,
