@@ -3,7 +3,7 @@
 // estimate sums the terms into 6x6 blocks per body and per pair of bodies
 // and runs Lanczos on those; here every term is put into the full 6n x 6n
 // matrices K~ and C~ one by one, whose top eigenvalue and damped limit
-// Eigen's dense solver gives.
+// GSL's symmetric eigensolver gives.
 #include <gtest/gtest.h>
 
 #include <cmath>

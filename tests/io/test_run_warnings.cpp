@@ -191,12 +191,15 @@ TEST(RunWarnings, ContactsPressedPastTheirLimitAreNamedWithDepthAndBodies) {
   const std::string plain = contact_press_warning(peak, bodies);
   EXPECT_EQ(contact_press_warning(peak, bodies, {InitialOverlap{0, 2, 4e-3}}), plain);
   const std::string overlapped = contact_press_warning(peak, bodies, {InitialOverlap{1, 0, 10.1e-3}});
-  EXPECT_EQ(overlapped.rfind(plain + ". These two overlapped by 10.1 mm at the start (the warning of bodies "
-                                     "overlapping at the start): ",
+  EXPECT_EQ(contact_press_warning(peak, bodies, {InitialOverlap{0, 1, 10.1e-3}}), overlapped);
+  EXPECT_EQ(overlapped.rfind(plain + ". These two overlapped by 10.1 mm at the start (among the pairs the warning "
+                                     "of bodies overlapping at the start counts): ",
                              0),
             0u)
       << overlapped;
-  EXPECT_NE(overlapped.find("trim the members so that they do not start inside each other"), std::string::npos)
+  EXPECT_NE(overlapped.find("trim the members, turn their sections or move the blocks so that they do not start "
+                            "inside each other"),
+            std::string::npos)
       << overlapped;
 }
 
