@@ -4,6 +4,7 @@
 #include "study_commands.h"
 
 #include <algorithm>
+#include <array>
 #include <csignal>
 #include <charconv>
 #include <cerrno>
@@ -354,10 +355,21 @@ std::string sweep_csv_header(std::size_t storeys, bool with_time_integration = t
   return h.str();
 }
 
+// An input of a run (its time step, its scale) in the shortest form that
+// reads back as the same double, unlike the measured values of csv_number:
+// a step chosen to fall on the record's samples, 9.99052132701422e-06 s,
+// read 9.99052133e-06 (black-box probe), and two scales differing in the
+// tenth digit, which get folders of their own, would have shared a row key.
+std::string exact_csv_number(double x) {
+  std::array<char, 32> text{};
+  const auto written = std::to_chars(text.data(), text.data() + text.size(), x);
+  return std::string(text.data(), written.ptr);
+}
+
 // A run's integrator and time step (s) as the tables give them: the
 // case's own, which studies do not override.
 std::string time_integration_csv(const fq::CaseDef& def) {
-  return std::string(fq::integrator_name(def.time.integrator)) + "," + csv_number(def.time.dt_s);
+  return std::string(fq::integrator_name(def.time.integrator)) + "," + exact_csv_number(def.time.dt_s);
 }
 
 const char* const kCollapseCsvHeader =
@@ -718,11 +730,21 @@ bool is_our_csv_table(const std::string& name, const std::string& text) {
     return expected_rows && expected_rows->front() == header;
   });
   if (!header_is_ours) return false;
+  // Each run, or each case and record, once: a study never writes two rows
+  // of one key, so a row copied and edited by hand makes the table the
+  // user's (black-box probe: a duplicated row passed the field checks).
+  std::vector<std::size_t> key_columns;
+  for (std::size_t c = 0; c < header.size(); ++c)
+    if (header[c] == "case" || header[c] == "record" || header[c] == "scale") key_columns.push_back(c);
+  std::set<std::vector<std::string>> keys;
   for (std::size_t r = 1; r < rows->size(); ++r) {
     const std::vector<std::string>& row = (*rows)[r];
     if (row.size() != header.size()) return false;
     for (std::size_t c = 0; c < row.size(); ++c)
       if (!is_our_csv_field(header[c], row[c])) return false;
+    std::vector<std::string> key;
+    for (const std::size_t c : key_columns) key.push_back(row[c]);
+    if (!keys.insert(key).second) return false;
   }
   return true;
 }
@@ -1257,7 +1279,8 @@ int command_sweep(int argc, char** argv, const std::atomic<bool>* stop_requested
   csv << sweep_csv_header(storeys) << "\n";
   for (std::size_t i = 0; i < jobs.size(); ++i) {
     const fq::BatchOutcome& o = outcomes[i];
-    csv << fq::csv_text(keys[i].case_name) << "," << fq::csv_text(keys[i].record) << "," << csv_number(keys[i].scale) << ",";
+    csv << fq::csv_text(keys[i].case_name) << "," << fq::csv_text(keys[i].record) << "," << exact_csv_number(keys[i].scale)
+        << ",";
     if (!o.ok) {
       csv << ",," << outcome_status(o);
       for (std::size_t k = 0; k < storeys; ++k) csv << ",,";

@@ -689,12 +689,12 @@ std::string contact_press_warning(const ContactPressPeak& peak, const BodyStore&
   for (const InitialOverlap& o : initial_overlaps) {
     if (!((o.body_a == peak.body_a && o.body_b == peak.body_b) || (o.body_a == peak.body_b && o.body_b == peak.body_a)))
       continue;
-    w << ". These two overlapped by " << std::setprecision(3) << o.depth_m * 1e3
-      << " mm at the start (among the pairs the warning of bodies overlapping at the start counts): a press of "
-         "boxes that start inside each other is counted from each point's overlap at the start, and a point taken "
-         "later, as the boxes move or the contact turns to another face, from no more than the pair's points had "
-         "the step before, so a deeper one can make the press larger than the boxes moved; trim the members, turn "
-         "their sections or move the blocks so that they do not start inside each other";
+    w << ". These two already overlapped by " << std::setprecision(3) << o.depth_m * 1e3
+      << " mm at the start (one of the pairs of the warning that bodies overlap at the start), and the "
+      << peak.depth_m * 1e3
+      << " mm is beyond that; in boxes that start inside each other the contact's points change as they move, "
+         "and the press can then exceed what the boxes moved: trim the members, turn their sections or move the "
+         "blocks so that they do not start inside each other";
     break;
   }
   return w.str();

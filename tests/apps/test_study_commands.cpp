@@ -241,8 +241,11 @@ TEST(StudyCommands, SweepPgaDoesNotDependOnTheRecordsHorizontalDirection) {
   TempDir dir;
   for (const char* axis : {"x", "[1, 1, 0]", "[-0.6, 0.8, 0]"}) {
     const std::string name = std::string("cube_") + (axis[0] == 'x' ? "x" : axis[1] == '1' ? "diagonal" : "oblique");
+    // The oblique run with a step of many digits, which the table gives
+    // exactly (it read 9.99052133e-05 with nine digits; black-box probe).
+    const std::string dt = name == "cube_oblique" ? "9.99052132701422e-05" : "0.0001";
     std::ofstream(dir.path() / (name + ".yaml"))
-        << cube_case("", "{dt_s: 1.0e-4, duration_s: 0.2}", "", "  window_start_s: 8.4\n" + kobe_ns_along(axis));
+        << cube_case("", "{dt_s: " + dt + ", duration_s: 0.2}", "", "  window_start_s: 8.4\n" + kobe_ns_along(axis));
     const fs::path out = dir.path() / ("sweep_" + name);
     if (axis[0] == 'x') {
       // A sweep.csv of the form before the integrator and dt_s columns
@@ -260,7 +263,7 @@ TEST(StudyCommands, SweepPgaDoesNotDependOnTheRecordsHorizontalDirection) {
     ASSERT_EQ(rows.size(), 1u);
     EXPECT_NEAR(std::stod(rows[0].at("pga_mps2")), 8.181, 0.001) << axis;
     EXPECT_EQ(rows[0].at("integrator"), "central_difference");  // the cube case's default
-    EXPECT_EQ(std::stod(rows[0].at("dt_s")), 1.0e-4);           // its dt_s
+    EXPECT_EQ(rows[0].at("dt_s"), dt == "0.0001" ? "1e-04" : dt);  // its dt_s, digit for digit
   }
 }
 
@@ -547,6 +550,12 @@ TEST(StudyCommands, AUsersOwnFigureOrRowsUnderATablesNameStopTheStudy) {
             std::string::npos)
       << row.err;
   EXPECT_EQ(read_text(ours / "comparison.csv"), with_row);
+  // Our own row copied (a study never writes one case twice): the user's.
+  const std::string copied = table + table.substr(table.find('\n') + 1);
+  std::ofstream(ours / "comparison.csv", std::ios::binary) << copied;
+  const auto twice = compare(ours, false);
+  EXPECT_EQ(twice.code, 3) << twice.err;
+  EXPECT_EQ(read_text(ours / "comparison.csv"), copied);
 
   // The user's own comparison.md beside our comparison.csv: refused with
   // nothing touched, our table included (it was deleted before the

@@ -192,8 +192,8 @@ TEST(RunWarnings, ContactsPressedPastTheirLimitAreNamedWithDepthAndBodies) {
   EXPECT_EQ(contact_press_warning(peak, bodies, {InitialOverlap{0, 2, 4e-3}}), plain);
   const std::string overlapped = contact_press_warning(peak, bodies, {InitialOverlap{1, 0, 10.1e-3}});
   EXPECT_EQ(contact_press_warning(peak, bodies, {InitialOverlap{0, 1, 10.1e-3}}), overlapped);
-  EXPECT_EQ(overlapped.rfind(plain + ". These two overlapped by 10.1 mm at the start (among the pairs the warning "
-                                     "of bodies overlapping at the start counts): ",
+  EXPECT_EQ(overlapped.rfind(plain + ". These two already overlapped by 10.1 mm at the start (one of the pairs of "
+                                     "the warning that bodies overlap at the start), and the 0.3 mm is beyond that; ",
                              0),
             0u)
       << overlapped;
