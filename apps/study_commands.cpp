@@ -4,7 +4,6 @@
 #include "study_commands.h"
 
 #include <algorithm>
-#include <array>
 #include <csignal>
 #include <charconv>
 #include <cerrno>
@@ -297,11 +296,15 @@ std::string fixed(double x, int digits) {
   return s.str();
 }
 
-// A sweep's scale in its shortest form that reads back as itself (its
-// runs' folder names: "_x0.5").
-std::string scale_text(double scale) {
+// A run's input (a sweep's scale, a time step) in its shortest form that
+// reads back as itself: in the runs' folder names ("_x0.5") and in the
+// tables, unlike the measured values of csv_number (a step chosen to fall
+// on the record's samples, 9.99052132701422e-06 s, read 9.99052133e-06
+// with nine digits, and two scales differing in the tenth digit, which get
+// folders of their own, would have shared a row key; black-box probe).
+std::string exact_text(double x) {
   char digits[32];
-  const auto end = std::to_chars(digits, digits + sizeof digits, scale).ptr;
+  const auto end = std::to_chars(digits, digits + sizeof digits, x).ptr;
   return std::string(digits, end);
 }
 
@@ -313,7 +316,7 @@ std::string table_scale_text(double scale) {
   const std::string two = fixed(scale, 2);
   double back = 0.0;
   const auto [end, ec] = std::from_chars(two.data(), two.data() + two.size(), back);
-  return ec == std::errc() && end == two.data() + two.size() && back == scale ? two : scale_text(scale);
+  return ec == std::errc() && end == two.data() + two.size() && back == scale ? two : exact_text(scale);
 }
 
 std::string scientific(double x) {
@@ -355,21 +358,10 @@ std::string sweep_csv_header(std::size_t storeys, bool with_time_integration = t
   return h.str();
 }
 
-// An input of a run (its time step, its scale) in the shortest form that
-// reads back as the same double, unlike the measured values of csv_number:
-// a step chosen to fall on the record's samples, 9.99052132701422e-06 s,
-// read 9.99052133e-06 (black-box probe), and two scales differing in the
-// tenth digit, which get folders of their own, would have shared a row key.
-std::string exact_csv_number(double x) {
-  std::array<char, 32> text{};
-  const auto written = std::to_chars(text.data(), text.data() + text.size(), x);
-  return std::string(text.data(), written.ptr);
-}
-
 // A run's integrator and time step (s) as the tables give them: the
 // case's own, which studies do not override.
 std::string time_integration_csv(const fq::CaseDef& def) {
-  return std::string(fq::integrator_name(def.time.integrator)) + "," + exact_csv_number(def.time.dt_s);
+  return std::string(fq::integrator_name(def.time.integrator)) + "," + exact_text(def.time.dt_s);
 }
 
 const char* const kCollapseCsvHeader =
@@ -1246,7 +1238,7 @@ int command_sweep(int argc, char** argv, const std::atomic<bool>* stop_requested
           }
           // The scale in its shortest form that reads back as itself:
           // scales that differ in the 7th digit get folders of their own.
-          job.label = def.name + "_" + record_name + "_x" + scale_text(scale);
+          job.label = def.name + "_" + record_name + "_x" + exact_text(scale);
           job.output_folder = args.out / job.label;
           jobs.push_back(std::move(job));
           keys.push_back({def.name, record_name, scale});
@@ -1279,7 +1271,7 @@ int command_sweep(int argc, char** argv, const std::atomic<bool>* stop_requested
   csv << sweep_csv_header(storeys) << "\n";
   for (std::size_t i = 0; i < jobs.size(); ++i) {
     const fq::BatchOutcome& o = outcomes[i];
-    csv << fq::csv_text(keys[i].case_name) << "," << fq::csv_text(keys[i].record) << "," << exact_csv_number(keys[i].scale)
+    csv << fq::csv_text(keys[i].case_name) << "," << fq::csv_text(keys[i].record) << "," << exact_text(keys[i].scale)
         << ",";
     if (!o.ok) {
       csv << ",," << outcome_status(o);

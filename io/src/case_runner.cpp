@@ -678,11 +678,12 @@ std::string contact_press_warning(const ContactPressPeak& peak, const BodyStore&
        "rest, and when a rocking member tips over, are off by about that fraction of the section; run again with a "
        "stiffer contact (contact.*.normal_stiffness_N_per_m; a smaller dt_s if the stable step asks for it) to see "
        "whether the results depend on it";
-  // A pair that started inside each other: its press is counted from the
-  // overlap it started with, at the points the contact then had. Points
-  // it takes later, as the boxes move or another face of the two becomes
-  // the contact's, may lie deeper than any of those, and the press can
-  // then exceed what the boxes moved (house probe, stop 40: a brace
+  // A pair that started inside each other: each point of its first
+  // manifold counts its press from its overlap then; a point taken later,
+  // as the boxes move or another face of the two becomes the contact's,
+  // from no more than the pair's allowance (the largest reference depth of
+  // its points the step before; contacts/README.md), so the press can
+  // exceed what the boxes moved (house probe, stop 40: a brace
   // starting 10 mm inside a roof beam pressed 2.8 mm after 0.55 ms from
   // rest, when gravity had moved it 1.5 um). Said here, so that the two
   // warnings do not read as contradicting each other.

@@ -982,13 +982,17 @@ TEST(StudyCommands, AStoppedRunsVerdictIsOnlySoFar) {
   // The run that never started has a row of the table's width, empty but
   // for the case's integrator and dt_s.
   const std::string csv = read_text(cmp / "comparison.csv");
-  std::stringstream lines(csv);
-  std::string header;
-  std::getline(lines, header);
-  const auto fields = [](const std::string& line) { return std::count(line.begin(), line.end(), ',') + 1; };
-  int rows = 0;
-  for (std::string line; std::getline(lines, line); ++rows) EXPECT_EQ(fields(line), fields(header)) << line;
-  EXPECT_EQ(rows, 2);
+  // Each row of a table as wide as its header; the count of rows.
+  const auto rows_of_header_width = [](const std::string& table) {
+    std::stringstream lines(table);
+    std::string header;
+    std::getline(lines, header);
+    const auto fields = [](const std::string& line) { return std::count(line.begin(), line.end(), ',') + 1; };
+    int rows = 0;
+    for (std::string line; std::getline(lines, line); ++rows) EXPECT_EQ(fields(line), fields(header)) << line;
+    return rows;
+  };
+  EXPECT_EQ(rows_of_header_width(csv), 2);
   EXPECT_NE(csv.find("demo_falling_block,not run"), std::string::npos) << csv;
   // A run that never ran still names the case's integrator and step, in
   // their columns; its wall time and folder are empty.
@@ -1023,11 +1027,7 @@ TEST(StudyCommands, AStoppedRunsVerdictIsOnlySoFar) {
   sweep.signal(SIGINT);
   ASSERT_EQ(sweep.wait(), 130) << sweep.err();
   const std::string sweep_csv = read_text(swp / "sweep.csv");
-  std::stringstream sweep_lines(sweep_csv);
-  std::getline(sweep_lines, header);
-  rows = 0;
-  for (std::string line; std::getline(sweep_lines, line); ++rows) EXPECT_EQ(fields(line), fields(header)) << line;
-  EXPECT_EQ(rows, 2);
+  EXPECT_EQ(rows_of_header_width(sweep_csv), 2);
   const Table sweep_table = read_csv(swp / "sweep.csv");
   ASSERT_EQ(sweep_table.size(), 2u);
   EXPECT_EQ(sweep_table[1].at("status"), "not run") << sweep_csv;
