@@ -669,8 +669,13 @@ std::string contact_press_warning(const ContactPressPeak& peak, const BodyStore&
     w << name(peak.body_b) << " " << peak.depth_m * 1e3 << " mm into the ground";
   else
     w << name(peak.body_a) << " and " << name(peak.body_b) << " " << peak.depth_m * 1e3 << " mm into each other";
-  w << " at t = " << std::fixed << std::setprecision(3) << peak.time_s << " s, " << std::defaultfloat
-    << std::setprecision(3) << 100.0 * peak.ratio << " % of the " << peak.half_dimension_m * 1e3
+  // Times of a second and more to the millisecond; earlier ones to three
+  // significant digits, so that a peak at 0.57 ms does not read "0.001 s".
+  if (peak.time_s >= 0.1)
+    w << " at t = " << std::fixed << std::setprecision(3) << peak.time_s << " s, " << std::defaultfloat;
+  else
+    w << " at t = " << std::setprecision(3) << peak.time_s << " s, ";
+  w << std::setprecision(3) << 100.0 * peak.ratio << " % of the " << peak.half_dimension_m * 1e3
     << " mm half-thickness of " << name(peak.measured)
     << (peak.body_a == kNoBody ? "" : ", the thinner free box of the two")
     << " (the largest fraction of the run; more than " << 100.0 * kWarnContactPressRatio

@@ -183,6 +183,17 @@ TEST(RunWarnings, ContactsPressedPastTheirLimitAreNamedWithDepthAndBodies) {
                                                       0),
             0u)
       << contact_press_warning(peak, bodies);
+  // A press early in the run keeps its time's digits: 0.57 ms is not
+  // written as "0.001 s" (stop 40's probe); 0.1 s and later to the ms.
+  {
+    ContactPressPeak early = peak;
+    early.time_s = 0.57e-3;
+    EXPECT_NE(contact_press_warning(early, bodies).find(" at t = 0.00057 s, 6 % "), std::string::npos)
+        << contact_press_warning(early, bodies);
+    early.time_s = 0.1;
+    EXPECT_NE(contact_press_warning(early, bodies).find(" at t = 0.100 s, 6 % "), std::string::npos)
+        << contact_press_warning(early, bodies);
+  }
   // A pair that started inside each other says so, with its overlap at the
   // start, whichever order the overlap list names the two in (the house
   // probe's brace read as pressed 9.1 mm into a roof beam it started
