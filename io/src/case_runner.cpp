@@ -579,7 +579,7 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
           !w.empty())
         warn(w);
     for (std::size_t i = 0; i < storeys.storeys().size(); ++i)
-      for (const std::string& w : {storeys.twist_warning(i), storeys.slip_warning(i),
+      for (const std::string& w : {storeys.twist_warning(i), storey_slip_warning(storeys, i, scene.joints),
                                    scene.joints ? loose_columns_warning(storeys.storeys()[i], storeys.verdict(i),
                                                                         *scene.joints)
                                                 : std::string()})
@@ -1114,16 +1114,12 @@ std::string no_columns_warning(const CaseDef& def) {
   return w.str();
 }
 
-// A storey whose columns have lost every joint stands, if at all, on loose
-// posts: its drift-based verdict (standing or damaged) says nothing of a
-// frame any more (a house probe's storey read "damaged" at 0.071 rad with
-// all 18 of its column joints broken). Said, with the count.
-std::string loose_columns_warning(const Storey& storey, StoreyVerdict verdict, const JointSystem& joints) {
-  if (verdict == StoreyVerdict::Collapsed || storey.columns.empty()) return {};
+StoreyColumnJoints storey_column_joints(const Storey& storey, const JointSystem& joints) {
+  StoreyColumnJoints n;
+  if (storey.columns.empty()) return n;
   // Each body's column line in this storey (-1: none), then one pass over
   // the joints (a pass per column was columns x joints, thousands of
-  // millions on a large generated grid). A joint counts once per column
-  // it holds.
+  // millions on a large generated grid).
   BodyId last_body = 0;
   for (const StoreyColumn& c : storey.columns) last_body = std::max({last_body, c.bottom_body, c.top_body});
   std::vector<int> column_of(std::size_t(last_body) + 1, -1);
@@ -1132,17 +1128,43 @@ std::string loose_columns_warning(const Storey& storey, StoreyVerdict verdict, c
       if (b >= 0) column_of[std::size_t(b)] = int(k);
   const auto column = [&](BodyId b) { return b >= 0 && b <= last_body ? column_of[std::size_t(b)] : -1; };
   std::vector<char> has_joint(storey.columns.size(), 0);
-  std::size_t joint_count = 0;
   for (std::size_t j = 0; j < joints.joint_count(); ++j) {
     const int ca = column(joints.joint_body_a(j)), cb = column(joints.joint_body_b(j));
     if (ca < 0 && cb < 0) continue;
-    if (joints.joint_status(j) != JointStatus::Broken) return {};
+    const bool broken = joints.joint_status(j) == JointStatus::Broken;
+    const std::size_t holds = std::size_t(ca >= 0) + std::size_t(cb >= 0 && cb != ca);
+    ++n.joints;
+    n.column_holds += holds;
+    if (broken) {
+      ++n.broken;
+      n.broken_holds += holds;
+    }
     for (const int c : {ca, cb})
       if (c >= 0) has_joint[std::size_t(c)] = 1;
-    joint_count += (ca >= 0) + (cb >= 0 && cb != ca);
   }
+  n.every_column_held = std::find(has_joint.begin(), has_joint.end(), 0) == has_joint.end();
+  return n;
+}
+
+// The slip warning of storey i, told whether the joints holding its
+// columns broke (none: they held and were soft in shear).
+std::string storey_slip_warning(const StoreyDriftMonitor& storeys, std::size_t i, const JointSystem* joints) {
+  if (joints == nullptr) return storeys.slip_warning(i, 0, 0);
+  const StoreyColumnJoints n = storey_column_joints(storeys.storeys()[i], *joints);
+  return storeys.slip_warning(i, int(n.broken), int(n.joints));
+}
+
+// A storey whose columns have lost every joint stands, if at all, on loose
+// posts: its drift-based verdict (standing or damaged) says nothing of a
+// frame any more (a house probe's storey read "damaged" at 0.071 rad with
+// all 18 of its column joints broken). Said, with the count (a joint
+// counted once per column it holds).
+std::string loose_columns_warning(const Storey& storey, StoreyVerdict verdict, const JointSystem& joints) {
+  if (verdict == StoreyVerdict::Collapsed || storey.columns.empty()) return {};
+  const StoreyColumnJoints n = storey_column_joints(storey, joints);
   // A column no joint ever held: not a frame's storey.
-  if (std::find(has_joint.begin(), has_joint.end(), 0) != has_joint.end()) return {};
+  if (n.broken != n.joints || !n.every_column_held) return {};
+  const std::size_t joint_count = n.broken_holds;
   const bool one = storey.columns.size() == 1;
   std::ostringstream w;
   w << "storey " << storey.number << ": every joint of its ";

@@ -575,7 +575,7 @@ std::string StoreyDriftMonitor::peak_at_end_warning(std::size_t i, double end_ti
   return w.str();
 }
 
-std::string StoreyDriftMonitor::slip_warning(std::size_t i) const {
+std::string StoreyDriftMonitor::slip_warning(std::size_t i, int broken_column_joints, int column_joints) const {
   const StoreyDriftRecord& r = records_[i];
   const StoreyVerdict storey = verdict(i), floor = verdict_for_peak(r.peak_floor_ratio_rad, limits_);
   if (int(floor) <= int(storey)) return "";
@@ -592,8 +592,23 @@ std::string StoreyDriftMonitor::slip_warning(std::size_t i) const {
   if (top) w << "the floor slid up to " << 1e3 * r.peak_top_slip_m << " mm on its column tops";
   if (top && base) w << " and ";
   if (base) w << "the columns' feet slid up to " << 1e3 * r.peak_base_slip_m << " mm on " << below;
-  w << " (events.csv lists the joints that broke; a joint soft in shear lets its members slide while it holds); "
-       "the verdict is that of the tilt (peak_floor_drift_ratio_rad, peak_top_slip_m and peak_base_slip_m in "
+  // Why it slid, as far as the caller knows (closed-form probe, stop 41:
+  // a cantilever's arm that fell when its joint broke read as a floor
+  // sliding on a joint that held).
+  if (column_joints < 0)
+    w << " (events.csv lists the joints that broke; a joint soft in shear lets its members slide while it holds)";
+  else if (broken_column_joints > 0 && column_joints == 1)
+    w << " (the joint holding its column broke; events.csv says when)";
+  else if (broken_column_joints > 0)
+    w << " (" << broken_column_joints << " of the " << column_joints
+      << " joints holding its columns broke; events.csv lists them)";
+  else if (column_joints > 0)
+    w << " (" << (column_joints == 1 ? "the joint holding its column did not break"
+                                      : "none of the joints holding its columns broke")
+      << ": a joint soft in shear lets its members slide while it holds)";
+  else
+    w << " (no joint holds its columns: they stand and slide on their contacts)";
+  w << "; the verdict is that of the tilt (peak_floor_drift_ratio_rad, peak_top_slip_m and peak_base_slip_m in "
        "summary.json; cases/README.md, assessment)";
   return w.str();
 }

@@ -1475,4 +1475,24 @@ TEST(RunWarnings, ProgressIsAskedEveryStepWhateverTheOutputIntervals) {
 }
 
 }  // namespace
+// A floor that slid because its joint broke says so (closed-form probe,
+// stop 41): in the shipped breaking cantilever the arm, storey 1's
+// "floor", falls when its weak tenon to the column breaks, which read as a
+// floor sliding on a joint soft in shear. Of the column's two joints (its
+// support and that tenon) one broke: the warning counts them, as
+// events.csv does.
+TEST(RunWarnings, AFloorThatSlidOffABrokenJointSaysTheJointBroke) {
+  const test::TempDir dir;
+  const CaseDef def = load_case_file(std::filesystem::path(FQ_SOURCE_DIR) / "cases" / "demo_breaking_cantilever.yaml");
+  CaseRunOptions options;
+  options.output_folder = dir.path() / "cantilever";
+  const CaseRunReport r = run_case(def, options);
+  ASSERT_EQ(r.joints.broken, 1u);
+  EXPECT_TRUE(mentions(r.warnings, "the floor slid up to ")) << testing::PrintToString(r.warnings);
+  EXPECT_TRUE(mentions(r.warnings, " on its column tops (1 of the 2 joints holding its columns broke; events.csv "
+                                   "lists them); "))
+      << testing::PrintToString(r.warnings);
+  EXPECT_FALSE(mentions(r.warnings, "soft in shear")) << testing::PrintToString(r.warnings);
+}
+
 }  // namespace fq

@@ -766,6 +766,29 @@ TEST(StoreyDrift, AFloorThatSlidOnItsColumnTopsWhileTheirFeetSlidNamesBoth) {
   EXPECT_NEAR(r.peak_base_slip_m, d, 1e-15);
   EXPECT_NEAR(r.peak_top_slip_m, 2.0 * d / 3.0, 1e-15);
   EXPECT_NEAR(r.peak_floor_ratio_rad, 5.0 * d / 3.0 / h, 1e-14);
+  // The cause, as the caller knows it: unknown (both named), some of the
+  // column joints broken, none of them, a lone joint either way, or none at all.
+  EXPECT_NE(monitor.slip_warning(0).find(" (events.csv lists the joints that broke; a joint soft in shear lets its "
+                                         "members slide while it holds); the verdict is that of the tilt"),
+            std::string::npos);
+  EXPECT_NE(monitor.slip_warning(0, 2, 5).find(
+                " (2 of the 5 joints holding its columns broke; events.csv lists them); the verdict"),
+            std::string::npos)
+      << monitor.slip_warning(0, 2, 5);
+  EXPECT_NE(monitor.slip_warning(0, 0, 5).find(" (none of the joints holding its columns broke: a joint soft in shear "
+                                               "lets its members slide while it holds); the verdict"),
+            std::string::npos)
+      << monitor.slip_warning(0, 0, 5);
+  EXPECT_NE(monitor.slip_warning(0, 1, 1).find(" (the joint holding its column broke; events.csv says when); the"),
+            std::string::npos)
+      << monitor.slip_warning(0, 1, 1);
+  EXPECT_NE(monitor.slip_warning(0, 0, 1).find(" (the joint holding its column did not break: a joint soft in shear"),
+            std::string::npos)
+      << monitor.slip_warning(0, 0, 1);
+  EXPECT_NE(monitor.slip_warning(0, 0, 0).find(" (no joint holds its columns: they stand and slide on their "
+                                               "contacts); the verdict"),
+            std::string::npos)
+      << monitor.slip_warning(0, 0, 0);
   const std::string w = monitor.slip_warning(0);
   EXPECT_NE(w.find("storey 1's floor moved 0.0575 rad of its height relative to the foundation, which would make it "
                    "damaged, while its columns tilted 0 rad (standing): the floor slid up to 6.67 mm on its column "

@@ -316,6 +316,21 @@ std::string nothing_holds_the_frame_warning(const CaseDef& def, const Scene& sce
 // joint ever held.
 std::string loose_columns_warning(const Storey& storey, StoreyVerdict verdict, const JointSystem& joints);
 
+// The joints that hold a storey's columns (a joint with one of the storey's
+// column members at either end), and how many of them broke.
+struct StoreyColumnJoints {
+  std::size_t joints = 0;          // distinct joints
+  std::size_t broken = 0;          // of those, broken
+  std::size_t column_holds = 0;    // joints counted once per column they hold
+  std::size_t broken_holds = 0;    // of those, broken
+  bool every_column_held = false;  // each column has at least one joint
+};
+StoreyColumnJoints storey_column_joints(const Storey& storey, const JointSystem& joints);
+
+// Storey i's slip warning (StoreyDriftMonitor::slip_warning), told how many
+// of the joints holding its columns broke; `joints` null: the case has none.
+std::string storey_slip_warning(const StoreyDriftMonitor& storeys, std::size_t i, const JointSystem* joints);
+
 // The warning for members that no joint holds, in a case that has joints (a
 // beam drawn 10 mm above the columns it should sit on): they stand only on
 // their contacts, or fall through where there are none. Blocks are meant to

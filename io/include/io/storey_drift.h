@@ -277,9 +277,13 @@ class StoreyDriftMonitor {
   // tops, the columns' feet on the floor below, or both (each named when
   // its peak is at least kSlipShareNamed of the floor drift's excess over
   // the column drift, times the height), and that the verdict stays the
-  // column drift's. It does not say the joints broke: a joint soft in
-  // shear lets a floor slide while it holds.
-  std::string slip_warning(std::size_t i) const;
+  // column drift's. A joint soft in shear lets a floor slide while it
+  // holds, so the slip alone does not say a joint broke: the caller that
+  // knows the joints passes how many of those holding the storey's columns
+  // broke (`broken_column_joints`) of how many there are (`column_joints`),
+  // and the warning says which it was; -1 for both: not known, and the
+  // warning names both causes.
+  std::string slip_warning(std::size_t i, int broken_column_joints = -1, int column_joints = -1) const;
   // The warning for storey i, not collapsed, whose peak drift ratio of at
   // least half the safety limit came in the last kPeakAtEndFraction of a
   // run that ended at end_time_s: the drift was still growing when the run
