@@ -42,7 +42,8 @@ void print_run_outcome(const fq::CaseRunReport& r, std::ostream& out) {
         << number(s.drift.peak_ratio_rad) << " rad";
     // 1/n, the form building codes state drift limits in; meaningless for
     // a storey that has fallen over.
-    if (const std::string one_in_n = drift_one_in_n(s.drift.peak_ratio_rad);
+    if (const std::string one_in_n = drift_one_in_n(
+            s.drift.peak_ratio_rad, {r.assessment.safety_drift_ratio_rad, r.assessment.collapse_drift_ratio_rad});
         !one_in_n.empty() && s.drift.peak_ratio_rad <= r.assessment.collapse_drift_ratio_rad)
       out << " (" << one_in_n << ")";
     if (r.result.status != fq::RunStatus::Unstable) out << " at t = " << number(s.drift.peak_time_s) << " s";

@@ -29,3 +29,22 @@ TEST(DriftFraction, NoFormForATinyZeroOrMeaninglessRatio) {
   EXPECT_EQ(drift_one_in_n(std::numeric_limits<double>::quiet_NaN()), "");
   EXPECT_EQ(drift_one_in_n(std::numeric_limits<double>::infinity()), "");
 }
+
+// Beside the verdict limits, 1/n keeps the ratio's side of each: the input
+// probe's storey at 0.032884 rad, standing below the 1/30 damage limit,
+// read "1/30"; 1/0.032884 = 30.41, so one decimal tells it apart. A ratio
+// just past the limit (0.03334, n = 29.994) reads as on it with none or one
+// decimal ("1/30", "1/30.0") and past it with two ("1/29.99"). A ratio on
+// the limit itself is shown as the limit.
+TEST(DriftFraction, OneOverNStaysOnTheRatiosSideOfEachVerdictLimit) {
+  const std::vector<double> limits{1.0 / 30.0, 0.1};
+  EXPECT_EQ(drift_one_in_n(0.032884, limits), "1/30.4");
+  EXPECT_EQ(drift_one_in_n(0.032884), "1/30");
+  EXPECT_EQ(drift_one_in_n(0.03334, limits), "1/29.99");
+  EXPECT_EQ(drift_one_in_n(1.0 / 30.0, limits), "1/30");
+  EXPECT_EQ(drift_one_in_n(0.0999999, limits), "1/10.00001");
+  EXPECT_EQ(drift_one_in_n(0.1, limits), "1/10");
+  // Far from the limits nothing changes.
+  EXPECT_EQ(drift_one_in_n(1.0 / 120.0, limits), "1/120");
+  EXPECT_EQ(drift_one_in_n(0.0038, limits), "1/263");
+}
