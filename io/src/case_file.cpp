@@ -49,6 +49,27 @@ std::string why_not_a_readable_file(const std::filesystem::path& file) {
   return "";
 }
 
+// The record file a case names, as the operating system finds it: `file`
+// relative to the case file's folder. The lexically normal form ("a/b/../c"
+// as "a/c") reads better in messages and summary.json, but it drops
+// "link/.." without following the link, where the system goes up from the
+// link's target: a case in a symbolically linked folder naming
+// ../gm/rec.AT2 read another file of that name beside the link, silently
+// (input probe, stop 41). The normal form is kept only where it names the
+// same file, or where neither exists (the message then reads better);
+// otherwise the path with its links resolved.
+std::filesystem::path resolve_record_path(const std::filesystem::path& case_folder, const std::filesystem::path& file) {
+  namespace fs = std::filesystem;
+  const fs::path given = file.is_absolute() ? file : case_folder / file;
+  const fs::path normal = given.lexically_normal();
+  std::error_code ec;
+  if (normal == given) return given;
+  if (!fs::exists(given, ec)) return fs::exists(normal, ec) ? given : normal;
+  if (fs::equivalent(given, normal, ec) && !ec) return normal;
+  const fs::path real = fs::weakly_canonical(given, ec);
+  return ec ? given : real;
+}
+
 constexpr double kRadPerDeg = std::numbers::pi / 180.0;
 
 // Compact decimal form for messages ("200", "0.02", "149.98"), 12 digits.
@@ -992,7 +1013,7 @@ void parse_ground_motion(const Reader& r, const Field& f, CaseDef& def) {
         const Field file = r.require(n, "file", path, "path of the record, relative to the case file's folder");
         c.file = r.to_text(file);
         if (c.file.empty()) r.fail(file, "expected a file path, got an empty text");
-        c.resolved_file = (c.file.is_absolute() ? c.file : case_folder / c.file).lexically_normal();
+        c.resolved_file = resolve_record_path(case_folder, c.file);
         if (const std::string why = why_not_a_readable_file(c.resolved_file); !why.empty())
           r.fail(file, "record file " + why + ": " + c.resolved_file.string());
 

@@ -756,6 +756,32 @@ TEST(CaseFile, DtEqualToDurationIsARunOfOneStep) {
   EXPECT_DOUBLE_EQ(m.settings.dt_s, 0.01);
 }
 
+// A record path is the operating system's: "../gm/rec.txt" from a case in
+// a symbolically linked folder goes up from the link's target, not from
+// where the link lies. The lexically normal form dropped "link/.." and read
+// a file of the same name beside the link (input probe, stop 41: El Centro
+// for Takatori, silently). Without links the normal form stays, as
+// messages and summary.json show it.
+TEST(CaseFile, ARecordPathGoesUpFromALinkedFoldersTarget) {
+  TempDir dir;
+  const std::string case_text = kHead + kBlock +
+                                "ground_motion:\n  components:\n"
+                                "    - {file: ../gm/rec.txt, format: two_column, axis: x}\n";
+  dir.write("real/sub/case.yaml", case_text);
+  const fs::path real_record = dir.write("real/gm/rec.txt", constant_record(1.0, 1.0));
+  const fs::path decoy = dir.write("top/gm/rec.txt", constant_record(1.0, 2.0));
+  fs::create_directory_symlink(dir.path() / "real" / "sub", dir.path() / "top" / "link");
+
+  const fq::CaseDef linked = fq::load_case_file(dir.path() / "top" / "link" / "case.yaml");
+  ASSERT_TRUE(linked.ground_motion.has_value());
+  const fs::path read = linked.ground_motion->components[0].resolved_file;
+  EXPECT_TRUE(fs::equivalent(read, real_record)) << read;
+  EXPECT_FALSE(fs::equivalent(read, decoy)) << read;
+
+  const fq::CaseDef direct = fq::load_case_file(dir.path() / "real" / "sub" / "case.yaml");
+  EXPECT_EQ(direct.ground_motion->components[0].resolved_file, real_record);
+}
+
 TEST(CaseFile, BuilderRejectsBlockBelowGround) {
   // Built in code: the builder's own checks name the item.
   fq::CaseDef def;
