@@ -437,6 +437,24 @@ At2Size parse_npts_dt(const std::string& file, std::string_view line) {
                          std::string("expected ").append(key).append("= once on header line 4, got it twice in ")
                              .append(shown));
     }
+    // A second number after a key's value ("DT= .02 .01 SEC") was left
+    // unread, and the record played at the first (input probe, stop 41:
+    // half speed): which one is meant, only the file's author knows.
+    for (const auto& [key, found, tok, after] :
+         {std::tuple{"NPTS", npts_keyword, npts_tok, npts_after}, std::tuple{"DT", dt_keyword, dt_tok, dt_after}}) {
+      if (!found || tok.empty()) continue;
+      std::size_t i = after;
+      while (i < line.size() && is_blank(line[i])) ++i;
+      std::size_t j = i;
+      while (j < line.size() && !is_blank(line[j]) && line[j] != ',' && line[j] != '=') ++j;
+      double second = 0.0;
+      if (j > i && parse_number(line.substr(i, j - i), second) == NumberStatus::Ok)
+        throw InputError(file, kLine, key,
+                         std::string("expected one value after ").append(key).append("=, got ")
+                             .append(quoted(line.substr(after - tok.size(), j - (after - tok.size()))))
+                             .append(" in ")
+                             .append(shown));
+    }
     // A value of digits with a comma and more digits after it ("DT= 0,0100",
     // "NPTS= 5,372") is a decimal comma or a thousands separator, which the
     // comma between the keys cut short: quoted whole, not as its first part
@@ -510,9 +528,51 @@ At2Size parse_npts_dt(const std::string& file, std::string_view line) {
 // If line 3 names units ("... IN UNITS OF G"), they must be g: PEER writes
 // velocity (.VT2) and displacement (.DT2) files in the same layout, and
 // reading one as acceleration would be silently wrong by orders of magnitude.
+//
+// Without "UNITS OF" the line is still read for what it names (input probe,
+// stop 41: "VELOCITY TIME SERIES" and "ACCELERATION IN CM/S/S" were read as
+// acceleration in g): a quantity word other than acceleration
+// (VELOCITY, DISPLACEMENT) with no ACCELERATION beside it, or a unit word
+// of another unit (a word starting with a letter and holding a '/', as
+// CM/S/S or M/S2; GAL, GALS), is refused. Dates ("10/15/79") start with a
+// digit and are not units.
 void check_at2_units(const std::string& file, std::string_view line) {
   const std::size_t k = find_ci(line, "UNITS OF");
-  if (k == std::string_view::npos) return;
+  if (k == std::string_view::npos) {
+    bool acceleration = false;
+    std::string_view other_quantity, other_unit;
+    for (std::size_t i = 0; i < line.size();) {
+      while (i < line.size() && (is_blank(line[i]) || line[i] == ',' || line[i] == '(' || line[i] == ')' ||
+                                 line[i] == '[' || line[i] == ']' || line[i] == ':' || line[i] == ';'))
+        ++i;
+      std::size_t j = i;
+      while (j < line.size() && !is_blank(line[j]) && line[j] != ',' && line[j] != '(' && line[j] != ')' &&
+             line[j] != '[' && line[j] != ']' && line[j] != ':' && line[j] != ';')
+        ++j;
+      std::string_view word = line.substr(i, j - i);
+      i = j;
+      if (!word.empty() && word.back() == '.') word.remove_suffix(1);
+      if (word.empty()) continue;
+      if (find_ci(word, "ACCEL") == 0) acceleration = true;
+      if (equals_ci(word, "VELOCITY") || equals_ci(word, "DISPLACEMENT")) other_quantity = word;
+      if ((is_alpha(word.front()) && word.find('/') != std::string_view::npos) || equals_ci(word, "GAL") ||
+          equals_ci(word, "GALS"))
+        other_unit = word;
+    }
+    if (!other_quantity.empty() && !acceleration)
+      throw InputError(file, 3, "header",
+                       "expected an acceleration record (line 3 as 'ACCELERATION TIME SERIES IN UNITS OF G'), got "
+                       "a line naming " +
+                           quoted(other_quantity) + ": " + quoted(trim(line)) +
+                           " (a PEER velocity or displacement file?)");
+    if (!other_unit.empty())
+      throw InputError(file, 3, "header",
+                       "expected acceleration in g in a peer_at2 file (line 3 as 'ACCELERATION TIME SERIES IN UNITS "
+                       "OF G'), got unit " +
+                           quoted(other_unit) + " in " + quoted(trim(line)) +
+                           ": a record in another unit reads as format two_column with its unit (g, m/s2 or cm/s2)");
+    return;
+  }
   std::size_t i = k + 8;
   while (i < line.size() && is_blank(line[i])) ++i;
   std::size_t j = i;

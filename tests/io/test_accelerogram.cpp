@@ -343,6 +343,23 @@ TEST(Accelerogram, ATrailingDosEndOfFileMarkIsIgnored) {
   EXPECT_THROW((void)fq::read_peer_at2(dir.write("only.AT2", "\x1a")), fq::InputError);
 }
 
+// Line 3 without "UNITS OF" is read for what it names (bad_inputs: another
+// quantity or unit is refused), but a line that names acceleration, a
+// date's slashes or nothing of either is not refused: the shipped records'
+// form, an older one, and lines written by hand.
+TEST(PeerAt2, ALineThreeNamingAccelerationOrNoUnitIsRead) {
+  TempDir dir;
+  const std::string rest = "NPTS= 2, DT= .0100 SEC\n  .1E-02  .2E-02\n";
+  for (const char* line3 : {"ACCELERATION TIME HISTORY IN UNITS OF G", "Acceleration, velocity and displacement",
+                            "processed 10/15/79 (g)", "horizontal component", ""}) {
+    SCOPED_TRACE(line3);
+    const fq::AccelerationRecord r =
+        fq::read_peer_at2(dir.write("line3.AT2", "PEER NGA STRONG MOTION DATABASE RECORD\nx\n" +
+                                                     std::string(line3) + "\n" + rest));
+    EXPECT_EQ(r.acceleration_mps2.size(), 2u);
+  }
+}
+
 // Header text that is not UTF-8 is Latin-1 (older and Windows-written
 // files): "D\xFCzce" is kept as "Düzce" in UTF-8 (FC = U+00FC -> C3 BC), so
 // that summary.json and the warnings that quote it are UTF-8 (records
@@ -482,6 +499,26 @@ std::vector<BadInput> bad_inputs() {
       {"at2_dt_twice", F::PeerAt2, kHead + "NPTS= 5, DT= .01 SEC, DT= .02 SEC\n" + five, 4, "DT",
        "expected DT= once on header line 4, got it twice"},
       {"at2_reversed_dt_twice", F::PeerAt2, kHead + "dt= .01 sec npts= 5 dt =.01 sec\n" + five, 4, "DT", "twice"},
+      // A second number after a key's value (input probe, stop 41: "DT= .02
+      // .01 SEC" played the record at .02 s, half speed).
+      {"at2_dt_two_values", F::PeerAt2, kHead + "NPTS= 5, DT= .02 .01 SEC\n" + five, 4, "DT",
+       "expected one value after DT=, got '.02 .01' in"},
+      {"at2_npts_two_values", F::PeerAt2, kHead + "NPTS= 5 7, DT= .01 SEC\n" + five, 4, "NPTS",
+       "expected one value after NPTS=, got '5 7'"},
+      // Line 3 naming another quantity or unit without "UNITS OF" (same
+      // probe: both read as acceleration in g).
+      {"at2_velocity_no_units_of", F::PeerAt2,
+       "PEER NGA STRONG MOTION DATABASE RECORD\nx\nVELOCITY TIME SERIES\nNPTS= 5, DT= .01 SEC\n" + five, 3,
+       "header", "got a line naming 'VELOCITY'"},
+      {"at2_displacement_no_units_of", F::PeerAt2,
+       "PEER NGA STRONG MOTION DATABASE RECORD\nx\nDisplacement time history (cm)\nNPTS= 5, DT= .01 SEC\n" + five,
+       3, "header", "'Displacement'"},
+      {"at2_cms2_no_units_of", F::PeerAt2,
+       "PEER NGA STRONG MOTION DATABASE RECORD\nx\nACCELERATION IN CM/S/S\nNPTS= 5, DT= .01 SEC\n" + five, 3,
+       "header", "got unit 'CM/S/S'"},
+      {"at2_gal_no_units_of", F::PeerAt2,
+       "PEER NGA STRONG MOTION DATABASE RECORD\nx\nACCELERATION (GAL)\nNPTS= 5, DT= .01 SEC\n" + five, 3,
+       "header", "got unit 'GAL'"},
       // The other layouts of line 4 (older PEER files, keywords reversed,
       // two bare numbers) get the same checks and messages on their values.
       {"at2_labelled_npts_negative", F::PeerAt2, kHead + "  -5    .0100    NPTS, DT\n" + five, 4, "NPTS", "'-5'"},
