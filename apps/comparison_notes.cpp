@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <cstdio>
+#include <limits>
 
 namespace fq_app {
 
@@ -69,6 +71,35 @@ std::string time_integration_note(const std::vector<CaseTimeIntegration>& cases)
   }
   return "\nTime integration (`time.integrator`, `time.dt_s`; the balance errors, and beyond round-off the motions, "
          "depend on them):\n" +
+         lines;
+}
+
+std::string ground_motion_note(const std::vector<CaseGroundMotion>& cases) {
+  if (cases.empty()) return {};
+  auto peak = [](double pga_mps2) -> std::string {
+    if (std::isnan(pga_mps2)) return "";
+    if (!(pga_mps2 > 0.0)) return "; no horizontal acceleration";
+    char text[96];
+    std::snprintf(text, sizeof text, "; horizontal PGA %.3g m/s² (%.3g g)", pga_mps2,
+                  pga_mps2 / fq::kStandardGravity_mps2);
+    return text;
+  };
+  auto described = [](const CaseGroundMotion& c) { return c.motion.empty() ? std::string("none") : c.motion; };
+  const bool alike = std::all_of(cases.begin(), cases.end(),
+                                 [&](const CaseGroundMotion& c) { return c.motion == cases.front().motion; });
+  if (alike) {
+    // The peak of a case that ran (the same motion gives the same peak).
+    double pga = std::numeric_limits<double>::quiet_NaN();
+    for (const CaseGroundMotion& c : cases)
+      if (!std::isnan(c.pga_mps2)) {
+        pga = c.pga_mps2;
+        break;
+      }
+    return "\nGround motion (every case): " + described(cases.front()) + peak(pga) + "\n";
+  }
+  std::string lines;
+  for (const CaseGroundMotion& c : cases) lines += "- " + c.label + ": " + described(c) + peak(c.pga_mps2) + "\n";
+  return "\nGround motion of each case (they differ: the verdicts compare the frames under different shaking):\n" +
          lines;
 }
 

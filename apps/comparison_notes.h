@@ -51,4 +51,18 @@ struct CaseTimeIntegration {
 };
 std::string time_integration_note(const std::vector<CaseTimeIntegration>& cases);
 
+// The ground motion each case ran under, always listed under the table: the
+// verdicts compare frames only under the same shaking, and the table does
+// not show it (an input probe compared a case under Takatori with one under
+// El Centro and nothing said so). `motion` describes the records, axes,
+// scales and window ("" for a case without ground motion); `pga_mps2` is
+// the horizontal peak the run applied (NaN: the case did not run). One line
+// when every case's motion is the same, a line per case otherwise.
+struct CaseGroundMotion {
+  std::string label;
+  std::string motion;
+  double pga_mps2 = 0.0;
+};
+std::string ground_motion_note(const std::vector<CaseGroundMotion>& cases);
+
 }  // namespace fq_app

@@ -308,6 +308,47 @@ std::string exact_text(double x) {
   return std::string(digits, end);
 }
 
+// What a case's ground motion applies, for comparison.md's note: each
+// record by file name, its axis and amplitude scale, then the record
+// seconds run and the time scale ("RSN1106_KOBE_KJM000.AT2 along x, record
+// seconds 0 to 20 at time scale 0.3162"); "" without ground motion.
+std::string ground_motion_text(const fq::CaseDef& def) {
+  if (!def.ground_motion) return {};
+  const fq::GroundMotionDef& gm = *def.ground_motion;
+  auto axis = [](const fq::Vec3& d) -> std::string {
+    // (Appended with +=: GCC 12 warns falsely of overlapping copies in a
+    // chain of + on short strings.)
+    const char* names[3] = {"x", "y", "z"};
+    std::string name;
+    for (int k = 0; k < 3; ++k)
+      if (d[k] == 1.0 || d[k] == -1.0) {
+        if (d[k] < 0.0) name += '-';
+        name += names[k];
+        return name;
+      }
+    name += '(';
+    name += exact_text(d.x());
+    name += ", ";
+    name += exact_text(d.y());
+    name += ", ";
+    name += exact_text(d.z());
+    name += ')';
+    return name;
+  };
+  std::string text;
+  for (const fq::GroundMotionComponentDef& c : gm.components) {
+    if (!text.empty()) text += ", ";
+    text += c.resolved_file.filename().string() + " along " + axis(c.direction);
+    if (c.amplitude_scale != 1.0) text += " x " + exact_text(c.amplitude_scale);
+  }
+  const double applied_s = applied_window_s(gm, gm.window_length_s, def.time.duration_s);
+  std::ostringstream window;
+  window << std::setprecision(6) << ", record seconds " << gm.window_start_s << " to "
+         << gm.window_start_s + applied_s;
+  if (gm.time_scale != 1.0) window << " at time scale " << gm.time_scale;
+  return text + window.str();
+}
+
 // A scale in the collapse table: two decimals where they read back as the
 // scale ("0.50", as the table always printed the usual scales), else as
 // given: two decimals alone printed 0.004 as 0.00, and 0.3333333 and
@@ -1096,7 +1137,12 @@ int command_compare(int argc, char** argv, const std::atomic<bool>* stop_request
     std::vector<CaseTimeIntegration> time_integration;
     for (const fq::BatchJob& job : jobs)
       time_integration.push_back({job.label, fq::integrator_name(job.def.time.integrator), job.def.time.dt_s});
-    md << time_integration_note(time_integration) << contact_model_note(contact_models)
+    std::vector<CaseGroundMotion> motions;
+    for (std::size_t i = 0; i < jobs.size(); ++i)
+      motions.push_back({jobs[i].label, ground_motion_text(jobs[i].def),
+                         outcomes[i].ok ? outcomes[i].report.peak_ground_acceleration_mps2
+                                        : std::numeric_limits<double>::quiet_NaN()});
+    md << ground_motion_note(motions) << time_integration_note(time_integration) << contact_model_note(contact_models)
        << collapse_order_note(labelled) << warnings_note(labelled);
     // A shortened window can miss the record's strongest part, and with
     // it a verdict (workflow probe: B standing at --window-length 8,
@@ -1105,9 +1151,21 @@ int command_compare(int argc, char** argv, const std::atomic<bool>* stop_request
   }
   // Under a heading of their own, as sweep's (a line after the warnings
   // read as one of them; studies probe).
+  // A run stopped by Ctrl-C or gone unstable ran but did not finish either
+  // (input probe, stop 41: a stopped run was missing from this list).
   std::string not_finished;
-  for (std::size_t i = 0; i < jobs.size(); ++i)
-    if (!outcomes[i].ok) not_finished += "\n- " + jobs[i].label + ": " + outcomes[i].error;
+  for (std::size_t i = 0; i < jobs.size(); ++i) {
+    if (!outcomes[i].ok) {
+      not_finished += "\n- " + jobs[i].label + ": " + outcomes[i].error;
+      continue;
+    }
+    const fq::RunResult& run = outcomes[i].report.result;
+    if (run.status == fq::RunStatus::Completed) continue;
+    not_finished += "\n- " + jobs[i].label + ": " + fq::run_status_name(run.status) + " at t = " +
+                    fixed(run.simulated_s, 3) + " s" +
+                    (run.status == fq::RunStatus::Stopped ? " (its row's figures are those up to then)"
+                                                          : " (not assessed)");
+  }
   if (!not_finished.empty()) md << "\nRuns that did not finish:" << not_finished << "\n";
 
   if (!write_text(args.out / "comparison.csv", csv.str()) || !write_text(args.out / "comparison.md", md.str()))

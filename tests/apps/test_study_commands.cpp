@@ -1002,9 +1002,24 @@ TEST(StudyCommands, AStoppedRunsVerdictIsOnlySoFar) {
   EXPECT_EQ(table[1].at("dt_s"), "1e-05") << csv;
   EXPECT_EQ(table[1].at("wall_s"), "") << csv;
   EXPECT_EQ(table[1].at("output"), "") << csv;
-  // Under a heading of its own (a line after the warnings read as one).
-  EXPECT_NE(md.find("\nRuns that did not finish:\n- demo_falling_block: not run: stopped on request (Ctrl-C, SIGTERM or "
-                    "SIGHUP)"),
+  // Under a heading of its own (a line after the warnings read as one),
+  // the stopped run as well as the one that never started (input probe,
+  // stop 41: the stopped run was left out).
+  EXPECT_TRUE(std::regex_search(
+      md, std::regex("\nRuns that did not finish:\n- demo_portal_frame: stopped at t = [0-9]+\\.[0-9]{3} s \\(its "
+                     "row's figures are those up to then\\)\n- demo_falling_block: not run: stopped on request "
+                     "\\(Ctrl-C, SIGTERM or SIGHUP\\)")))
+      << md;
+  // Which shaking each case ran under (the same probe: nothing said the
+  // cases' records differed): the portal's window of its record, as the
+  // case file gives it (6 s on, 3 s long, time scale 0.3162), and the
+  // falling block's (7.6 s on, 1 s long), without a peak: it never ran.
+  EXPECT_NE(md.find("\nGround motion of each case (they differ: the verdicts compare the frames under different "
+                    "shaking):\n- demo_portal_frame: RSN1106_KOBE_KJM000.AT2 along x, record seconds 6 to 9 at time "
+                    "scale 0.3162; horizontal PGA "),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("\n- demo_falling_block: RSN1106_KOBE_KJM000.AT2 along x, record seconds 7.6 to 8.6\n"),
             std::string::npos)
       << md;
   // On stderr too, as not run, not as a failure (CLI probe).
