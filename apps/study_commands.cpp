@@ -1417,6 +1417,26 @@ int command_sweep(int argc, char** argv, const std::atomic<bool>* stop_requested
     }
     if (!skipped.empty()) md << "\nNot counted above (the run did not complete):" << skipped << "\n";
   }
+  {
+    // The PGA columns are horizontal peaks: a vertical record alone gives 0
+    // at every scale (input probe, stop 41); said, and the figure is drawn
+    // against the scale.
+    std::vector<std::string> vertical_only;
+    for (std::size_t i = 0; i < jobs.size(); ++i) {
+      const fq::BatchOutcome& o = outcomes[i];
+      if (!o.ok || o.report.result.status != fq::RunStatus::Completed || o.report.peak_ground_acceleration_mps2 > 0.0)
+        continue;
+      const std::string label = keys[i].case_name + ", record " + keys[i].record;
+      if (std::find(vertical_only.begin(), vertical_only.end(), label) == vertical_only.end())
+        vertical_only.push_back(label);
+    }
+    if (!vertical_only.empty()) {
+      md << "\nNo horizontal ground motion (PGA, here and in sweep.csv, is the horizontal peak, 0 for these; "
+            "sweep.png draws them against the amplitude scale):";
+      for (const std::string& label : vertical_only) md << "\n- " << label;
+      md << "\n";
+    }
+  }
   if (!record_cuts.empty())
     md << "\nWindows cut by a --record's end (each such run applied less of the shaking than the case's window "
           "asks for; the collapse scales hold for that part):"

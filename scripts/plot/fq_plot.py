@@ -342,7 +342,7 @@ def draw_sweep(folder):
         # The largest storey's, not the first's only: a braced first storey
         # moves the damage up, which a first-storey plot hid (workflow probe).
         series.setdefault(key, []).append(
-            (number(row["pga_mps2"]), largest_storey_peak(row)[0], row["collapsed"] == "1"))
+            (number(row["pga_mps2"]), largest_storey_peak(row)[0], row["collapsed"] == "1", number(row["scale"])))
         # Each run's own limits, as in the compare figure: the sweep figure
         # had none (acceptance probe).
         pair = drift_limits(read_summary(os.path.join(row.get("output") or "", "summary.json")))
@@ -360,16 +360,21 @@ def draw_sweep(folder):
     # flat line; workflow probe).
     positive = [p[1] for points in series.values() for p in points if p[1] > 0]
     floor = 0.5 * min(positive) if positive else 1e-5
+    # A ground motion without a horizontal part (a vertical record alone)
+    # has a horizontal PGA of 0 at every scale: its runs all sat at x = 0
+    # (input probe, stop 41). Such a sweep is drawn against the amplitude
+    # scale instead, and says so.
+    by_scale = any(p[0] <= 0 for points in series.values() for p in points)
     fig, ax = plt.subplots(figsize=(8.5, 4.8))
     for key, points in sorted(series.items()):
-        points.sort()
+        points.sort(key=lambda p: (p[3], p[0]) if by_scale else (p[0], p[3]))
         colour = COLOURS[cases.index(key[0]) % len(COLOURS)]
         r = records.index(key[1])
         # Beyond eight records a pair of style and marker repeats only after
         # 8 x 7 = 56 (the marker list steps by one more each lap).
         style = RECORD_STYLES[r % len(RECORD_STYLES)]
         marker = RECORD_MARKERS[(r + r // len(RECORD_STYLES)) % len(RECORD_MARKERS)]
-        x = [p[0] / 9.80665 for p in points]
+        x = [p[3] if by_scale else p[0] / 9.80665 for p in points]
         y = [p[1] if p[1] > 0 else floor for p in points]
         ax.plot(x, y, color=colour, ls=style, lw=1.2, marker=marker, ms=6, mfc="none", mec=colour,
                 label="%s, %s" % key)
@@ -381,7 +386,8 @@ def draw_sweep(folder):
     # the 2 and 5 between them get labels too.
     ax.yaxis.set_minor_formatter(matplotlib.ticker.LogFormatterSciNotation(labelOnlyBase=False,
                                                                            minor_thresholds=(2, 0.4)))
-    ax.set_xlabel("peak ground acceleration (g)")
+    ax.set_xlabel("amplitude scale of the record (no horizontal motion: PGA 0)" if by_scale
+                  else "peak ground acceleration (g)")
     ax.set_ylabel("peak storey drift ratio, largest storey (rad)")
     ax.set_title("Amplitude sweep: filled marker = a storey collapsed, hollow = none collapsed", fontsize=11)
     # Beside the axes, where it covers no point (it sat on the high-PGA
@@ -390,7 +396,7 @@ def draw_sweep(folder):
     fig.tight_layout()
     # What each series shows, in the PNG's texts (read by the tests).
     texts = {"Description": "; ".join(
-        "%s, %s: %s" % (key[0], key[1], " ".join("%.4g" % p[1] for p in sorted(points)))
+        "%s, %s: %s" % (key[0], key[1], " ".join("%.4g" % p[1] for p in points))
         for key, points in sorted(series.items())), "Limits": limits_description(limits)}
     return fig, texts
 

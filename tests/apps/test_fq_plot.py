@@ -297,6 +297,25 @@ class SweepFigure(FigureTest):
         self.assertEqual(drawn["zeta, kobe"].get_color(), fq_plot.COLOURS[0])
         self.assertEqual(drawn["alpha, kobe"].get_color(), fq_plot.COLOURS[1])
 
+    def test_a_sweep_without_horizontal_motion_is_drawn_against_the_scale(self):
+        """A vertical record alone has a horizontal PGA of 0 at every scale:
+        the runs are drawn at their amplitude scales, in order, and the axis
+        says so (input probe, stop 41: every run sat at x = 0)."""
+        rows = []
+        for scale, drift in ((2.0, 0.002), (1.0, 0.001), (4.0, 0.004)):
+            out = write_run(self.folder, "up_x%g" % scale, [1, 0, 0], [[(0.0, 0.0)]])
+            rows.append({"case": "a", "record": "up", "scale": scale, "pga_mps2": 0,
+                         "status": "completed", "collapsed": "0", "storey1_peak_drift_ratio_rad": drift,
+                         "storey1_verdict": "standing", "output": out})
+        write_sweep(self.folder, rows)
+        fig, _ = fq_plot.draw_sweep(self.folder)
+        ax = fig.axes[0]
+        drawn = [line for line in ax.get_lines() if not line.get_label().startswith("_")]
+        self.assertEqual(len(drawn), 1)
+        self.assertEqual([float(x) for x in drawn[0].get_xdata()], [1.0, 2.0, 4.0])
+        self.assertEqual([float(y) for y in drawn[0].get_ydata()], [0.001, 0.002, 0.004])
+        self.assertTrue(ax.get_xlabel().startswith("amplitude scale of the record"), ax.get_xlabel())
+
     def test_only_completed_runs_are_drawn(self):
         """The runs the collapse table counts: a run stopped at scale 1 (its
         drift when stopped, 0.0008 rad) drew as an ordinary point joined to

@@ -905,6 +905,33 @@ TEST(StudyCommands, CompareReportsDriftAlongYForAMotionAlongY) {
   EXPECT_EQ(png_text(cmp / "first_storey_drift.png", "Panels"), "storey 1: " + rows[0].at("case") + ", " + x_case);
 }
 
+// A sweep under a vertical record alone: the horizontal PGA is 0 at every
+// scale (the record has no horizontal part), which collapse_scales.md says,
+// and the figure draws the runs against their scales (input probe, stop 41:
+// every run at x = 0; the figure's own test is test_fq_plot.py).
+TEST(StudyCommands, ASweepWithoutHorizontalMotionSaysItsPgaIsZero) {
+  TempDir dir;
+  std::string portal = read_text(kSource / "cases/demo_portal_frame.yaml");
+  const std::string record = "file: ground_motions/RSN1106_KOBE_KJM000.AT2, format: peer_at2, axis: x";
+  ASSERT_NE(portal.find(record), std::string::npos);
+  portal.replace(portal.find(record), record.size(),
+                 "file: " + (kSource / "cases/ground_motions").string() +
+                     "/RSN1106_KOBE_KJM-UP.AT2, format: peer_at2, axis: z");
+  std::ofstream(dir.path() / "up.yaml", std::ios::binary) << portal;
+  const fs::path out = dir.path() / "sw";
+  const auto r = run_app({"sweep", (dir.path() / "up.yaml").string(), "--scales", "1,2", "--jobs", "1",
+                          "--window-length", "0.1", "--no-figure", "--out", out.string()},
+                         dir.path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  for (const auto& row : read_csv(out / "sweep.csv")) EXPECT_EQ(row.at("pga_mps2"), "0") << row.at("scale");
+  const std::string md = read_text(out / "collapse_scales.md");
+  EXPECT_NE(md.find("\nNo horizontal ground motion (PGA, here and in sweep.csv, is the horizontal peak, 0 for these; "
+                    "sweep.png draws them against the amplitude scale):\n- demo_portal_frame, record "
+                    "RSN1106_KOBE_KJM-UP\n"),
+            std::string::npos)
+      << md;
+}
+
 // Every run's folder is checked before the first run starts: a folder a
 // run would refuse (a user's own files in it), or a case named like one of
 // the tables, stops the study with nothing run (a probe's compare ran one
