@@ -586,6 +586,26 @@ void check_at2_units(const std::string& file, std::string_view line) {
 
 // ---- two-column fields -------------------------------------------------------
 
+// Why a two-column line may have split into more columns, for its message
+// (input probe, stop 41: "0,00;0,009792" and a quoted CSV header read
+// "found 3" and "found 4" with no hint): a header line of words or quotes,
+// or numbers written with decimal commas (a digit, a comma, a digit, with a
+// semicolon or a second such comma on the line).
+std::string extra_columns_hint(std::string_view body) {
+  const bool words = std::any_of(body.begin(), body.end(), [](char c) {
+    return c == '"' || c == '\'' || ((is_alpha(c) && c != 'e' && c != 'E' && c != 'd' && c != 'D'));
+  });
+  if (words) return " (a header line? start it with '#')";
+  int digit_comma_digit = 0;
+  for (std::size_t i = 1; i + 1 < body.size(); ++i)
+    if (body[i] == ',' && body[i - 1] >= '0' && body[i - 1] <= '9' && body[i + 1] >= '0' && body[i + 1] <= '9')
+      ++digit_comma_digit;
+  if (body.find(';') != std::string_view::npos || digit_comma_digit >= 2)
+    return " (numbers with decimal commas? write them with a point, as 0.009792, and separate the two columns by "
+           "blanks or one comma)";
+  return "";
+}
+
 // Splits a data line into fields separated by blanks and/or one comma.
 // Returns the number of fields found (up to `max_fields` are stored), or -1
 // if a field is empty (two commas in a row, or a leading/trailing comma).
@@ -838,7 +858,7 @@ AccelerationRecord read_two_column(const std::filesystem::path& file, Accelerati
     if (n_fields > 2)
       throw InputError(name, line_no, "value",
                        "expected 2 columns 'time acceleration', found " + std::to_string(n_fields) + ": " +
-                           quoted(body));
+                           quoted(body) + extra_columns_hint(body));
     const double t = finite_number(name, line_no, "time", fields[0], "a time in s");
     time_resolution_s = std::max(time_resolution_s, printed_resolution(fields[0]));
     const double a = finite_number(name, line_no, "acceleration", fields[1], "an acceleration in " + unit_name);

@@ -553,6 +553,14 @@ std::vector<BadInput> bad_inputs() {
       {"two_binary", F::TwoColumn, std::string("0.0 1.0\n\x7f\x45LF\x02\x01\x01\0", 16), 2, "value", "0x7F"},
       {"two_comments_only", F::TwoColumn, "# nothing here\n\n# still nothing\n", 3, "value", "found 0"},
       {"two_one_sample", F::TwoColumn, "# one row\n0.0 1.0\n", 2, "value", "found 1"},
+      // More columns than two, with the likely reason (input probe, stop
+      // 41): decimal commas with semicolons, a header line not commented
+      // out; three plain numbers get no guess.
+      {"two_decimal_commas", F::TwoColumn, "0,00;0,009792\n0,01;0,0101\n", 1, "value",
+       "found 3: '0,00;0,009792' (numbers with decimal commas? write them with a point"},
+      {"two_quoted_header", F::TwoColumn, "\"time (s)\",\"acc\",\"vel\"\n0 1\n0.01 2\n", 1, "value",
+       "found 4: '\"time (s)\",\"acc\",\"vel\"' (a header line? start it with '#')"},
+      {"two_three_numbers", F::TwoColumn, "0 1.0 2.5E-01\n0.01 2 3\n", 1, "value", "found 3: '0 1.0 2.5E-01'"},
       {"two_time_decreasing", F::TwoColumn, "0.00 1\n0.02 2\n0.01 3\n", 3, "time", "increase"},
       {"two_time_repeated", F::TwoColumn, "0.00 1\n0.01 2\n0.01 3\n", 3, "time", "line 2"},
       {"two_time_text", F::TwoColumn, "0.00 1\nt 2\n", 2, "time", "'t'"},
