@@ -1104,13 +1104,31 @@ std::string turned_column_sections_warning(const CaseDef& def, const Scene& scen
 }
 
 std::string no_columns_warning(const CaseDef& def) {
-  if (def.members.empty()) return {};  // blocks only: no frame to assess
-  for (const MemberDef& m : def.members)
-    if (m.kind == MemberKind::Column) return {};
+  const bool member_column = std::any_of(def.members.begin(), def.members.end(),
+                                         [](const MemberDef& m) { return m.kind == MemberKind::Column; });
+  // A block given kind column: storeys are found from members (between
+  // nodes) only, so it spans none (input probe, stop 41: a case whose
+  // columns were blocks got no storeys, and nothing said why).
+  std::vector<const BlockDef*> column_blocks;
+  for (const BlockDef& b : def.blocks)
+    if (b.kind == MemberKind::Column) column_blocks.push_back(&b);
+  // Blocks only, none a column: no frame to assess.
+  if ((def.members.empty() || member_column) && column_blocks.empty()) return {};
   std::ostringstream w;
-  w << def.source_file.string() << ": no member is of kind column, so the case has no storeys and the run gives no "
-    << "storey drift and no verdict (storeys are the bands between the floors its columns reach: cases/README.md, "
-       "assessment); give the posts that carry the floors kind: column";
+  w << def.source_file.string() << ": ";
+  if (!def.members.empty() && !member_column)
+    w << "no member is of kind column, so the case has no storeys and the run gives no "
+      << "storey drift and no verdict (storeys are the bands between the floors its columns reach: cases/README.md, "
+         "assessment); give the posts that carry the floors kind: column";
+  if (!column_blocks.empty()) {
+    if (!def.members.empty() && !member_column) w << "; ";
+    w << "block '" << column_blocks.front()->id << "' (line " << column_blocks.front()->line << ")";
+    if (column_blocks.size() > 1) w << " and " << column_blocks.size() - 1 << " more";
+    w << (column_blocks.size() > 1 ? " are" : " is") << " of kind column, but storeys are found from members "
+      << "(between two nodes) only, so " << (column_blocks.size() > 1 ? "they span" : "it spans")
+      << " no storey and " << (column_blocks.size() > 1 ? "their" : "its")
+      << " drift is not assessed; make a post a member between two nodes to have it assessed";
+  }
   return w.str();
 }
 
