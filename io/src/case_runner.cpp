@@ -1,6 +1,7 @@
 #include "io/case_runner.h"
 
 #include <algorithm>
+#include <numbers>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -577,6 +578,9 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
       if (const std::string w =
               contact_press_warning(scene.contacts->press_peak(), sim.bodies(), scene.contacts->initial_overlaps());
           !w.empty())
+        warn(w);
+    if (scene.joints)
+      if (const std::string w = whole_turn_joints_warning(*scene.joints, sim.bodies(), scene.joint_names); !w.empty())
         warn(w);
     for (std::size_t i = 0; i < storeys.storeys().size(); ++i)
       for (const std::string& w : {storeys.twist_warning(i), storey_slip_warning(storeys, i, scene.joints),
@@ -1162,6 +1166,37 @@ StoreyColumnJoints storey_column_joints(const Storey& storey, const JointSystem&
   }
   n.every_column_held = std::find(has_joint.begin(), has_joint.end(), 0) == has_joint.end();
   return n;
+}
+
+std::string whole_turn_joints_warning(const JointSystem& joints, const BodyStore& bodies,
+                                      const std::vector<std::string>& joint_names) {
+  constexpr double kTurnWarned_rad = 1.5 * std::numbers::pi;
+  std::size_t count = 0, worst = 0;
+  double worst_rad = 0.0;
+  for (std::size_t j = 0; j < joints.joint_count(); ++j) {
+    if (joints.joint_status(j) == JointStatus::Broken) continue;
+    const double turn = joints.relative_turn_rad(bodies, j);
+    if (!(turn > kTurnWarned_rad)) continue;
+    ++count;
+    if (turn > worst_rad) {
+      worst_rad = turn;
+      worst = j;
+    }
+  }
+  if (count == 0) return {};
+  std::ostringstream w;
+  w << std::setprecision(4) << "joint '" << (worst < joint_names.size() ? joint_names[worst] : std::to_string(worst))
+    << "'";
+  if (count > 1) w << " and " << count - 1 << (count == 2 ? " other" : " others");
+  w << " still holding at the end " << (count > 1 ? "have" : "has") << " turned " << (count > 1 ? "their" : "its")
+    << " two bodies more than three quarters of a whole turn against each other (" << worst_rad * 180.0 / std::numbers::pi
+    << " deg" << (count > 1 ? " the most" : "")
+    << "): near a whole turn a joint's half-way frame is undefined, and past it the frame is turned half a turn, so "
+       "the forces of "
+    << (count > 1 ? "these joints" : "this joint")
+    << " after that are unreliable (joints/README.md, Large rotations); joints that can break (an ultimate "
+       "strain) break long before";
+  return w.str();
 }
 
 // The slip warning of storey i, told whether the joints holding its

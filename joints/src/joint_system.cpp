@@ -894,6 +894,13 @@ double JointSystem::spring_strain_ratio(std::size_t s) const {
   return std::isfinite(u) ? std::abs(d) / u : 0.0;
 }
 
+double JointSystem::relative_turn_rad(const BodyStore& bodies, std::size_t j) const {
+  const Quat qa = bodies.orientation[joint_body_a_[j]] * joint_frame_a_[j];
+  const Quat qb = bodies.orientation[joint_body_b_[j]] * joint_frame_b_[j];
+  const double c = qa.coeffs().dot(qb.coeffs()) / (qa.norm() * qb.norm());
+  return 2.0 * std::acos(std::clamp(c, -1.0, 1.0));
+}
+
 JointStatus JointSystem::joint_status(std::size_t j) const {
   if (joint_broken_[j]) return JointStatus::Broken;
   if (alive_.empty()) return JointStatus::Intact;

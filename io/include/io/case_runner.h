@@ -316,6 +316,18 @@ std::string nothing_holds_the_frame_warning(const CaseDef& def, const Scene& sce
 // joint ever held.
 std::string loose_columns_warning(const Storey& storey, StoreyVerdict verdict, const JointSystem& joints);
 
+// The warning for joints still holding at the run's end whose two bodies
+// have turned more than three quarters of a whole turn against each other
+// along their path (JointSystem::relative_turn_rad above 3 pi / 2): near a
+// whole turn a joint's half-way frame is undefined, and past it the frame
+// is turned half a turn about the relative rotation's axis, so such a
+// joint's forces are unreliable (a frame probe, stop 41: an unbreakable
+// support spun a whole turn booked a balance error of 8e-3, and a portal
+// that swung a whole turn about its feet blew up). Empty when none has.
+// `joint_names` per joint id, as in events.csv.
+std::string whole_turn_joints_warning(const JointSystem& joints, const BodyStore& bodies,
+                                      const std::vector<std::string>& joint_names);
+
 // The joints that hold a storey's columns (a joint with one of the storey's
 // column members at either end), and how many of them broke.
 struct StoreyColumnJoints {

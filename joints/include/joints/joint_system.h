@@ -182,6 +182,12 @@ class JointSystem final : public ForceProvider {
   // it keeps the value of the step the joint broke (docs/paraview.md).
   double spring_strain_ratio(std::size_t s) const;
   JointStatus joint_status(std::size_t j) const;
+  // How far joint j's two bodies have turned against each other along the
+  // path their orientation quaternions took (rad, 0 to 2 pi): 2 acos of the
+  // dot product of the joint frames' quaternions, whose sum gives the
+  // half-way frame (joint_frame_now_). Near 2 pi, a whole turn, that sum
+  // vanishes and the frame is undefined (joints/README.md, Large rotations).
+  double relative_turn_rad(const BodyStore& bodies, std::size_t j) const;
   BodyId joint_body_a(std::size_t j) const { return joint_body_a_[j]; }
   BodyId joint_body_b(std::size_t j) const { return joint_body_b_[j]; }
   std::size_t joint_first_spring(std::size_t j) const { return std::size_t(joint_first_[j]); }
