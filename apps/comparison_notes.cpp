@@ -86,9 +86,10 @@ std::string ground_motion_note(const std::vector<CaseGroundMotion>& cases) {
   };
   auto described = [](const CaseGroundMotion& c) { return c.motion.empty() ? std::string("none") : c.motion; };
   const bool alike = std::all_of(cases.begin(), cases.end(),
-                                 [&](const CaseGroundMotion& c) { return c.motion == cases.front().motion; });
+                                 [&](const CaseGroundMotion& c) { return c.identity == cases.front().identity; });
   if (alike) {
-    // The peak of a case that ran (the same motion gives the same peak).
+    // The peak of a case that completed (the same motion, applied whole,
+    // gives the same peak).
     double pga = std::numeric_limits<double>::quiet_NaN();
     for (const CaseGroundMotion& c : cases)
       if (!std::isnan(c.pga_mps2)) {

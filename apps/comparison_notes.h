@@ -55,12 +55,16 @@ std::string time_integration_note(const std::vector<CaseTimeIntegration>& cases)
 // verdicts compare frames only under the same shaking, and the table does
 // not show it (an input probe compared a case under Takatori with one under
 // El Centro and nothing said so). `motion` describes the records, axes,
-// scales and window ("" for a case without ground motion); `pga_mps2` is
-// the horizontal peak the run applied (NaN: the case did not run). One line
-// when every case's motion is the same, a line per case otherwise.
+// scales and window ("" for a case without ground motion); `identity` is
+// the same with each record's whole path, by which the cases are compared
+// (two records of one name in different folders differ); `pga_mps2` is the
+// horizontal peak a completed run applied (NaN: it did not complete, so its
+// peak may be that of part of the motion). One line when every case's
+// motion is the same, a line per case otherwise.
 struct CaseGroundMotion {
   std::string label;
   std::string motion;
+  std::string identity;
   double pga_mps2 = 0.0;
 };
 std::string ground_motion_note(const std::vector<CaseGroundMotion>& cases);

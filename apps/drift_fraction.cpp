@@ -15,17 +15,23 @@ std::string drift_one_in_n(double ratio_rad, const std::vector<double>& limits_r
   // (a limit is "beyond" for one verdict and "from" for another: both
   // comparisons must agree).
   auto same_side = [&](double shown_n) {
-    const double shown = 1.0 / shown_n;
-    for (const double limit : limits_rad)
-      if ((shown > limit) != (ratio_rad > limit) || (shown >= limit) != (ratio_rad >= limit)) return false;
+    const double shown_rad = 1.0 / shown_n;
+    for (const double limit_rad : limits_rad)
+      if ((shown_rad > limit_rad) != (ratio_rad > limit_rad) || (shown_rad >= limit_rad) != (ratio_rad >= limit_rad))
+        return false;
     return true;
   };
-  char text[64];
-  for (int decimals = 0;; ++decimals) {
-    std::snprintf(text, sizeof text, "%.*f", decimals, n);
-    if (decimals == 6 || same_side(std::strtod(text, nullptr))) break;
+  // Whole n rounded half away from zero (1/262.5 rad is 1/263), as
+  // before; decimals by printf's rounding.
+  std::string text = std::to_string(std::llround(n));
+  if (same_side(double(std::llround(n)))) return "1/" + text;
+  char decimal_text[64];
+  for (int decimals = 1; decimals <= 6; ++decimals) {
+    std::snprintf(decimal_text, sizeof decimal_text, "%.*f", decimals, n);
+    text = decimal_text;
+    if (same_side(std::strtod(decimal_text, nullptr))) break;
   }
-  return std::string("1/") + text;
+  return "1/" + text;
 }
 
 }  // namespace fq_app

@@ -309,10 +309,11 @@ std::string exact_text(double x) {
 }
 
 // What a case's ground motion applies, for comparison.md's note: each
-// record by file name, its axis and amplitude scale, then the record
-// seconds run and the time scale ("RSN1106_KOBE_KJM000.AT2 along x, record
-// seconds 0 to 20 at time scale 0.3162"); "" without ground motion.
-std::string ground_motion_text(const fq::CaseDef& def) {
+// record by file name (`whole_paths`: by its whole path), its axis and
+// amplitude scale, then the record seconds run and the time scale
+// ("RSN1106_KOBE_KJM000.AT2 along x, record seconds 0 to 20 at time scale
+// 0.3162"); "" without ground motion.
+std::string ground_motion_text(const fq::CaseDef& def, bool whole_paths) {
   if (!def.ground_motion) return {};
   const fq::GroundMotionDef& gm = *def.ground_motion;
   auto axis = [](const fq::Vec3& d) -> std::string {
@@ -338,7 +339,8 @@ std::string ground_motion_text(const fq::CaseDef& def) {
   std::string text;
   for (const fq::GroundMotionComponentDef& c : gm.components) {
     if (!text.empty()) text += ", ";
-    text += c.resolved_file.filename().string() + " along " + axis(c.direction);
+    text += (whole_paths ? c.resolved_file.string() : c.resolved_file.filename().string()) + " along " +
+            axis(c.direction);
     if (c.amplitude_scale != 1.0) text += " x " + exact_text(c.amplitude_scale);
   }
   const double applied_s = applied_window_s(gm, gm.window_length_s, def.time.duration_s);
@@ -1139,9 +1141,10 @@ int command_compare(int argc, char** argv, const std::atomic<bool>* stop_request
       time_integration.push_back({job.label, fq::integrator_name(job.def.time.integrator), job.def.time.dt_s});
     std::vector<CaseGroundMotion> motions;
     for (std::size_t i = 0; i < jobs.size(); ++i)
-      motions.push_back({jobs[i].label, ground_motion_text(jobs[i].def),
-                         outcomes[i].ok ? outcomes[i].report.peak_ground_acceleration_mps2
-                                        : std::numeric_limits<double>::quiet_NaN()});
+      motions.push_back({jobs[i].label, ground_motion_text(jobs[i].def, false), ground_motion_text(jobs[i].def, true),
+                         outcomes[i].ok && outcomes[i].report.result.status == fq::RunStatus::Completed
+                             ? outcomes[i].report.peak_ground_acceleration_mps2
+                             : std::numeric_limits<double>::quiet_NaN()});
     md << ground_motion_note(motions) << time_integration_note(time_integration) << contact_model_note(contact_models)
        << collapse_order_note(labelled) << warnings_note(labelled);
     // A shortened window can miss the record's strongest part, and with

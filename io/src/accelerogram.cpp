@@ -532,10 +532,31 @@ At2Size parse_npts_dt(const std::string& file, std::string_view line) {
 // Without "UNITS OF" the line is still read for what it names (input probe,
 // stop 41: "VELOCITY TIME SERIES" and "ACCELERATION IN CM/S/S" were read as
 // acceleration in g): a quantity word other than acceleration
-// (VELOCITY, DISPLACEMENT) with no ACCELERATION beside it, or a unit word
-// of another unit (a word starting with a letter and holding a '/', as
-// CM/S/S or M/S2; GAL, GALS), is refused. Dates ("10/15/79") start with a
-// digit and are not units.
+// (VELOCITY, DISPLACEMENT) with no ACCELERATION beside it, or a word that
+// is a unit of length per time (is_rate_unit: CM/S/S, M/S2, CM/SEC, ...;
+// GAL, GALS), is refused. Other words with a '/' ("N/S", "CDMG/USGS",
+// dates) are text.
+bool is_rate_unit(std::string_view word) {
+  const std::size_t slash = word.find('/');
+  if (slash == std::string_view::npos) return equals_ci(word, "GAL") || equals_ci(word, "GALS");
+  const std::string_view length = word.substr(0, slash);
+  bool length_unit = false;
+  for (const char* l : {"MM", "CM", "M", "IN", "FT"}) length_unit = length_unit || equals_ci(length, l);
+  if (!length_unit) return false;
+  // The time part: S or SEC, optionally squared (2, ^2, **2) or divided by
+  // S or SEC again.
+  std::string_view rest = word.substr(slash + 1);
+  bool time_unit = false;
+  for (const char* t : {"SEC", "S"})
+    if (!time_unit && find_ci(rest, t) == 0) {
+      rest.remove_prefix(std::string_view(t).size());
+      time_unit = true;
+    }
+  if (!time_unit) return false;
+  if (rest.empty() || rest == "2" || rest == "^2" || rest == "**2") return true;
+  return equals_ci(rest, "/S") || equals_ci(rest, "/SEC");
+}
+
 void check_at2_units(const std::string& file, std::string_view line) {
   const std::size_t k = find_ci(line, "UNITS OF");
   if (k == std::string_view::npos) {
@@ -555,9 +576,7 @@ void check_at2_units(const std::string& file, std::string_view line) {
       if (word.empty()) continue;
       if (find_ci(word, "ACCEL") == 0) acceleration = true;
       if (equals_ci(word, "VELOCITY") || equals_ci(word, "DISPLACEMENT")) other_quantity = word;
-      if ((is_alpha(word.front()) && word.find('/') != std::string_view::npos) || equals_ci(word, "GAL") ||
-          equals_ci(word, "GALS"))
-        other_unit = word;
+      if (is_rate_unit(word)) other_unit = word;
     }
     if (!other_quantity.empty() && !acceleration)
       throw InputError(file, 3, "header",
@@ -588,19 +607,38 @@ void check_at2_units(const std::string& file, std::string_view line) {
 
 // Why a two-column line may have split into more columns, for its message
 // (input probe, stop 41: "0,00;0,009792" and a quoted CSV header read
-// "found 3" and "found 4" with no hint): a header line of words or quotes,
-// or numbers written with decimal commas (a digit, a comma, a digit, with a
-// semicolon or a second such comma on the line).
+// "found 3" and "found 4" with no hint): a header line (a field that is
+// not a number and holds a letter or a quote), or numbers written with
+// decimal commas (a semicolon between them, or two blank-separated words
+// each with a comma between digits). A line of three numbers gets none.
 std::string extra_columns_hint(std::string_view body) {
-  const bool words = std::any_of(body.begin(), body.end(), [](char c) {
-    return c == '"' || c == '\'' || ((is_alpha(c) && c != 'e' && c != 'E' && c != 'd' && c != 'D'));
-  });
-  if (words) return " (a header line? start it with '#')";
-  int digit_comma_digit = 0;
-  for (std::size_t i = 1; i + 1 < body.size(); ++i)
-    if (body[i] == ',' && body[i - 1] >= '0' && body[i - 1] <= '9' && body[i + 1] >= '0' && body[i + 1] <= '9')
-      ++digit_comma_digit;
-  if (body.find(';') != std::string_view::npos || digit_comma_digit >= 2)
+  std::vector<std::string_view> words;  // split at blanks, commas and semicolons
+  for (std::size_t i = 0; i < body.size();) {
+    while (i < body.size() && (is_blank(body[i]) || body[i] == ',' || body[i] == ';')) ++i;
+    std::size_t j = i;
+    while (j < body.size() && !is_blank(body[j]) && body[j] != ',' && body[j] != ';') ++j;
+    if (j > i) words.push_back(body.substr(i, j - i));
+    i = j;
+  }
+  for (const std::string_view w : words) {
+    double value = 0.0;
+    if (parse_number(w, value) == NumberStatus::Ok) continue;
+    if (std::any_of(w.begin(), w.end(), [](char c) { return c == '"' || c == '\'' || is_alpha(c); }))
+      return " (a header line? start it with '#')";
+  }
+  auto digit = [](char c) { return c >= '0' && c <= '9'; };
+  int comma_words = 0;  // blank- or semicolon-separated words with a comma between digits
+  for (std::size_t i = 0; i < body.size();) {
+    while (i < body.size() && (is_blank(body[i]) || body[i] == ';')) ++i;
+    std::size_t j = i;
+    bool decimal_comma = false;
+    for (; j < body.size() && !is_blank(body[j]) && body[j] != ';'; ++j)
+      if (body[j] == ',' && j > i && j + 1 < body.size() && digit(body[j - 1]) && digit(body[j + 1]))
+        decimal_comma = true;
+    comma_words += decimal_comma;
+    i = j;
+  }
+  if (body.find(';') != std::string_view::npos || comma_words >= 2)
     return " (numbers with decimal commas? write them with a point, as 0.009792, and separate the two columns by "
            "blanks or one comma)";
   return "";

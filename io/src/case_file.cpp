@@ -55,19 +55,22 @@ std::string why_not_a_readable_file(const std::filesystem::path& file) {
 // "link/.." without following the link, where the system goes up from the
 // link's target: a case in a symbolically linked folder naming
 // ../gm/rec.AT2 read another file of that name beside the link, silently
-// (input probe, stop 41). The normal form is kept only where it names the
-// same file, or where neither exists (the message then reads better);
-// otherwise the path with its links resolved.
+// (input probe, stop 41). The normal form is kept where its folder is the
+// folder the system reaches; otherwise that folder with its links
+// followed, and the file's own name (a record that is itself a link keeps
+// the name the case gives it, as in a git-annex store; review, stop 41).
 std::filesystem::path resolve_record_path(const std::filesystem::path& case_folder, const std::filesystem::path& file) {
   namespace fs = std::filesystem;
   const fs::path given = file.is_absolute() ? file : case_folder / file;
   const fs::path normal = given.lexically_normal();
-  std::error_code ec;
-  if (normal == given) return given;
-  if (!fs::exists(given, ec)) return fs::exists(normal, ec) ? given : normal;
-  if (fs::equivalent(given, normal, ec) && !ec) return normal;
-  const fs::path real = fs::weakly_canonical(given, ec);
-  return ec ? given : real;
+  if (normal == given || given.filename().empty()) return normal;
+  std::error_code ec, ec_normal;
+  const fs::path folder = fs::weakly_canonical(given.parent_path().empty() ? fs::path(".") : given.parent_path(), ec);
+  if (ec) return given;
+  const fs::path normal_folder =
+      fs::weakly_canonical(normal.parent_path().empty() ? fs::path(".") : normal.parent_path(), ec_normal);
+  if (!ec_normal && normal_folder == folder) return normal;
+  return folder / given.filename();
 }
 
 constexpr double kRadPerDeg = std::numbers::pi / 180.0;

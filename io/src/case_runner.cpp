@@ -673,12 +673,13 @@ std::string contact_press_warning(const ContactPressPeak& peak, const BodyStore&
     w << name(peak.body_b) << " " << peak.depth_m * 1e3 << " mm into the ground";
   else
     w << name(peak.body_a) << " and " << name(peak.body_b) << " " << peak.depth_m * 1e3 << " mm into each other";
-  // Times of a second and more to the millisecond; earlier ones to three
-  // significant digits, so that a peak at 0.57 ms does not read "0.001 s".
-  if (peak.time_s >= 0.1)
-    w << " at t = " << std::fixed << std::setprecision(3) << peak.time_s << " s, " << std::defaultfloat;
-  else
-    w << " at t = " << std::setprecision(3) << peak.time_s << " s, ";
+  // Times from 0.1 s on to the millisecond; earlier ones to two
+  // significant digits at least, so that a peak at 0.57 ms does not read
+  // "0.001 s" (nor 10 us "1e-05 s").
+  const int decimals = peak.time_s >= 0.1 || !(peak.time_s > 0.0)
+                           ? 3
+                           : std::max(3, 1 - int(std::floor(std::log10(peak.time_s))));
+  w << " at t = " << std::fixed << std::setprecision(decimals) << peak.time_s << " s, " << std::defaultfloat;
   w << std::setprecision(3) << 100.0 * peak.ratio << " % of the " << peak.half_dimension_m * 1e3
     << " mm half-thickness of " << name(peak.measured)
     << (peak.body_a == kNoBody ? "" : ", the thinner free box of the two")
@@ -1156,7 +1157,6 @@ StoreyColumnJoints storey_column_joints(const Storey& storey, const JointSystem&
     const bool broken = joints.joint_status(j) == JointStatus::Broken;
     const std::size_t holds = std::size_t(ca >= 0) + std::size_t(cb >= 0 && cb != ca);
     ++n.joints;
-    n.column_holds += holds;
     if (broken) {
       ++n.broken;
       n.broken_holds += holds;
@@ -1175,11 +1175,11 @@ std::string whole_turn_joints_warning(const JointSystem& joints, const BodyStore
   double worst_rad = 0.0;
   for (std::size_t j = 0; j < joints.joint_count(); ++j) {
     if (joints.joint_status(j) == JointStatus::Broken) continue;
-    const double turn = joints.relative_turn_rad(bodies, j);
-    if (!(turn > kTurnWarned_rad)) continue;
+    const double turn_rad = joints.relative_turn_rad(bodies, j);
+    if (!(turn_rad > kTurnWarned_rad)) continue;
     ++count;
-    if (turn > worst_rad) {
-      worst_rad = turn;
+    if (turn_rad > worst_rad) {
+      worst_rad = turn_rad;
       worst = j;
     }
   }

@@ -595,19 +595,22 @@ std::string StoreyDriftMonitor::slip_warning(std::size_t i, int broken_column_jo
   // Why it slid, as far as the caller knows (closed-form probe, stop 41:
   // a cantilever's arm that fell when its joint broke read as a floor
   // sliding on a joint that held).
+  const bool one_column = s.columns.size() == 1;
+  const char* columns = one_column ? "its column" : "its columns";
   if (column_joints < 0)
     w << " (events.csv lists the joints that broke; a joint soft in shear lets its members slide while it holds)";
   else if (broken_column_joints > 0 && column_joints == 1)
-    w << " (the joint holding its column broke; events.csv says when)";
+    w << " (the joint holding " << columns << " broke; events.csv says when)";
   else if (broken_column_joints > 0)
-    w << " (" << broken_column_joints << " of the " << column_joints
-      << " joints holding its columns broke; events.csv lists them)";
+    w << " (" << broken_column_joints << " of the " << column_joints << " joints holding " << columns
+      << " broke; events.csv lists them)";
   else if (column_joints > 0)
-    w << " (" << (column_joints == 1 ? "the joint holding its column did not break"
-                                      : "none of the joints holding its columns broke")
+    w << " (" << (column_joints == 1 ? "the joint" : "none of the joints") << " holding " << columns
+      << (column_joints == 1 ? " did not break" : " broke")
       << ": a joint soft in shear lets its members slide while it holds)";
   else
-    w << " (no joint holds its columns: they stand and slide on their contacts)";
+    w << " (no joint holds " << columns << ": " << (one_column ? "it stands" : "they stand")
+      << " and slide" << (one_column ? "s" : "") << " on " << (one_column ? "its" : "their") << " contacts)";
   w << "; the verdict is that of the tilt (peak_floor_drift_ratio_rad, peak_top_slip_m and peak_base_slip_m in "
        "summary.json; cases/README.md, assessment)";
   return w.str();

@@ -386,7 +386,7 @@ def draw_sweep(folder):
     # the 2 and 5 between them get labels too.
     ax.yaxis.set_minor_formatter(matplotlib.ticker.LogFormatterSciNotation(labelOnlyBase=False,
                                                                            minor_thresholds=(2, 0.4)))
-    ax.set_xlabel("amplitude scale of the record (no horizontal motion: PGA 0)" if by_scale
+    ax.set_xlabel("amplitude scale of the record (a ground motion without horizontal part: PGA 0)" if by_scale
                   else "peak ground acceleration (g)")
     ax.set_ylabel("peak storey drift ratio, largest storey (rad)")
     ax.set_title("Amplitude sweep: filled marker = a storey collapsed, hollow = none collapsed", fontsize=11)

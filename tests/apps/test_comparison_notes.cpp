@@ -102,17 +102,24 @@ TEST(ComparisonNotes, IntegratorsAndStepsAreNamedWhenTheCasesDiffer) {
 }  // namespace
 
 // The ground motion is always named: one line when every case ran under the
-// same one (its peak from a case that ran; 9.80665 m/s² is 1 g), a line
+// same one (its peak from a case that completed; 9.80665 m/s² is 1 g), a line
 // per case when they differ, with "none" for a case without ground motion,
 // no peak for a case that did not run, and a vertical-only motion said to
 // have no horizontal acceleration (its horizontal PGA is 0).
 TEST(ComparisonNotes, TheGroundMotionIsNamedOnceWhenSharedAndPerCaseWhenNot) {
   const double not_run = std::nan("");
   const std::string kobe = "KJM000.AT2 along x, record seconds 0 to 20 at time scale 0.3162";
-  EXPECT_EQ(fq_app::ground_motion_note({{"A", kobe, not_run}, {"B", kobe, 9.80665}, {"C", kobe, 9.80665}}),
+  const std::string kobe_path = "/r/" + kobe, up = "KJM-UP.AT2 along z, record seconds 0 to 20";
+  EXPECT_EQ(fq_app::ground_motion_note(
+                {{"A", kobe, kobe_path, not_run}, {"B", kobe, kobe_path, 9.80665}, {"C", kobe, kobe_path, 9.80665}}),
             "\nGround motion (every case): " + kobe + "; horizontal PGA 9.81 m/s² (1 g)\n");
-  EXPECT_EQ(fq_app::ground_motion_note({{"A", kobe, 4.903325}, {"up", "KJM-UP.AT2 along z, record seconds 0 to 20", 0.0},
-                                        {"still", "", 0.0}, {"D", kobe, not_run}}),
+  // Two records of one name in different folders are two motions.
+  EXPECT_EQ(fq_app::ground_motion_note({{"A", kobe, kobe_path, 9.80665}, {"B", kobe, "/s/" + kobe, 4.903325}}),
+            "\nGround motion of each case (they differ: the verdicts compare the frames under different shaking):\n"
+            "- A: " + kobe + "; horizontal PGA 9.81 m/s² (1 g)\n"
+            "- B: " + kobe + "; horizontal PGA 4.9 m/s² (0.5 g)\n");
+  EXPECT_EQ(fq_app::ground_motion_note({{"A", kobe, kobe_path, 4.903325}, {"up", up, "/r/" + up, 0.0},
+                                        {"still", "", "", 0.0}, {"D", kobe, kobe_path, not_run}}),
             "\nGround motion of each case (they differ: the verdicts compare the frames under different shaking):\n"
             "- A: " + kobe + "; horizontal PGA 4.9 m/s² (0.5 g)\n"
             "- up: KJM-UP.AT2 along z, record seconds 0 to 20; no horizontal acceleration\n"

@@ -16,6 +16,7 @@ TEST(DriftFraction, ARatioReadsAsOneOverItsRoundedReciprocal) {
   EXPECT_EQ(drift_one_in_n(0.0038), "1/263");   // 263.16
   EXPECT_EQ(drift_one_in_n(0.5), "1/2");
   EXPECT_EQ(drift_one_in_n(1e-9), "1/1000000000");
+  EXPECT_EQ(drift_one_in_n(1.0 / 262.5), "1/263");  // a half rounds away from zero
 }
 
 // Below a nanoradian there is no 1/n: a still frame's round-off drift of

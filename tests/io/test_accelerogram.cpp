@@ -345,13 +345,15 @@ TEST(Accelerogram, ATrailingDosEndOfFileMarkIsIgnored) {
 
 // Line 3 without "UNITS OF" is read for what it names (bad_inputs: another
 // quantity or unit is refused), but a line that names acceleration, a
-// date's slashes or nothing of either is not refused: the shipped records'
-// form, an older one, and lines written by hand.
+// date's slashes, words with a slash that are no unit ("N/S", "CDMG/USGS";
+// review, stop 41) or nothing of these is not refused: the shipped
+// records' form, an older one, and lines written by hand.
 TEST(PeerAt2, ALineThreeNamingAccelerationOrNoUnitIsRead) {
   TempDir dir;
   const std::string rest = "NPTS= 2, DT= .0100 SEC\n  .1E-02  .2E-02\n";
   for (const char* line3 : {"ACCELERATION TIME HISTORY IN UNITS OF G", "Acceleration, velocity and displacement",
-                            "processed 10/15/79 (g)", "horizontal component", ""}) {
+                            "processed 10/15/79 (g)", "horizontal component", "", "ACCELERATION, COMPONENT N/S",
+                            "Recorded by CDMG/USGS"}) {
     SCOPED_TRACE(line3);
     const fq::AccelerationRecord r =
         fq::read_peer_at2(dir.write("line3.AT2", "PEER NGA STRONG MOTION DATABASE RECORD\nx\n" +
@@ -516,6 +518,9 @@ std::vector<BadInput> bad_inputs() {
       {"at2_cms2_no_units_of", F::PeerAt2,
        "PEER NGA STRONG MOTION DATABASE RECORD\nx\nACCELERATION IN CM/S/S\nNPTS= 5, DT= .01 SEC\n" + five, 3,
        "header", "got unit 'CM/S/S'"},
+      {"at2_ms2_no_units_of", F::PeerAt2,
+       "PEER NGA STRONG MOTION DATABASE RECORD\nx\nAcceleration [m/s^2]\nNPTS= 5, DT= .01 SEC\n" + five, 3,
+       "header", "got unit 'm/s^2'"},
       {"at2_gal_no_units_of", F::PeerAt2,
        "PEER NGA STRONG MOTION DATABASE RECORD\nx\nACCELERATION (GAL)\nNPTS= 5, DT= .01 SEC\n" + five, 3,
        "header", "got unit 'GAL'"},
@@ -561,6 +566,7 @@ std::vector<BadInput> bad_inputs() {
       {"two_quoted_header", F::TwoColumn, "\"time (s)\",\"acc\",\"vel\"\n0 1\n0.01 2\n", 1, "value",
        "found 4: '\"time (s)\",\"acc\",\"vel\"' (a header line? start it with '#')"},
       {"two_three_numbers", F::TwoColumn, "0 1.0 2.5E-01\n0.01 2 3\n", 1, "value", "found 3: '0 1.0 2.5E-01'"},
+      {"two_blank_decimal_commas", F::TwoColumn, "0,00 0,009792\n", 1, "value", "(numbers with decimal commas?"},
       {"two_time_decreasing", F::TwoColumn, "0.00 1\n0.02 2\n0.01 3\n", 3, "time", "increase"},
       {"two_time_repeated", F::TwoColumn, "0.00 1\n0.01 2\n0.01 3\n", 3, "time", "line 2"},
       {"two_time_text", F::TwoColumn, "0.00 1\nt 2\n", 2, "time", "'t'"},

@@ -780,6 +780,30 @@ TEST(CaseFile, ARecordPathGoesUpFromALinkedFoldersTarget) {
 
   const fq::CaseDef direct = fq::load_case_file(dir.path() / "real" / "sub" / "case.yaml");
   EXPECT_EQ(direct.ground_motion->components[0].resolved_file, real_record);
+
+  // A record that is itself a link (a git-annex store) keeps the name the
+  // case gives it; only the folders' links are followed (review, stop 41).
+  const fs::path stored = dir.write("store/SHA256E-s1--deadbeef.txt", constant_record(1.0, 1.0));
+  fs::remove(real_record);
+  fs::create_symlink(stored, real_record);
+  const fs::path read_linked =
+      fq::load_case_file(dir.path() / "top" / "link" / "case.yaml").ground_motion->components[0].resolved_file;
+  EXPECT_EQ(read_linked.filename(), "rec.txt") << read_linked;
+  EXPECT_TRUE(fs::equivalent(read_linked, stored)) << read_linked;
+
+  // Missing: the message names where the system looked, the link's target's
+  // folder, not the folder beside the link.
+  fs::remove(real_record);
+  fs::remove(decoy);
+  try {
+    (void)fq::load_case_file(dir.path() / "top" / "link" / "case.yaml");
+    ADD_FAILURE() << "a missing record was accepted";
+  } catch (const fq::InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("record file not found: " + (fs::canonical(dir.path()) / "real" / "gm" / "rec.txt").string()),
+              std::string::npos)
+        << msg;
+  }
 }
 
 TEST(CaseFile, BuilderRejectsBlockBelowGround) {

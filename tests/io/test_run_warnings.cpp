@@ -191,6 +191,9 @@ TEST(RunWarnings, ContactsPressedPastTheirLimitAreNamedWithDepthAndBodies) {
     early.time_s = 0.57e-3;
     EXPECT_NE(contact_press_warning(early, bodies).find(" at t = 0.00057 s, 6 % "), std::string::npos)
         << contact_press_warning(early, bodies);
+    early.time_s = 1e-5;  // one step
+    EXPECT_NE(contact_press_warning(early, bodies).find(" at t = 0.000010 s, 6 % "), std::string::npos)
+        << contact_press_warning(early, bodies);
     early.time_s = 0.1;
     EXPECT_NE(contact_press_warning(early, bodies).find(" at t = 0.100 s, 6 % "), std::string::npos)
         << contact_press_warning(early, bodies);
@@ -1544,7 +1547,7 @@ TEST(RunWarnings, AFloorThatSlidOffABrokenJointSaysTheJointBroke) {
   const CaseRunReport r = run_case(def, options);
   ASSERT_EQ(r.joints.broken, 1u);
   EXPECT_TRUE(mentions(r.warnings, "the floor slid up to ")) << testing::PrintToString(r.warnings);
-  EXPECT_TRUE(mentions(r.warnings, " on its column tops (1 of the 2 joints holding its columns broke; events.csv "
+  EXPECT_TRUE(mentions(r.warnings, " on its column tops (1 of the 2 joints holding its column broke; events.csv "
                                    "lists them); "))
       << testing::PrintToString(r.warnings);
   EXPECT_FALSE(mentions(r.warnings, "soft in shear")) << testing::PrintToString(r.warnings);

@@ -767,7 +767,9 @@ TEST(StoreyDrift, AFloorThatSlidOnItsColumnTopsWhileTheirFeetSlidNamesBoth) {
   EXPECT_NEAR(r.peak_top_slip_m, 2.0 * d / 3.0, 1e-15);
   EXPECT_NEAR(r.peak_floor_ratio_rad, 5.0 * d / 3.0 / h, 1e-14);
   // The cause, as the caller knows it: unknown (both named), some of the
-  // column joints broken, none of them, a lone joint either way, or none at all.
+  // column joints broken, none of them, a lone joint either way, or none at
+  // all (this storey has three columns; a one-column storey's wording is
+  // in test_run_warnings, the breaking cantilever).
   EXPECT_NE(monitor.slip_warning(0).find(" (events.csv lists the joints that broke; a joint soft in shear lets its "
                                          "members slide while it holds); the verdict is that of the tilt"),
             std::string::npos);
@@ -779,10 +781,10 @@ TEST(StoreyDrift, AFloorThatSlidOnItsColumnTopsWhileTheirFeetSlidNamesBoth) {
                                                "lets its members slide while it holds); the verdict"),
             std::string::npos)
       << monitor.slip_warning(0, 0, 5);
-  EXPECT_NE(monitor.slip_warning(0, 1, 1).find(" (the joint holding its column broke; events.csv says when); the"),
+  EXPECT_NE(monitor.slip_warning(0, 1, 1).find(" (the joint holding its columns broke; events.csv says when); the"),
             std::string::npos)
       << monitor.slip_warning(0, 1, 1);
-  EXPECT_NE(monitor.slip_warning(0, 0, 1).find(" (the joint holding its column did not break: a joint soft in shear"),
+  EXPECT_NE(monitor.slip_warning(0, 0, 1).find(" (the joint holding its columns did not break: a joint soft in shear"),
             std::string::npos)
       << monitor.slip_warning(0, 0, 1);
   EXPECT_NE(monitor.slip_warning(0, 0, 0).find(" (no joint holds its columns: they stand and slide on their "

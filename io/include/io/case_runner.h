@@ -333,8 +333,7 @@ std::string whole_turn_joints_warning(const JointSystem& joints, const BodyStore
 struct StoreyColumnJoints {
   std::size_t joints = 0;          // distinct joints
   std::size_t broken = 0;          // of those, broken
-  std::size_t column_holds = 0;    // joints counted once per column they hold
-  std::size_t broken_holds = 0;    // of those, broken
+  std::size_t broken_holds = 0;    // broken joints counted once per column they hold
   bool every_column_held = false;  // each column has at least one joint
 };
 StoreyColumnJoints storey_column_joints(const Storey& storey, const JointSystem& joints);
