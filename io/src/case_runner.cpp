@@ -633,7 +633,17 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
     report.result.message = m.str();
   }
   // An unstable run has already failed with its own message.
-  if (report.result.status != RunStatus::Unstable) warn_of_end_state(report.result.status == RunStatus::Completed);
+  if (report.result.status != RunStatus::Unstable) {
+    warn_of_end_state(report.result.status == RunStatus::Completed);
+  } else if (scene.joints) {
+    // An unstable run's end state says nothing of the structure, but a
+    // joint near a whole turn can be why it blew up (frame probe, stop 41:
+    // a portal back upright after a whole turn about its feet); the state
+    // the energy guard stops at is still finite (a non-finite one gives no
+    // turn, and no warning).
+    if (const std::string w = whole_turn_joints_warning(*scene.joints, sim.bodies(), scene.joint_names); !w.empty())
+      warn(w);
+  }
   try {
     add_end_fields(report.result.status != RunStatus::Unstable);
     writer.finish(sim, report.result);

@@ -324,6 +324,8 @@ std::string loose_columns_warning(const Storey& storey, StoreyVerdict verdict, c
 // joint's forces are unreliable (a frame probe, stop 41: an unbreakable
 // support spun a whole turn booked a balance error of 8e-3, and a portal
 // that swung a whole turn about its feet blew up). Empty when none has.
+// Also given for a run that went unstable (the energy guard stops it at a
+// finite state).
 // `joint_names` per joint id, as in events.csv.
 std::string whole_turn_joints_warning(const JointSystem& joints, const BodyStore& bodies,
                                       const std::vector<std::string>& joint_names);
