@@ -123,6 +123,20 @@ class LineCursor {
 };
 
 bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\f' || c == '\v'; }
+
+// The words of `line` between blanks and any of `separators` (none empty).
+std::vector<std::string_view> split_words(std::string_view line, std::string_view separators) {
+  const auto separates = [&](char c) { return is_blank(c) || separators.find(c) != std::string_view::npos; };
+  std::vector<std::string_view> words;
+  for (std::size_t i = 0; i < line.size();) {
+    while (i < line.size() && separates(line[i])) ++i;
+    std::size_t j = i;
+    while (j < line.size() && !separates(line[j])) ++j;
+    if (j > i) words.push_back(line.substr(i, j - i));
+    i = j;
+  }
+  return words;
+}
 bool is_alpha(char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z'); }
 char to_upper(char c) { return (c >= 'a' && c <= 'z') ? static_cast<char>(c - 'a' + 'A') : c; }
 
@@ -493,14 +507,7 @@ At2Size parse_npts_dt(const std::string& file, std::string_view line) {
     if (const std::string_view unit = word_after_value(line, dt_after); !unit.empty())
       check_dt_unit(file, unit, shown);
   } else {
-    std::vector<std::string_view> tokens;
-    for (std::size_t i = 0; i < line.size();) {
-      while (i < line.size() && (is_blank(line[i]) || line[i] == ',')) ++i;
-      std::size_t j = i;
-      while (j < line.size() && !is_blank(line[j]) && line[j] != ',') ++j;
-      if (j > i) tokens.push_back(line.substr(i, j - i));
-      i = j;
-    }
+    const std::vector<std::string_view> tokens = split_words(line, ",");
     if (tokens.size() == 4 && equals_ci(tokens[2], "NPTS") && equals_ci(tokens[3], "DT")) {
       npts_tok = tokens[0];
       dt_tok = tokens[1];
@@ -562,17 +569,8 @@ void check_at2_units(const std::string& file, std::string_view line) {
   if (k == std::string_view::npos) {
     bool acceleration = false;
     std::string_view other_quantity, other_unit;
-    for (std::size_t i = 0; i < line.size();) {
-      while (i < line.size() && (is_blank(line[i]) || line[i] == ',' || line[i] == '(' || line[i] == ')' ||
-                                 line[i] == '[' || line[i] == ']' || line[i] == ':' || line[i] == ';'))
-        ++i;
-      std::size_t j = i;
-      while (j < line.size() && !is_blank(line[j]) && line[j] != ',' && line[j] != '(' && line[j] != ')' &&
-             line[j] != '[' && line[j] != ']' && line[j] != ':' && line[j] != ';')
-        ++j;
-      std::string_view word = line.substr(i, j - i);
-      i = j;
-      if (!word.empty() && word.back() == '.') word.remove_suffix(1);
+    for (std::string_view word : split_words(line, ",()[]:;")) {
+      if (word.back() == '.') word.remove_suffix(1);
       if (word.empty()) continue;
       if (find_ci(word, "ACCEL") == 0) acceleration = true;
       if (equals_ci(word, "VELOCITY") || equals_ci(word, "DISPLACEMENT")) other_quantity = word;
@@ -612,15 +610,7 @@ void check_at2_units(const std::string& file, std::string_view line) {
 // decimal commas (a semicolon between them, or two blank-separated words
 // each with a comma between digits). A line of three numbers gets none.
 std::string extra_columns_hint(std::string_view body) {
-  std::vector<std::string_view> words;  // split at blanks, commas and semicolons
-  for (std::size_t i = 0; i < body.size();) {
-    while (i < body.size() && (is_blank(body[i]) || body[i] == ',' || body[i] == ';')) ++i;
-    std::size_t j = i;
-    while (j < body.size() && !is_blank(body[j]) && body[j] != ',' && body[j] != ';') ++j;
-    if (j > i) words.push_back(body.substr(i, j - i));
-    i = j;
-  }
-  for (const std::string_view w : words) {
+  for (const std::string_view w : split_words(body, ",;")) {
     double value = 0.0;
     if (parse_number(w, value) == NumberStatus::Ok) continue;
     if (std::any_of(w.begin(), w.end(), [](char c) { return c == '"' || c == '\'' || is_alpha(c); }))
@@ -628,16 +618,12 @@ std::string extra_columns_hint(std::string_view body) {
   }
   auto digit = [](char c) { return c >= '0' && c <= '9'; };
   int comma_words = 0;  // blank- or semicolon-separated words with a comma between digits
-  for (std::size_t i = 0; i < body.size();) {
-    while (i < body.size() && (is_blank(body[i]) || body[i] == ';')) ++i;
-    std::size_t j = i;
-    bool decimal_comma = false;
-    for (; j < body.size() && !is_blank(body[j]) && body[j] != ';'; ++j)
-      if (body[j] == ',' && j > i && j + 1 < body.size() && digit(body[j - 1]) && digit(body[j + 1]))
-        decimal_comma = true;
-    comma_words += decimal_comma;
-    i = j;
-  }
+  for (const std::string_view w : split_words(body, ";"))
+    for (std::size_t k = 1; k + 1 < w.size(); ++k)
+      if (w[k] == ',' && digit(w[k - 1]) && digit(w[k + 1])) {
+        ++comma_words;
+        break;
+      }
   if (body.find(';') != std::string_view::npos || comma_words >= 2)
     return " (numbers with decimal commas? write them with a point, as 0.009792, and separate the two columns by "
            "blanks or one comma)";

@@ -1,15 +1,15 @@
 #include "io/case_runner.h"
 
 #include <algorithm>
-#include <numbers>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
-#include <optional>
 #include <fstream>
 #include <iomanip>
 #include <limits>
 #include <map>
+#include <numbers>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <string>
@@ -571,6 +571,12 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
   // probe: a storey 'damaged' at 0.044 rad whose West columns had passed
   // 0.1 rad), and, for a completed run (a stopped one's verdicts are
   // already "so far"), a peak in the run's last moments.
+  // Joints still holding near a whole turn (whole_turn_joints_warning).
+  auto warn_of_whole_turns = [&] {
+    if (scene.joints)
+      if (const std::string w = whole_turn_joints_warning(*scene.joints, sim.bodies(), scene.joint_names); !w.empty())
+        warn(w);
+  };
   auto warn_of_end_state = [&](bool completed) {
     for (const std::string& w : energy_warnings(sim.ledger(), case_has_dashpots(def), sim.settings().integrator))
       warn(w);
@@ -579,9 +585,7 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
               contact_press_warning(scene.contacts->press_peak(), sim.bodies(), scene.contacts->initial_overlaps());
           !w.empty())
         warn(w);
-    if (scene.joints)
-      if (const std::string w = whole_turn_joints_warning(*scene.joints, sim.bodies(), scene.joint_names); !w.empty())
-        warn(w);
+    warn_of_whole_turns();
     for (std::size_t i = 0; i < storeys.storeys().size(); ++i)
       for (const std::string& w : {storeys.twist_warning(i), storey_slip_warning(storeys, i, scene.joints),
                                    scene.joints ? loose_columns_warning(storeys.storeys()[i], storeys.verdict(i),
@@ -635,14 +639,13 @@ CaseRunReport execute(Scene& scene, RunOutput& writer, const CaseRunOptions& opt
   // An unstable run has already failed with its own message.
   if (report.result.status != RunStatus::Unstable) {
     warn_of_end_state(report.result.status == RunStatus::Completed);
-  } else if (scene.joints) {
+  } else {
     // An unstable run's end state says nothing of the structure, but a
     // joint near a whole turn can be why it blew up (frame probe, stop 41:
     // a portal back upright after a whole turn about its feet); the state
     // the energy guard stops at is still finite (a non-finite one gives no
     // turn, and no warning).
-    if (const std::string w = whole_turn_joints_warning(*scene.joints, sim.bodies(), scene.joint_names); !w.empty())
-      warn(w);
+    warn_of_whole_turns();
   }
   try {
     add_end_fields(report.result.status != RunStatus::Unstable);

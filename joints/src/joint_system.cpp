@@ -430,8 +430,7 @@ Mat3 JointSystem::update_joint_frame_(const BodyStore& bodies, std::size_t j) {
 }
 
 Mat3 JointSystem::joint_frame_now_(const BodyStore& bodies, std::size_t j) const {
-  const Quat qa = bodies.orientation[joint_body_a_[j]] * joint_frame_a_[j];
-  const Quat qb = bodies.orientation[joint_body_b_[j]] * joint_frame_b_[j];
+  const auto [qa, qb] = joint_frame_quaternions_(bodies, j);
   Quat qm;
   qm.coeffs() = qa.coeffs() + qb.coeffs();
   qm.normalize();
@@ -895,8 +894,7 @@ double JointSystem::spring_strain_ratio(std::size_t s) const {
 }
 
 double JointSystem::relative_turn_rad(const BodyStore& bodies, std::size_t j) const {
-  const Quat qa = bodies.orientation[joint_body_a_[j]] * joint_frame_a_[j];
-  const Quat qb = bodies.orientation[joint_body_b_[j]] * joint_frame_b_[j];
+  const auto [qa, qb] = joint_frame_quaternions_(bodies, j);
   const double c = qa.coeffs().dot(qb.coeffs()) / (qa.norm() * qb.norm());
   return 2.0 * std::acos(std::clamp(c, -1.0, 1.0));
 }

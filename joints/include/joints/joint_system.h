@@ -214,6 +214,12 @@ class JointSystem final : public ForceProvider {
   Mat3 update_joint_frame_(const BodyStore& bodies, std::size_t j);
   // The same frame, not stored.
   Mat3 joint_frame_now_(const BodyStore& bodies, std::size_t j) const;
+  // Joint j's frame quaternions on its two bodies now (q_a q_ja, q_b q_jb),
+  // whose sum is the half-way frame and whose dot product the turn.
+  std::pair<Quat, Quat> joint_frame_quaternions_(const BodyStore& bodies, std::size_t j) const {
+    return {bodies.orientation[joint_body_a_[j]] * joint_frame_a_[j],
+            bodies.orientation[joint_body_b_[j]] * joint_frame_b_[j]};
+  }
   // Books of the springs joint j's break took out, at the first evaluation
   // after it (joint_books_open_): their last force's work over that step.
   void close_broken_joint_books_(const BodyStore& bodies, std::size_t j);
