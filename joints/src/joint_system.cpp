@@ -528,7 +528,9 @@ void JointSystem::joint_step_(const BodyStore& bodies, std::size_t j) {
       for (int k = 0; k < 9; ++k) Ra[k] = ra_m[k], Rb[k] = rb_m[k], F[k] = fr[k];
       for (int k = 0; k < 3; ++k) Xa[k] = xa[k], Xb[k] = xb[k], Va[k] = va[k], Vb[k] = vb[k], Wa[k] = wa[k], Wb[k] = wb[k];
       // No column written here is read here by another point.
+#if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC ivdep
+#endif
       for (std::size_t i = 0; i < n; ++i) {
         double am[3], bm[3], pa[3], pb[3];
         for (int r = 0; r < 3; ++r) {

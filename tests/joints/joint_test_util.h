@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <random>
 #include <string>
@@ -212,7 +213,7 @@ inline double largest_displacement(Simulation& sim, int steps, double stop_m = 1
   const std::vector<Vec3> start = sim.bodies().position_m;
   double amplitude = 0.0;
   for (int s = 0; s < steps; ++s) {
-    if (!sim.step()) return INFINITY;
+    if (!sim.step()) return std::numeric_limits<double>::infinity();
     for (std::size_t b = 0; b < start.size(); ++b)
       amplitude = std::max(amplitude, (sim.bodies().position_m[b] - start[b]).norm());
     if (amplitude > stop_m) return amplitude;
