@@ -13,7 +13,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
+#include <string>
+#include <vector>
 
 #include "scene_helpers.h"
 
@@ -26,8 +29,12 @@ struct MaxError : fq::StepObserver {
   double max_abs = 0.0;
   double max_growth_rel = 0.0;  // (stored - initial stored) / scale
   double max_growth = 0.0;
+  std::vector<double> lowest_centre_m;  // per body: the lowest z its centre reached (m)
   void on_sample(const fq::Simulation& sim) override {
     const auto& l = sim.ledger();
+    const auto& z = sim.bodies().position_m;
+    lowest_centre_m.resize(z.size(), std::numeric_limits<double>::infinity());
+    for (std::size_t b = 0; b < z.size(); ++b) lowest_centre_m[b] = std::min(lowest_centre_m[b], z[b].z());
     max_abs = std::max(max_abs, std::fabs(l.balance_error_J()));
     max_rel = std::max(max_rel, std::fabs(l.balance_error_J()) / l.scale_J);
     max_growth = std::max(max_growth, l.stored_J() - l.initial_stored_J);
@@ -35,15 +42,22 @@ struct MaxError : fq::StepObserver {
   }
 };
 
-// Eight tumbling boxes dropped onto the ground and onto one another.
-fq::BodyStore tumbling_boxes() {
+// Eight tumbling boxes (0.1 x 0.06 x 0.04 m, 500 kg/m^3) at random
+// orientations and sideways speeds from generator `seed`, dropped from
+// 0.1 + 0.12 i m: on one another (`apart` false: their centres within 0.03
+// m of one vertical line) or side by side 1 m apart, where each meets only
+// what lies under it: a frictionless surface pushes along z alone, so each
+// box keeps its sideways speed (at most 0.3 m/s in x and in y) and drifts
+// at most 0.3 m in the 1 s run, and two boxes (0.062 m half diagonal)
+// 1 m apart never come within reach of each other.
+fq::BodyStore tumbling_boxes(unsigned seed, bool apart = false) {
   fq::BodyStore store;
-  std::mt19937 rng(7);
+  std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   for (int i = 0; i < 8; ++i) {
     const Vec3 axis(u(rng), u(rng), u(rng));
     const fq::Quat q(Eigen::AngleAxisd(3.0 * u(rng), axis.normalized()));
-    const Vec3 x(0.03 * (i % 2), 0.03 * ((i / 2) % 2), 0.1 + 0.12 * i);
+    const Vec3 x = apart ? Vec3(1.0 * i, 0.0, 0.1 + 0.12 * i) : Vec3(0.03 * (i % 2), 0.03 * ((i / 2) % 2), 0.1 + 0.12 * i);
     const auto id = fq::test::add_box(store, Vec3(0.1, 0.06, 0.04), 500.0, x, q);
     store.velocity_mps[id] = Vec3(0.3 * u(rng), 0.3 * u(rng), 0.0);
     store.angular_momentum_Nms[id] = Vec3::Zero();
@@ -51,73 +65,132 @@ fq::BodyStore tumbling_boxes() {
   return store;
 }
 
-TEST(ContactEnergy, ConservativeContactsDoNotCreateEnergy) {
-  // k = 1e5 N/m on ~0.12 kg boxes: w^2 <= 24 k / m = 2e7, w dt <= 0.09 at
-  // dt = 2e-5 s. Leapfrog keeps a shadow energy within (w dt)^2 / 8 of the
-  // energy exchanged with a spring; the kink of the penalty force at first
-  // touch adds an error of the same order per impact (the force is
-  // continuous, its slope is not). Bound: the energy may exceed its initial
-  // value by at most (w dt)^2 / 4 = 0.2 % of the largest energy of the run,
-  // for the whole run (5e4 steps, ~100 impacts). A sign or bookkeeping
-  // error in the law (e.g. a damping of the wrong sign or a history that
-  // injects energy) produces growth of the order of the impact energy itself.
-  // Limitation (see contacts/README.md): the box-box manifold switches
-  // between an edge contact (1 point) and a face contact (up to 8 points)
-  // when the separating axis of least overlap changes; the stored energy
-  // jumps then by a part of the contact's elastic energy. Overlaps here stay
-  // below ~4 % of the thinnest box dimension (v <= 4 m/s, d ~ v sqrt(m/k)),
-  // where those jumps stay inside the bound; with soft contacts (k = 1e4,
-  // overlaps ~ 10-30 %) they reach several % of the scene's energy.
+// k = 1e5 N/m on ~0.12 kg boxes: w^2 <= 24 k / m = 2e7, w dt <= 0.09 at
+// dt = 2e-5 s. Leapfrog keeps a shadow energy within (w dt)^2 / 8 of the
+// energy exchanged with a spring; the kink of the penalty force at first
+// touch adds an error of the same order per impact (the force is
+// continuous, its slope is not). Bound: the energy may exceed its initial
+// value by at most (w dt)^2 / 4 = 0.2 % of the largest energy of the run,
+// for the whole run (5e4 steps, ~100 impacts). A sign or bookkeeping error
+// in the law (e.g. a damping of the wrong sign or a history that injects
+// energy) produces growth of the order of the impact energy itself.
+constexpr double kStep_s = 2e-5;
+double integrator_bound(const fq::Simulation& sim) {
+  const double w_dt = std::sqrt(24.0 * 1e5 / sim.bodies().mass_kg[0]) * kStep_s;
+  return w_dt * w_dt / 4.0;
+}
+
+// tumbling_boxes(seed) falling on one another and on the ground, one
+// contact material (k_n = 1e5 N/m, restitution e, friction mu), for 1 s at
+// dt = 2e-5 s, with `obs` sampling every step.
+fq::test::ContactScene run_stacked_boxes(unsigned seed, double restitution, double mu, fq::StepObserver& obs) {
   fq::SimulationSettings s;
-  s.dt_s = 2e-5;
+  s.dt_s = kStep_s;
   s.duration_s = 1.0;
-  auto scene = fq::test::make_scene(tumbling_boxes(), s, [](fq::ContactSystem& c) {
-    const auto p = fq::test::params(1e5, 1.0, 0.0);
+  auto scene = fq::test::make_scene(tumbling_boxes(seed), s, [&](fq::ContactSystem& c) {
+    const auto p = fq::test::params(1e5, restitution, mu);
     c.set_ground(0.0, p);
     c.set_pair_params(0, 0, p);
   });
-  MaxError obs;
   scene.sim->add_observer(&obs, 1);
   scene.sim->run();
-  const double w_dt = std::sqrt(24.0 * 1e5 / scene.sim->bodies().mass_kg[0]) * s.dt_s;
-  EXPECT_GT(scene.contacts->broad_phase_rebuilds(), 1);
-  // No energy created: the stored energy stays within the bound above. (With
-  // nothing dissipative this is the same check as the balance error under
-  // the former booking, which booked no loss here.)
-  EXPECT_LT(obs.max_growth_rel, w_dt * w_dt / 4.0) << "max growth " << obs.max_growth << " J";
-  // The balance error holds no contact term any more (the books are the
-  // contacts' work, header of contact_system.h): it stays within the same
-  // integrator bound (rotation's drift error).
-  EXPECT_EQ(scene.sim->ledger().dissipated_plastic_J, 0.0);
-  EXPECT_LT(obs.max_rel, w_dt * w_dt / 4.0) << "max error " << obs.max_abs << " J";
+  return scene;
+}
+
+TEST(ContactEnergy, ConservativeContactsAtCornersDoNotCreateEnergy) {
+  // With no dissipation (e = 1, mu = 0) a contact whose points are corners
+  // of a box pressing on a face (the ground, or a fixed slab's top face,
+  // which the contacts take as the reference face) is a spring between
+  // material points along a fixed normal: a potential, so the energy is
+  // conserved up to the integrator. Eight seeds, each box meeting only the
+  // surface under it; both surfaces, since the slab's corners are found by
+  // the box-box narrow phase (clipping against the slab's side planes,
+  // which lie far away) and the ground's by the corner test.
+  for (const bool on_slab : {false, true}) {
+    for (unsigned seed = 1; seed <= 8; ++seed) {
+      SCOPED_TRACE(std::string(on_slab ? "fixed slab" : "ground") + ", seed " + std::to_string(seed));
+      fq::SimulationSettings s;
+      s.dt_s = kStep_s;
+      s.duration_s = 1.0;
+      fq::BodyStore boxes = tumbling_boxes(seed, true);
+      // 8 x 1.5 m, top face at z = 0, under all eight boxes wherever they
+      // drift (x = -0.4 to 7.4 m, |y| < 0.4 m).
+      if (on_slab) fq::test::add_box(boxes, Vec3(8.0, 1.5, 0.1), 500.0, Vec3(3.5, 0.0, -0.05), fq::Quat::Identity(), true);
+      auto scene = fq::test::make_scene(std::move(boxes), s, [&](fq::ContactSystem& c) {
+        const auto p = fq::test::params(1e5, 1.0, 0.0);
+        if (on_slab)
+          c.set_pair_params(0, 0, p);
+        else
+          c.set_ground(0.0, p);
+      });
+      MaxError obs;
+      scene.sim->add_observer(&obs, 1);
+      scene.sim->run();
+      const double bound = integrator_bound(*scene.sim);
+      // Every box met the surface: its centre came within its half diagonal
+      // (0.0616 m) of it.
+      for (int b = 0; b < 8; ++b) EXPECT_LT(obs.lowest_centre_m[b], 0.0617) << "box " << b;
+      EXPECT_LT(obs.max_growth_rel, bound) << "max growth " << obs.max_growth << " J";
+      EXPECT_EQ(scene.sim->ledger().dissipated_plastic_J, 0.0);
+      EXPECT_LT(obs.max_rel, bound) << "max error " << obs.max_abs << " J";
+    }
+  }
+}
+
+TEST(ContactEnergy, TumblingBoxesOnOneAnotherBookWhatTheirContactsCreate) {
+  // The same boxes falling on one another: box-box contacts whose
+  // points are clipped crossings of an incident edge with a side plane,
+  // or whose manifold switches between an edge contact (one point, k_n)
+  // and a face contact (shares summing to 4 k_n) along another axis, do
+  // not derive from a potential (contacts/README.md, "Known
+  // limitations"): the stored energy of such a scene is not conserved
+  // (at this stiffness it ended between -6 % and +10 % of the run's
+  // largest energy over seeds 1-8 when this test was written, and stiffer
+  // contacts, k = 1e7 N/m at dt = 2e-6 s, did not shrink it: up to +14 %.
+  // An earlier form of this test ran seed 7 alone and held its growth to
+  // the integrator's bound; seed 7 is the one of the eight that never
+  // rose above its start by more, and it ended 1.9 % below). What holds for every seed is the books: the contacts book as
+  // viscous loss (either sign) the work their forces did less the change
+  // of their elastic energy, so the balance error stays within the
+  // integrator's bound, and with nothing dissipative in the scene the
+  // "viscous" book is minus the energy the contacts created.
+  for (unsigned seed = 1; seed <= 8; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    MaxError obs;
+    const auto scene = run_stacked_boxes(seed, 1.0, 0.0, obs);
+    const auto& l = scene.sim->ledger();
+    const double bound = integrator_bound(*scene.sim);
+    EXPECT_GT(scene.contacts->broad_phase_rebuilds(), 1);
+    EXPECT_EQ(l.dissipated_plastic_J, 0.0);
+    EXPECT_EQ(l.dissipated_friction_J, 0.0);
+    EXPECT_LT(obs.max_rel, bound) << "max error " << obs.max_abs << " J";
+    EXPECT_NEAR(l.dissipated_viscous_J, -(l.stored_J() - l.initial_stored_J), bound * l.scale_J);
+    std::printf("seed %u: stored energy %+.4f of the run's largest energy\n", seed,
+                (l.stored_J() - l.initial_stored_J) / l.scale_J);
+  }
 }
 
 TEST(ContactEnergy, DissipativeContactsBalanceTheLedger) {
-  // Same scene with e = 0.5, mu = 0.4: energy now leaves through dashpots and
-  // friction. The books must still close: the losses are booked as the work
-  // the contact forces do with v_n, the work the ledger's kinetic energy
-  // sees (contact_system.h), so no first-order term is left (the former
-  // booking from v(n-1/2) left zeta w dt of the dissipated energy) and the
-  // balance error stays within the conservative run's integrator bound.
-  fq::SimulationSettings s;
-  s.dt_s = 2e-5;
-  s.duration_s = 1.0;
-  auto scene = fq::test::make_scene(tumbling_boxes(), s, [](fq::ContactSystem& c) {
-    const auto p = fq::test::params(1e5, 0.5, 0.4);
-    c.set_ground(0.0, p);
-    c.set_pair_params(0, 0, p);
-  });
-  MaxError obs;
-  scene.sim->add_observer(&obs, 1);
-  scene.sim->run();
-  const auto& l = scene.sim->ledger();
-  EXPECT_GT(l.dissipated_viscous_J, 0.0);
-  EXPECT_GT(l.dissipated_friction_J, 0.0);
-  const double w_dt = std::sqrt(24.0 * 1e5 / scene.sim->bodies().mass_kg[0]) * s.dt_s;
+  // The same scenes with e = 0.5, mu = 0.4: energy now leaves through
+  // dashpots and friction. The books must still close: the losses are
+  // booked as the work the contact forces do with v_n, the work the
+  // ledger's kinetic energy sees (contact_system.h), so no first-order term
+  // is left (the former booking from v(n-1/2) left zeta w dt of the
+  // dissipated energy) and the balance error stays within the conservative
+  // run's integrator bound.
   const double zeta = fq::damping_ratio_from_restitution(0.5);
-  EXPECT_LT(obs.max_rel, w_dt * w_dt / 4.0)
-      << "max error " << obs.max_abs << " J; stored " << l.stored_J() << " dissipated " << l.dissipated_J()
-      << " (former bound's first-order part zeta w dt D = " << zeta * w_dt * l.dissipated_J() << " J)";
+  for (unsigned seed = 1; seed <= 8; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    MaxError obs;
+    const auto scene = run_stacked_boxes(seed, 0.5, 0.4, obs);
+    const auto& l = scene.sim->ledger();
+    EXPECT_GT(l.dissipated_viscous_J, 0.0);
+    EXPECT_GT(l.dissipated_friction_J, 0.0);
+    const double w_dt = std::sqrt(4.0 * integrator_bound(*scene.sim));
+    EXPECT_LT(obs.max_rel, w_dt * w_dt / 4.0)
+        << "max error " << obs.max_abs << " J; stored " << l.stored_J() << " dissipated " << l.dissipated_J()
+        << " (former bound's first-order part zeta w dt D = " << zeta * w_dt * l.dissipated_J() << " J)";
+  }
 }
 
 // A cube landing on one corner, tilted (30 deg about x, then 20 deg about
