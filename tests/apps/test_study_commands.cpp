@@ -14,12 +14,14 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <iomanip>
 #include <map>
 #include <regex>
 #include <sstream>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "app_process.h"
@@ -57,6 +59,28 @@ std::string kobe_ns_along(const std::string& axis) {
       .append(", format: peer_at2, axis: ")
       .append(axis)
       .append("}\n");
+  return text;
+}
+
+// `text` with the first `from` replaced by `to`; a test failure naming
+// `from` when the text does not hold it (a shipped case that changed).
+void replace_once(std::string& text, const std::string& from, const std::string& to) {
+  const std::size_t at = text.find(from);
+  if (at == std::string::npos) {
+    ADD_FAILURE() << "the text does not hold \"" << from << "\"";
+    return;
+  }
+  text.replace(at, from.size(), to);
+}
+
+// The shipped case cases/<file> with its record read by absolute path, so
+// that a copy written into a test's folder reads the same record, and then
+// `edits` (from, to) applied in order, each once.
+std::string shipped_case_elsewhere(const std::string& file,
+                                   std::initializer_list<std::pair<std::string, std::string>> edits = {}) {
+  std::string text = read_text(kSource / "cases" / file);
+  replace_once(text, "file: ground_motions/", "file: " + (kSource / "cases/ground_motions").string() + "/");
+  for (const auto& [from, to] : edits) replace_once(text, from, to);
   return text;
 }
 
@@ -648,11 +672,8 @@ TEST(StudyCommands, CtrlCWhileTheFigureIsDrawnIsAStopNotAFailure) {
 // change with the part of the record left out).
 TEST(StudyCommands, CompareFootnoteGivesEachCasesLimitsAndTheShortenedWindow) {
   TempDir dir;
-  std::string strict = read_text(kSource / "cases/demo_portal_frame.yaml");
-  const std::string name = "name: demo_portal_frame", record = "file: ground_motions/";
-  ASSERT_NE(strict.find(name), std::string::npos);
-  strict.replace(strict.find(name), name.size(), "name: strict_portal");
-  strict.replace(strict.find(record), record.size(), "file: " + (kSource / "cases/ground_motions").string() + "/");
+  std::string strict =
+      shipped_case_elsewhere("demo_portal_frame.yaml", {{"name: demo_portal_frame", "name: strict_portal"}});
   strict += "\nassessment: {safety_drift_ratio_rad: 0.03334}\n";
   std::ofstream(dir.path() / "strict.yaml") << strict;
   const fs::path out = dir.path() / "cmp";
@@ -860,15 +881,10 @@ TEST(StudyCommands, AFigureTheDiskRefusesIsOneLineAndLeavesNoTemporaryFile) {
 // its history's peak |(x, y)|, which is its summary's to the sampling.
 TEST(StudyCommands, CompareReportsDriftAlongYForAMotionAlongY) {
   TempDir dir;
-  std::string portal = read_text(kSource / "cases/demo_portal_frame.yaml");
-  const std::string record = "file: ground_motions/";
-  portal.replace(portal.find(record), record.size(), "file: " + (kSource / "cases/ground_motions").string() + "/");
-  const std::string axis = "axis: x";
-  ASSERT_NE(portal.find(axis), std::string::npos);
-  portal.replace(portal.find(axis), axis.size(), "axis: y");
+  const std::string portal = shipped_case_elsewhere("demo_portal_frame.yaml", {{"axis: x", "axis: y"}});
   std::ofstream(dir.path() / "portal_y.yaml", std::ios::binary) << portal;
   std::string portal_x = portal;
-  portal_x.replace(portal_x.find("axis: y"), 7, "axis: x");
+  replace_once(portal_x, "axis: y", "axis: x");
   const std::string name = "name: ";
   ASSERT_NE(portal_x.find(name), std::string::npos);
   portal_x.insert(portal_x.find('\n', portal_x.find(name)), "_along_x");
@@ -939,9 +955,7 @@ TEST(StudyCommands, ASweepWithoutHorizontalMotionSaysItsPgaIsZero) {
 TEST(StudyCommands, EveryRunsFolderIsCheckedBeforeTheFirstRun) {
   TempDir dir;
   const std::string block = (kSource / "cases/demo_falling_block.yaml").string();
-  std::string portal = read_text(kSource / "cases/demo_portal_frame.yaml");
-  const std::string record = "file: ground_motions/";
-  portal.replace(portal.find(record), record.size(), "file: " + (kSource / "cases/ground_motions").string() + "/");
+  const std::string portal = shipped_case_elsewhere("demo_portal_frame.yaml");
   std::ofstream(dir.path() / "portal.yaml", std::ios::binary) << portal;
   const fs::path cmp = dir.path() / "cmp";
   fs::create_directories(cmp / "demo_portal_frame");
@@ -983,12 +997,8 @@ TEST(StudyCommands, EveryRunsFolderIsCheckedBeforeTheFirstRun) {
 // so Ctrl-C always comes before the end.
 TEST(StudyCommands, AStoppedRunsVerdictIsOnlySoFar) {
   TempDir dir;
-  std::string longer = read_text(kSource / "cases/demo_portal_frame.yaml");
-  const std::string dt = "  dt_s: 1.0e-5\n", record = "file: ground_motions/";
-  ASSERT_NE(longer.find(dt), std::string::npos);
-  longer.replace(longer.find(dt), dt.size(), dt + "  duration_s: 100.0\n");
-  longer.replace(longer.find(record), record.size(), "file: " + (kSource / "cases/ground_motions").string() + "/");
-  std::ofstream(dir.path() / "longer.yaml", std::ios::binary) << longer;
+  std::ofstream(dir.path() / "longer.yaml", std::ios::binary) << shipped_case_elsewhere(
+      "demo_portal_frame.yaml", {{"  dt_s: 1.0e-5\n", "  dt_s: 1.0e-5\n  duration_s: 100.0\n"}});
   const fs::path cmp = dir.path() / "cmp";
   // One run at a time: the falling-block demo, second, never starts.
   fq_test::AppProcess app({"compare", (dir.path() / "longer.yaml").string(),
@@ -1083,11 +1093,8 @@ TEST(StudyCommands, AStoppedRunsVerdictIsOnlySoFar) {
 // absolute path, written into `dir` as longer.yaml: a run or study that is
 // still going when a second process starts.
 fs::path write_long_portal(const fs::path& dir) {
-  std::string longer = read_text(kSource / "cases/demo_portal_frame.yaml");
-  const std::string dt = "  dt_s: 1.0e-5\n", record = "file: ground_motions/";
-  longer.replace(longer.find(dt), dt.size(), dt + "  duration_s: 100.0\n");
-  longer.replace(longer.find(record), record.size(), "file: " + (kSource / "cases/ground_motions").string() + "/");
-  std::ofstream(dir / "longer.yaml", std::ios::binary) << longer;
+  std::ofstream(dir / "longer.yaml", std::ios::binary) << shipped_case_elsewhere(
+      "demo_portal_frame.yaml", {{"  dt_s: 1.0e-5\n", "  dt_s: 1.0e-5\n  duration_s: 100.0\n"}});
   return dir / "longer.yaml";
 }
 
@@ -1322,12 +1329,8 @@ TEST(StudyCommands, TheWindowNoteSaysWhatEachRunApplied) {
 // AStoppedRunsVerdictIsOnlySoFar.)
 TEST(StudyCommands, TablesCountOnlyRunsThatCompleted) {
   TempDir dir;
-  std::string coarse = read_text(kSource / "cases/demo_portal_frame.yaml");
-  const std::string dt = "dt_s: 1.0e-5", record = "file: ground_motions/";
-  ASSERT_NE(coarse.find(dt), std::string::npos);
-  coarse.replace(coarse.find(dt), dt.size(), "dt_s: 1.0e-3");
-  coarse.replace(coarse.find(record), record.size(), "file: " + (kSource / "cases/ground_motions").string() + "/");
-  std::ofstream(dir.path() / "coarse.yaml", std::ios::binary) << coarse;
+  std::ofstream(dir.path() / "coarse.yaml", std::ios::binary)
+      << shipped_case_elsewhere("demo_portal_frame.yaml", {{"dt_s: 1.0e-5", "dt_s: 1.0e-3"}});
   const fs::path sweep = dir.path() / "sweep";
   const auto u = run_app({"sweep", (dir.path() / "coarse.yaml").string(), "--scales", "1", "--force", "--no-figure",
                           "--out", sweep.string()},
@@ -1356,12 +1359,8 @@ TEST(StudyCommands, TablesCountOnlyRunsThatCompleted) {
 // 0.004 s" (black-box probe), as if the frame had fallen.
 TEST(StudyCommands, CompareDoesNotListAnUnstableRunAsCollapsed) {
   TempDir dir;
-  std::string coarse = read_text(kSource / "cases/demo_portal_frame.yaml");
-  const std::string dt = "dt_s: 1.0e-5", record = "file: ground_motions/";
-  ASSERT_NE(coarse.find(dt), std::string::npos);
-  coarse.replace(coarse.find(dt), dt.size(), "dt_s: 1.0e-3");
-  coarse.replace(coarse.find(record), record.size(), "file: " + (kSource / "cases/ground_motions").string() + "/");
-  std::ofstream(dir.path() / "coarse.yaml", std::ios::binary) << coarse;
+  std::ofstream(dir.path() / "coarse.yaml", std::ios::binary)
+      << shipped_case_elsewhere("demo_portal_frame.yaml", {{"dt_s: 1.0e-5", "dt_s: 1.0e-3"}});
   const fs::path out = dir.path() / "cmp";
   const auto r = run_app({"compare", (dir.path() / "coarse.yaml").string(), "--force", "--no-figure", "--out",
                           out.string()},
@@ -1408,10 +1407,7 @@ TEST(StudyCommands, CompareSaysWhetherTheFirstJointToFailBrokeOrHeld) {
 // 0.000118438, which both refused.
 TEST(StudyCommands, TheStableLimitInfoPrintsIsAcceptedAsTheTimeStep) {
   TempDir dir;
-  std::string portal = read_text(kSource / "cases/demo_portal_frame.yaml");
-  const std::string record = "file: ground_motions/";
-  ASSERT_NE(portal.find(record), std::string::npos);
-  portal.replace(portal.find(record), record.size(), "file: " + (kSource / "cases/ground_motions").string() + "/");
+  std::string portal = shipped_case_elsewhere("demo_portal_frame.yaml");
   std::ofstream(dir.path() / "portal.yaml", std::ios::binary) << portal;
   const auto info = run_app({"info", (dir.path() / "portal.yaml").string()}, dir.path());
   ASSERT_EQ(info.code, 0) << info.err;
@@ -1419,9 +1415,7 @@ TEST(StudyCommands, TheStableLimitInfoPrintsIsAcceptedAsTheTimeStep) {
   const std::size_t at = info.out.find(tag);
   ASSERT_NE(at, std::string::npos) << info.out;
   const std::string limit = info.out.substr(at + tag.size(), info.out.find(' ', at + tag.size()) - at - tag.size());
-  const std::string dt = "dt_s: 1.0e-5";
-  ASSERT_NE(portal.find(dt), std::string::npos);
-  portal.replace(portal.find(dt), dt.size(), "dt_s: " + limit);
+  replace_once(portal, "dt_s: 1.0e-5", "dt_s: " + limit);
   std::ofstream(dir.path() / "at_limit.yaml", std::ios::binary) << portal;
   const auto again = run_app({"info", (dir.path() / "at_limit.yaml").string()}, dir.path());
   EXPECT_EQ(again.code, 0) << again.err;
@@ -1440,16 +1434,8 @@ TEST(StudyCommands, BadInputIsRefusedBeforeAnythingIsWritten) {
   const std::string cube = (dir.path() / "cube.yaml").string();
   // The portal with dt = 1e-3 s, 8.4 times its stable estimate, for sweep
   // (which needs a ground motion); its record by absolute path.
-  std::string coarse = read_text(kSource / "cases/demo_portal_frame.yaml");
-  const auto replace = [&](const std::string& from, const std::string& to) {
-    const std::size_t at = coarse.find(from);
-    ASSERT_NE(at, std::string::npos) << from;
-    coarse.replace(at, from.size(), to);
-  };
-  replace("dt_s: 1.0e-5", "dt_s: 1.0e-3");
-  replace("file: ground_motions/", "file: " + (kSource / "cases/ground_motions").string() + "/");
-  replace("name: demo_portal_frame", "name: coarse_portal");
-  std::ofstream(dir.path() / "coarse.yaml", std::ios::binary) << coarse;
+  std::ofstream(dir.path() / "coarse.yaml", std::ios::binary) << shipped_case_elsewhere(
+      "demo_portal_frame.yaml", {{"dt_s: 1.0e-5", "dt_s: 1.0e-3"}, {"name: demo_portal_frame", "name: coarse_portal"}});
   const std::string coarse_portal = (dir.path() / "coarse.yaml").string();
   // A PEER record of 0.05 s, shorter than the falling-block demo's window
   // start (7.6 s).
