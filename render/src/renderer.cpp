@@ -45,7 +45,20 @@
 
 #include "render/gif_writer.h"
 
+// Whether the build has AddressSanitizer, under GCC or clang (the same test
+// as dem_core/address_sanitizer.h; render depends on no other module).
 #if defined(__SANITIZE_ADDRESS__)
+#define FQ_RENDER_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define FQ_RENDER_ASAN 1
+#endif
+#endif
+#ifndef FQ_RENDER_ASAN
+#define FQ_RENDER_ASAN 0
+#endif
+
+#if FQ_RENDER_ASAN
 #include <sanitizer/lsan_interface.h>
 #endif
 
@@ -73,7 +86,7 @@ constexpr double kViewAngleDeg = 30.0;
 constexpr double kFrameMargin = 1.08;  // fraction of the view the structure may fill, inverted
 
 // Pauses LeakSanitizer's tracking of new allocations in sanitized builds.
-#if defined(__SANITIZE_ADDRESS__)
+#if FQ_RENDER_ASAN
 struct LeakCheckPause {
   LeakCheckPause() { __lsan_disable(); }
   ~LeakCheckPause() { __lsan_enable(); }

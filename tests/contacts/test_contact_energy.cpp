@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "dem_core/address_sanitizer.h"
 #include "scene_helpers.h"
 
 namespace {
@@ -79,17 +80,7 @@ constexpr double kStep_s = 2e-5;
 // Seeds 1..kSeeds of each scene. Under AddressSanitizer (CI's second suite,
 // which looks for memory errors, not for physics: the plain suite runs all
 // eight) one seed: the eight took 146 s there, 2.2 s in the plain build.
-#if defined(__SANITIZE_ADDRESS__)
-constexpr unsigned kSeeds = 1;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-constexpr unsigned kSeeds = 1;
-#else
-constexpr unsigned kSeeds = 8;
-#endif
-#else
-constexpr unsigned kSeeds = 8;
-#endif
+constexpr unsigned kSeeds = FQ_ADDRESS_SANITIZER ? 1 : 8;
 double integrator_bound(const fq::Simulation& sim) {
   const double w_dt = std::sqrt(24.0 * 1e5 / sim.bodies().mass_kg[0]) * kStep_s;
   return w_dt * w_dt / 4.0;

@@ -50,6 +50,7 @@
 #include <vtkXMLDataParser.h>
 #include <vtkXMLUnstructuredGridReader.h>
 
+#include "dem_core/address_sanitizer.h"
 #include "dem_core/simulation.h"
 #include "io/case_file.h"
 #include "io/case_runner.h"
@@ -1432,7 +1433,7 @@ TEST(RunOutput, WritingFramesStartsNoThreads) {
   EXPECT_EQ(thread_count_of_this_process(), before);
 }
 
-#if defined(__GLIBC__) && !defined(__SANITIZE_ADDRESS__)
+#if defined(__GLIBC__) && !FQ_ADDRESS_SANITIZER
 #if __GLIBC_PREREQ(2, 33)
 // Writing a frame, VTK allocates and frees some forty blocks; the frame
 // writer keeps glibc from returning the freed top of the heap to the kernel
