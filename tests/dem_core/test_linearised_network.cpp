@@ -142,9 +142,13 @@ TEST(NetworkStableStep, BlocksGiveTheDenseTopEigenvalueAndDampedLimit) {
       EXPECT_NEAR(s.omega_radps / omega, 1.0, 1e-11) << s.omega_radps << " rad/s against " << omega;
       EXPECT_NEAR(s.dt_crit_s * omega / 2.0, 1.0, 1e-11);
     } else {
+      // The damped limit is iterated until a step moves it by less than
+      // 1e-8 of itself (linearised_network.h), so it is known to that, not
+      // to round-off: an audit (stop 42) found it 1.1e-9 above the dense
+      // limit on one of 300 random networks, where this bound was 1e-10.
       const double dt = dense_damped_limit(k, c);
-      EXPECT_NEAR(s.dt_crit_s / dt, 1.0, 1e-10) << s.dt_crit_s << " s against " << dt;
-      EXPECT_NEAR(s.omega_radps * dt / 2.0, 1.0, 1e-10);
+      EXPECT_NEAR(s.dt_crit_s / dt, 1.0, 1e-8) << s.dt_crit_s << " s against " << dt;
+      EXPECT_NEAR(s.omega_radps * dt / 2.0, 1.0, 1e-8);
     }
   }
 }

@@ -12,11 +12,23 @@
 // Runs: gravity on, no ground motion, small random velocities that excite
 // every mode, 4000 steps. A run is unstable when its motion (displacement
 // of the centre plus rotation times the half length) leaves 1e-5 m, far
-// above the 1e-8 m of the gravity load and the perturbation, or does not
-// die out as it should: without dashpots the second half of the run peaks
-// above twice the first half; with them the speed of the last quarter does
+// above the 1e-8 m of the gravity load and the perturbation: past the
+// limit, at omega dt = 2 (1 + eps), central difference multiplies the top
+// mode by about exp(2 sqrt(eps)) a step, so from the perturbation's
+// 1e-10 m or so it passes 1e-5 m within 6 / sqrt(eps) steps, inside the
+// run for every eps above 2.3e-6, far finer than the 10 % asked. With
+// dashpots a run is also unstable when the speed of its last quarter does
 // not fall below half that of the first. The bisected limit must lie
 // within 10 % of the estimate (issue 6).
+//
+// (Undamped runs were also called unstable when the second half of the run
+// peaked above twice the first half. The column starts unloaded, so its
+// corner contacts open and close with the gravity sag every period, and
+// that piecewise-linear motion hands energy from the vertical swing to the
+// rocking: a stable run tripped that test at 0.87 of the estimate for 6 of
+// 200 random perturbations, an audit found (stop 42), though its motion
+// stayed below 2.1e-7 m for five times the run. Seed 11, the one the test
+// uses, did not.)
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -85,21 +97,18 @@ bool stable(const CaseDef& def, double dt_s, bool damped) {
   const Vec3 x0 = bodies.position_m[column];
   const Quat q0 = bodies.orientation[column];
   const double half_length = bodies.half_extents_m[column].maxCoeff();
-  double first = 0.0, second = 0.0;
+  double first = 0.0, last = 0.0;  // peak speeds of the first and last quarters (damped runs)
   for (int n = 0; n < steps; ++n) {
     if (!sim.step()) return false;
     const double motion = (bodies.position_m[column] - x0).norm() +
                           half_length * bodies.orientation[column].angularDistance(q0);
     if (!(motion < 1e-5)) return false;
-    double measure = motion;
-    if (damped) {
-      if (n >= steps / 4 && n < 3 * steps / 4) continue;
-      measure = bodies.velocity_mps[column].norm() + half_length * bodies.angular_velocity_radps[column].norm();
-    }
-    double& part = n < steps / 2 ? first : second;
-    part = std::max(part, measure);
+    if (!damped || (n >= steps / 4 && n < 3 * steps / 4)) continue;
+    const double speed = bodies.velocity_mps[column].norm() + half_length * bodies.angular_velocity_radps[column].norm();
+    double& quarter = n < steps / 2 ? first : last;
+    quarter = std::max(quarter, speed);
   }
-  return damped ? second < 0.5 * first : second < 2.0 * first;
+  return !damped || last < 0.5 * first;
 }
 
 void check(double joint_damping_ratio, double restitution, const char* label) {
