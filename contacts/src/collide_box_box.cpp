@@ -170,6 +170,52 @@ void corner_shares(const ClipVertex* poly, int count, const Vec3& u, const Vec3&
   for (int k = 0; k < count; ++k) share[k] *= to_share;
 }
 
+// The largest lean (ContactPointGeometry::lean) a point takes: 1, where
+// the incident edge meets the side plane at 45 deg to the reference face
+// (or the incident face is tilted 45 deg against it). Past it the point
+// slides ever faster along its edge as the boxes move (the lean grows as
+// 1 / cos of the angle between the edge and the side plane's normal), and
+// so would the stiffness across the normal, k (1 + lean^2), which the
+// stable-step estimate bounds by 2 k (contact_system.cpp).
+constexpr double kLeanCap = 1.0;
+
+// The lean of a point of face_contact's clipped polygon with code `code`
+// (the header's codes: 0-3 an incident vertex, 8 + 4 line + plane the
+// crossing of incident edge `line` with side plane `plane`, from 24 a
+// corner of the reference face), for the reference face's outward normal
+// n, the incident face's half edges u (lines 0, 2) and v (lines 1, 3),
+// the side planes' outward normals dirs and the incident face's normal.
+// Depth = n . (point on the reference face) - n . p:
+// - an incident vertex p moves with the incident box: gradient -n, no lean;
+// - a crossing p = p0 + t e of the edge line with the side plane a . p = c
+//   slides along e: d(depth) = -(n - kappa a) . dx for a move dx of the
+//   incident box, kappa = (n . e) / (a . e), so the lean is -kappa a (the
+//   force n - kappa a is normal to e and to the reference edge n x a);
+// - a reference corner: p is where the corner's line along n meets the
+//   incident face m . p = d: depth = (m . corner - d) / (m . n), gradient
+//   -m / (m . n), lean m / (m . n) - n.
+// Rotations give the same force at p as its moment (a point of both
+// boxes): the derivation is in contacts/README.md, "Forces of face points".
+Vec3 depth_lean(std::uint32_t code, const Vec3& n, const Vec3& u, const Vec3& v, const Vec3 dirs[4],
+                const Vec3& inc_normal) {
+  if (code < 8) return Vec3::Zero();
+  if (code < 24) {
+    const int line = int(code - 8) / 4, plane = int(code - 8) % 4;
+    const Vec3& e = line % 2 == 0 ? u : v;
+    const Vec3& a = dirs[plane];
+    const double ae = a.dot(e);
+    if (!(std::fabs(ae) > 0.0)) return Vec3::Zero();
+    const double kappa = std::clamp(n.dot(e) / ae, -kLeanCap, kLeanCap);
+    return -kappa * a;
+  }
+  const double mn = inc_normal.dot(n);
+  if (!(std::fabs(mn) > 0.0)) return Vec3::Zero();
+  Vec3 lean = inc_normal / mn - n;
+  const double length = lean.norm();
+  if (length > kLeanCap) lean *= kLeanCap / length;
+  return lean;
+}
+
 // Face contact: `ref` owns the reference face with outward normal n (pointing
 // to `inc`) along its axis `ref_axis`; n_sign = +-1.
 int face_contact(const OrientedBoxRef& ref, const OrientedBoxRef& inc, int ref_axis, double n_sign, bool ref_is_b,
@@ -248,6 +294,7 @@ int face_contact(const OrientedBoxRef& ref, const OrientedBoxRef& inc, int ref_a
   double weights[16];
   corner_shares(src, count, inc.rotation.col(iu), inc.rotation.col(iv), a1, a2, weights);
   const Vec3 normal_ab = ref_is_b ? Vec3(-n) : n;
+  const Vec3 inc_normal = inc.rotation.col(inc_axis);  // either sign: the lean below takes m / (m . n)
   for (int k = 0; k < count && out.count < kMaxManifoldPoints; ++k) {
     const double depth = depths[k];
     if (!(depth > 0.0)) continue;
@@ -257,6 +304,8 @@ int face_contact(const OrientedBoxRef& ref, const OrientedBoxRef& inc, int ref_a
     c.depth_m = depth;
     c.feature = head | src[k].code;
     c.weight = weights[k];
+    const Vec3 lean = depth_lean(src[k].code, n, u, v, dirs, inc_normal);
+    c.lean = ref_is_b ? Vec3(-lean) : lean;
   }
   return out.count;
 }
@@ -311,6 +360,7 @@ int edge_contact(const OrientedBoxRef& a, const OrientedBoxRef& b, int ia, int j
   c.normal = axis_ab;
   c.depth_m = depth;
   c.weight = 1.0;
+  c.lean = Vec3::Zero();  // the record may hold a face point's
   c.feature = kFeatureEdgeContact | (std::uint32_t(ia * 4) + bits_a) << 8 | (std::uint32_t(jb * 4) + bits_b);
   out.count = 1;
   return 1;

@@ -29,6 +29,7 @@ int collide_box_ground(const OrientedBoxRef& box, double ground_level_m, Contact
     p.normal = Vec3::UnitZ();
     p.depth_m = depth;
     p.weight = 1.0;
+    p.lean = Vec3::Zero();  // the record may hold a face point's
     p.feature = std::uint32_t(corner);
   }
   return out.count;

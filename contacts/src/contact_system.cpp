@@ -332,6 +332,7 @@ std::size_t ContactSystem::process_item(const BodyStore& bodies, std::size_t ite
     c.feature = g.feature;
     c.position_m = g.position_m;
     c.normal = g.normal;
+    c.lean = g.lean;
     c.depth_m = g.depth_m;
     c.pair_key = key;
     c.coeff_index = coeff;
@@ -457,6 +458,9 @@ void ContactSystem::apply_law(ContactPoint* first, ContactPoint* last, const Ste
         linear_contact_law(coeff, in, {c.normal_dashpot_Nspm, c.tangential_dashpot_Nspm}, c.shear_spring_N);
     c.normal_force_N = law.normal_force_N;
     c.tangential_force_N = law.tangential_force_N;
+    // The spring's part of the normal force, k (d - d0) >= 0, also pushes
+    // across the normal where the point slides (ContactPointGeometry::lean).
+    c.lean_force_N = (std::max(0.0, in.depth_m) * in.stiffness_scale * coeff.normal_stiffness_N_per_m) * c.lean;
     c.sliding = law.sliding;
     c.elastic_J = law.elastic_J;
     c.elastic_tangential_J = law.elastic_tangential_J;
@@ -600,7 +604,7 @@ void ContactSystem::finish_step(const BodyStore& bodies, const StepInfo& step, E
                              : Vec3(Vec3::Zero());
     const Vec3 v_next = bodies.velocity_mps[c.body_b] + bodies.angular_velocity_radps[c.body_b].cross(c.arm_b_m) - va;
     const Vec3 v_rel = 0.5 * (c.velocity_prev_mps + v_next);
-    const double loss_normal_J = -dt * c.normal_force_N * c.normal.dot(v_rel);   // -W_N
+    const double loss_normal_J = -dt * (c.normal_force_N * c.normal.dot(v_rel) + c.lean_force_N.dot(v_rel));  // -W_N
     const double loss_tangential_J = -dt * c.tangential_force_N.dot(v_rel);      // -W_T
     const double d_elastic_t = c.elastic_tangential_J - c.elastic_tangential_prev_J;
     const double d_elastic_n = (c.elastic_J - c.elastic_tangential_J) - (c.elastic_prev_J - c.elastic_tangential_prev_J);
@@ -897,7 +901,12 @@ void ContactSystem::linearised_springs(const BodyStore& bodies, std::vector<Line
       const Vec3 n = p.normal;
       const Vec3 t1 = (std::abs(n.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY()).cross(n).normalized();
       const Vec3 t2 = n.cross(t1);
-      const Vec3* dirs[3] = {&n, &t1, &t2};
+      // The normal spring acts along n + lean (ContactPointGeometry::lean):
+      // stiffness k |n + lean|^2 <= 2 k along it. Its dashpot is taken
+      // along the same direction, which overstates it by as much and errs
+      // towards a smaller step.
+      const Vec3 normal_spring = n + p.lean;
+      const Vec3* dirs[3] = {&normal_spring, &t1, &t2};
       // The point's shares as process_item gives them, its dashpots as the
       // law forms them.
       ContactLawInput in;

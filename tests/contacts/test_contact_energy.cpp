@@ -144,20 +144,20 @@ TEST(ContactEnergy, ConservativeContactsAtCornersDoNotCreateEnergy) {
 }
 
 TEST(ContactEnergy, TumblingBoxesOnOneAnotherBookWhatTheirContactsCreate) {
-  // The same boxes falling on one another: box-box contacts whose
-  // points are clipped crossings of an incident edge with a side plane,
-  // or whose manifold switches between an edge contact (one point, k_n)
-  // and a face contact (shares summing to 4 k_n) along another axis, do
-  // not derive from a potential (contacts/README.md, "Known
-  // limitations"): the stored energy of such a scene is not conserved
-  // (at this stiffness it ended between -6 % and +10 % of the run's
-  // largest energy over seeds 1-8 when this test was written, and stiffer
-  // contacts, k = 1e7 N/m at dt = 2e-6 s, did not shrink it: up to +14 %.
-  // An earlier form of this test ran seed 7 alone and held its growth to
-  // the integrator's bound; seed 7 is the one of the eight that never
-  // rose above its start by more, and it ended 1.9 % below). What holds for every seed is the books: the contacts book as
-  // viscous loss (either sign) the work their forces did less the change
-  // of their elastic energy, so the balance error stays within the
+  // The same boxes falling on one another. A box-box contact whose
+  // manifold switches between an edge contact (one point, k_n) and a face
+  // contact (shares summing to 4 k_n) changes its stiffness at once, and
+  // its stored energy jumps (contacts/README.md, "Known limitations"); the
+  // stored energy of this scene is therefore not conserved: at the end of
+  // the 1 s it was between -1.1 % and +16.4 % of the run's largest energy
+  // over seeds 1-8 when this test was written (stop 42, with the face
+  // points' leans; between -6.1 % and +10.4 % before them, when clipped
+  // crossings also did work no energy paid for, and the scene is chaotic,
+  // so each seed's figure moved). An earlier form of this test ran seed 7
+  // alone and held its growth to the integrator's bound, which seed 7 alone
+  // of ten did. What holds for every seed is the books: the contacts book
+  // as viscous loss (either sign) the work their forces did less the
+  // change of their elastic energy, so the balance error stays within the
   // integrator's bound, and with nothing dissipative in the scene the
   // "viscous" book is minus the energy the contacts created.
   for (unsigned seed = 1; seed <= kSeeds; ++seed) {
@@ -173,6 +173,52 @@ TEST(ContactEnergy, TumblingBoxesOnOneAnotherBookWhatTheirContactsCreate) {
     EXPECT_NEAR(l.dissipated_viscous_J, -(l.stored_J() - l.initial_stored_J), bound * l.scale_J);
     std::printf("seed %u: stored energy %+.4f of the run's largest energy\n", seed,
                 (l.stored_J() - l.initial_stored_J) / l.scale_J);
+  }
+}
+
+TEST(ContactEnergy, ABlockTippingOverASmallerFixedBlocksEdgeCreatesNoEnergy) {
+  // A 0.1 x 0.08 x 0.05 m block (450 kg/m^3, 0.18 kg) dropped flat from
+  // 0.075 m onto a fixed 0.06 x 0.06 x 0.05 m block, off centre, with e = 1
+  // and mu = 0 (k_n = 1e6 N/m, ground alike): it bounces, rocks and tips
+  // over the fixed block's edges. While it tips, the fixed block's top edge
+  // presses into its bottom face: the
+  // contact's points are crossings of the block's tilted edges with the
+  // fixed face's side planes, and corners of that face. Their forces now
+  // follow their depths' gradients (ContactPointGeometry::lean), so the
+  // energy may not rise above its start by more than the integrator's
+  // (w dt)^2 / 4 of the drop's energy, w^2 = 24 k / m as above (4.4e-4 J
+  // at dt = 1e-5 s, 1.1e-4 J at 5e-6 s). Pushed along the fixed face's
+  // normal alone (before stop 42) the first offset created 1.7e-3 J at
+  // 1e-5 s and 8.1e-2 J, 61 % of the drop's 0.132 J, at 5e-6 s, in 1 ms
+  // (an energy probe). The energy may still fall: an edge contact that
+  // becomes a face contact changes its stiffness at once (contacts/README.md),
+  // which lost 7e-3 J at 1e-5 s and 3e-3 J at 5e-6 s in the first offset.
+  // Under AddressSanitizer the first offset at 1e-5 s only.
+  const double dts[2] = {1e-5, 5e-6};
+  const Vec3 offsets[3] = {Vec3(0.01, 0.005, 0.0), Vec3(0.015, -0.01, 0.0), Vec3(-0.012, 0.008, 0.0)};
+  for (int i = 0; i < (FQ_ADDRESS_SANITIZER ? 1 : 2); ++i) {
+    for (int o = 0; o < (FQ_ADDRESS_SANITIZER ? 1 : 3); ++o) {
+      SCOPED_TRACE("dt " + std::to_string(dts[i]) + " s, offset " + std::to_string(o));
+      fq::BodyStore store;
+      fq::test::add_box(store, Vec3(0.06, 0.06, 0.05), 450.0, Vec3(0.0, 0.0, 0.025), fq::Quat::Identity(), true);
+      fq::test::add_box(store, Vec3(0.1, 0.08, 0.05), 450.0, offsets[o] + Vec3(0.0, 0.0, 0.15));
+      fq::SimulationSettings s;
+      s.dt_s = dts[i];
+      s.duration_s = 1.0;
+      auto scene = fq::test::make_scene(std::move(store), s, [](fq::ContactSystem& c) {
+        const auto p = fq::test::params(1e6, 1.0, 0.0);
+        c.set_ground(0.0, p);
+        c.set_pair_params(0, 0, p);
+      });
+      MaxError obs;
+      scene.sim->add_observer(&obs, 1);
+      scene.sim->run();
+      const double mass_kg = scene.sim->bodies().mass_kg[1];
+      const double drop_J = mass_kg * 9.80665 * 0.075;
+      const double w_dt = std::sqrt(24.0 * 1e6 / mass_kg) * dts[i];
+      EXPECT_LT(obs.max_growth, w_dt * w_dt / 4.0 * drop_J);
+      EXPECT_LT(obs.max_rel, 1e-6);  // the books close
+    }
   }
 }
 

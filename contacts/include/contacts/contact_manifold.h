@@ -41,6 +41,20 @@ struct ContactPointGeometry {
   // vertex i), which gives 1 at each corner of any rectangle and sums to 4
   // for every face contact (see collide_box_box.h).
   double weight = 1.0;
+  // The part of the depth's gradient across the normal (world, unit-free,
+  // perpendicular to `normal`): the point's spring pushes b along
+  // normal + lean (and a the opposite way), the force whose work is the
+  // change of its energy 1/2 k depth^2. Zero for a box's corner pressing on
+  // a face (the ground, a face of the other box) and for an edge-edge point,
+  // whose depth changes only as the boxes approach along the normal.
+  // Nonzero for two kinds of points of a clipped face polygon, whose depth
+  // also changes as they slide (collide_box_box.cpp, face_contact): where
+  // an edge of the incident face crosses a side plane of the reference face
+  // (the lean makes normal + lean the common normal of that edge and the
+  // reference face's edge, scaled to 1 along the normal), and a corner of
+  // the reference face inside the incident face (normal + lean is the
+  // incident face's normal, scaled the same way).
+  Vec3 lean = Vec3::Zero();
   // Which features touch (corner, edge, face of each shape), encoded by the
   // routine that made the point. Stable as long as the same features touch,
   // so tangential history can be keyed by (pair, feature). Unique within one

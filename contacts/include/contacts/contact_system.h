@@ -144,12 +144,17 @@ struct ContactPoint {
   double normal_force_N = 0.0;         // >= 0 (N)
   Vec3 tangential_force_N = Vec3::Zero();  // on b, world (N)
   Vec3 shear_spring_N = Vec3::Zero();  // tangential history (N), world
+  // The normal spring's force across the normal (N, world, on b): k (d -
+  // d0) times the point's lean (ContactPointGeometry::lean), so that the
+  // spring's force is the gradient of its energy where the point slides.
+  Vec3 lean_force_N = Vec3::Zero();
+  Vec3 lean = Vec3::Zero();  // ContactPointGeometry::lean
   // Overlap the pair had when its joint broke (m): the normal spring acts on
   // depth_m - reference_depth_m only (see ContactSystem).
   double reference_depth_m = 0.0;
   bool sliding = false;
   // Force on b (N, world); a receives the opposite.
-  Vec3 force_N() const { return normal_force_N * normal + tangential_force_N; }
+  Vec3 force_N() const { return normal_force_N * normal + tangential_force_N + lean_force_N; }
 
   // Internal bookkeeping (valid during a step).
   std::uint64_t pair_key = 0;
