@@ -194,8 +194,9 @@ constexpr double kLeanCap = 1.0;
 // - a reference corner: p is where the corner's line along n meets the
 //   incident face m . p = d: depth = (m . corner - d) / (m . n), gradient
 //   -m / (m . n), lean m / (m . n) - n.
-// Rotations give the same force at p as its moment (a point of both
-// boxes): the derivation is in contacts/README.md, "Forces of face points".
+// For a turn of either box the gradient is that force's moment at p
+// (test_collide_box_box checks moves of both boxes and turns of b;
+// contacts/README.md, "Forces of face points").
 Vec3 depth_lean(std::uint32_t code, const Vec3& n, const Vec3& u, const Vec3& v, const Vec3 dirs[4],
                 const Vec3& inc_normal) {
   if (code < 8) return Vec3::Zero();

@@ -273,10 +273,19 @@ TEST(StudyCommands, SweepPgaDoesNotDependOnTheRecordsHorizontalDirection) {
     const fs::path out = dir.path() / ("sweep_" + name);
     if (axis[0] == 'x') {
       // A sweep.csv of the form before the integrator and dt_s columns
-      // (stop 40), as a recorded study wrote it, is ours to replace: two
-      // storeys, 17 columns, as wide as the new form with one storey.
+      // (stop 40), as a recorded study wrote it (the header and first row
+      // of validation/results/frames_sweep_kobe/sweep.csv before stop 42,
+      // which wrote it again in the new form), is
+      // ours to replace: two storeys, 17 columns, as wide as the new form
+      // with one storey.
       fs::create_directories(out);
-      fs::copy_file(kSource / "validation/results/frames_sweep_kobe/sweep.csv", out / "sweep.csv");
+      std::ofstream(out / "sweep.csv")
+          << "case,record,scale,pga_mps2,pga_g,status,storey1_peak_drift_ratio_rad,storey1_verdict,"
+             "storey2_peak_drift_ratio_rad,storey2_verdict,collapsed,first_joint_failure_s,broken_joints,joints,"
+             "energy_balance_error_relative,wall_s,output\n"
+             "frame_A,RSN1106_KOBE_KJM000,0.5,4.09049542,0.41711445,completed,0.0372586803,damaged,0.0330041295,"
+             "standing,0,,0,24,2.17174403e-09,5.95719425,"
+             "validation/results/frames_sweep_kobe/frame_A_RSN1106_KOBE_KJM000_x0.5\n";
       ASSERT_EQ(read_text(out / "sweep.csv").find("integrator"), std::string::npos);
     }
     const auto r = run_app({"sweep", (dir.path() / (name + ".yaml")).string(), "--scales", "1", "--out",
