@@ -14,7 +14,7 @@ namespace fq {
 namespace {
 
 // 2: initial overlaps; 3: the largest press so far (ContactPressPeak); 4:
-// with the box it was measured against.
+// with the box it was measured against; 5: each point's lean force (stop 42).
 constexpr std::uint32_t kContactStateVersion = 5;
 
 void save_point(StateWriter& out, const ContactPoint& c) {
@@ -27,7 +27,6 @@ void save_point(StateWriter& out, const ContactPoint& c) {
   out.f64(c.normal_force_N);
   out.vec3(c.tangential_force_N);
   out.vec3(c.shear_spring_N);
-  out.vec3(c.lean);
   out.vec3(c.lean_force_N);
   out.f64(c.reference_depth_m);
   out.boolean(c.sliding);
@@ -63,8 +62,7 @@ ContactPoint load_point(StateReader& in, std::size_t body_count, std::size_t coe
   c.normal_force_N = in.f64(what);
   c.tangential_force_N = in.vec3(what);
   c.shear_spring_N = in.vec3(what);
-  c.lean = in.vec3(what);
-  c.lean_force_N = in.vec3(what);
+  c.lean_force_N = in.vec3(what);  // the lean itself the next narrow phase sets again
   c.reference_depth_m = in.f64(what);
   c.sliding = in.boolean(what);
   c.pair_key = in.u64(what);

@@ -75,16 +75,18 @@ fq::BodyStore tumbling_boxes(unsigned seed, bool apart = false) {
 // for the whole run (5e4 steps, ~100 impacts). A sign or bookkeeping error
 // in the law (e.g. a damping of the wrong sign or a history that injects
 // energy) produces growth of the order of the impact energy itself.
+double omega_dt(double k_Npm, double mass_kg, double dt_s) { return std::sqrt(24.0 * k_Npm / mass_kg) * dt_s; }
 constexpr double kStep_s = 2e-5;
+// The bound above for the tumbling boxes of `sim` (k = 1e5 N/m, dt = kStep_s).
+double integrator_bound(const fq::Simulation& sim) {
+  const double w_dt = omega_dt(1e5, sim.bodies().mass_kg[0], kStep_s);
+  return w_dt * w_dt / 4.0;
+}
 
 // Seeds 1..kSeeds of each scene. Under AddressSanitizer (CI's second suite,
 // which looks for memory errors, not for physics: the plain suite runs all
 // eight) one seed: the eight took 146 s there, 2.2 s in the plain build.
 constexpr unsigned kSeeds = FQ_ADDRESS_SANITIZER ? 1 : 8;
-double integrator_bound(const fq::Simulation& sim) {
-  const double w_dt = std::sqrt(24.0 * 1e5 / sim.bodies().mass_kg[0]) * kStep_s;
-  return w_dt * w_dt / 4.0;
-}
 
 // tumbling_boxes(seed) falling on one another and on the ground, one
 // contact material (k_n = 1e5 N/m, restitution e, friction mu), for 1 s at
@@ -215,7 +217,7 @@ TEST(ContactEnergy, ABlockTippingOverASmallerFixedBlocksEdgeCreatesNoEnergy) {
       scene.sim->run();
       const double mass_kg = scene.sim->bodies().mass_kg[1];
       const double drop_J = mass_kg * 9.80665 * 0.075;
-      const double w_dt = std::sqrt(24.0 * 1e6 / mass_kg) * dts[i];
+      const double w_dt = omega_dt(1e6, mass_kg, dts[i]);
       EXPECT_LT(obs.max_growth, w_dt * w_dt / 4.0 * drop_J);
       EXPECT_LT(obs.max_rel, 1e-6);  // the books close
     }
@@ -238,7 +240,7 @@ TEST(ContactEnergy, DissipativeContactsBalanceTheLedger) {
     const auto& l = scene.sim->ledger();
     EXPECT_GT(l.dissipated_viscous_J, 0.0);
     EXPECT_GT(l.dissipated_friction_J, 0.0);
-    const double w_dt = std::sqrt(4.0 * integrator_bound(*scene.sim));
+    const double w_dt = omega_dt(1e5, scene.sim->bodies().mass_kg[0], kStep_s);
     EXPECT_LT(obs.max_rel, w_dt * w_dt / 4.0)
         << "max error " << obs.max_abs << " J; stored " << l.stored_J() << " dissipated " << l.dissipated_J()
         << " (former bound's first-order part zeta w dt D = " << zeta * w_dt * l.dissipated_J() << " J)";
